@@ -1,0 +1,30 @@
+# Compiles a GLSL compute shader to SPIR-V at build time, validates it, optionally lints it for the key path
+# (tools/spirv_lint: no division or transcendental, NoContraction everywhere, float controls declared), and
+# embeds it as a C array header `<name>_spv.h` defining `uint32_t <name>_spv[]`.
+set(HPSF_SHADER_TARGET_ENV vulkan1.2)
+file(GLOB HPSF_SHARED_SOURCES CONFIGURE_DEPENDS
+     ${PROJECT_SOURCE_DIR}/core/shared/*.h ${PROJECT_SOURCE_DIR}/vulkan/shaders/*.glsl)
+
+function(hpsf_add_shader target source)
+  cmake_parse_arguments(ARG "KEY_PATH" "" "" ${ARGN})
+  get_filename_component(name ${source} NAME_WE)
+  set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/shaders)
+  set(spv ${out_dir}/${name}.spv)
+  set(header ${out_dir}/${name}_spv.h)
+  set(lint_command)
+  if(ARG_KEY_PATH)
+    set(lint_command COMMAND $<TARGET_FILE:spirv_lint> ${spv})
+  endif()
+  add_custom_command(
+    OUTPUT ${spv} ${header}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
+    COMMAND ${GLSLANG_VALIDATOR} -V --quiet --target-env ${HPSF_SHADER_TARGET_ENV} -o ${spv} ${source}
+    COMMAND ${SPIRV_VAL} --target-env ${HPSF_SHADER_TARGET_ENV} ${spv}
+    ${lint_command}
+    COMMAND ${GLSLANG_VALIDATOR} -V --quiet --target-env ${HPSF_SHADER_TARGET_ENV} --vn ${name}_spv -o ${header} ${source}
+    DEPENDS ${source} ${HPSF_SHARED_SOURCES} $<$<BOOL:${ARG_KEY_PATH}>:spirv_lint>
+    COMMENT "Compiling, validating and linting ${name}.comp"
+    VERBATIM)
+  target_sources(${target} PRIVATE ${header})
+  target_include_directories(${target} PRIVATE ${out_dir})
+endfunction()

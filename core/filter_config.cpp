@@ -1,0 +1,126 @@
+#include "core/filter_config.h"
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "core/shared/float_bits.h"
+
+namespace hpsf {
+namespace {
+
+bool IsPositiveNormalFloat(float x) { return std::isnormal(x) && x > 0.0f; }
+
+}  // namespace
+
+std::string NormalKey::ToString() const {
+  switch (mode) {
+    case NormalMode::kNone: return "none";
+    case NormalMode::kSign: return "sign";
+    case NormalMode::kOctahedral: return "octahedral:" + std::to_string(octahedral_bits);
+  }
+  return "?";
+}
+
+NormalKey ParseNormalKey(const std::string& text) {
+  if (text == "none") return {NormalMode::kNone, 0};
+  if (text == "sign") return {NormalMode::kSign, 0};
+  const std::string prefix = "octahedral:";
+  if (text.rfind(prefix, 0) == 0) {
+    const char* first = text.data() + prefix.size();
+    const char* last = text.data() + text.size();
+    std::uint32_t bits = 0;
+    auto [end, error] = std::from_chars(first, last, bits);
+    if (error == std::errc() && end == last && first != last && bits >= 1 && bits <= 16) {
+      return {NormalMode::kOctahedral, bits};
+    }
+    throw ConfigError("--normal", "octahedral needs 1..16 bits per axis, as in octahedral:4; got '" + text + "'");
+  }
+  throw ConfigError("--normal", "expected none, sign or octahedral:B; got '" + text + "'");
+}
+
+Accumulation ParseAccumulation(const std::string& text) {
+  if (text == "fixed64") return Accumulation::kFixed64;
+  if (text == "float32") return Accumulation::kFloat32;
+  throw ConfigError("--accum", "expected fixed64 or float32; got '" + text + "'");
+}
+
+std::string ToString(Accumulation accumulation) {
+  return accumulation == Accumulation::kFixed64 ? "fixed64" : "float32";
+}
+
+void FilterConfig::Validate() const {
+  if (!(std::isfinite(filter_width_px) && filter_width_px > 0.0f)) {
+    throw ConfigError("--filter-width", "must be a positive finite number of pixels; got " + FormatFloat(filter_width_px));
+  }
+  if (!(std::isfinite(jitter_scale) && jitter_scale >= 0.0f)) {
+    throw ConfigError("--jitter", "must be finite and >= 0; got " + FormatFloat(jitter_scale));
+  }
+  if (normal.mode == NormalMode::kOctahedral && (normal.octahedral_bits < 1 || normal.octahedral_bits > 16)) {
+    throw ConfigError("--normal", "octahedral needs 1..16 bits per axis; got " + std::to_string(normal.octahedral_bits));
+  }
+  if (!IsPositiveNormalFloat(cell_size)) {
+    throw ConfigError("--cell-size", "must be a positive normal float (its inverse must be finite); got " + FormatFloat(cell_size));
+  }
+  if (!IsPositiveNormalFloat(1.0f / cell_size)) {
+    throw ConfigError("--cell-size", "its inverse is not a normal float; got " + FormatFloat(cell_size));
+  }
+  if (level_min < shared::kMinLevel || level_min > shared::kMaxLevel) {
+    throw ConfigError("--level-min", "must lie in [-126, 126]; got " + std::to_string(level_min));
+  }
+  if (level_max < shared::kMinLevel || level_max > shared::kMaxLevel) {
+    throw ConfigError("--level-max", "must lie in [-126, 126]; got " + std::to_string(level_max));
+  }
+  if (level_min > level_max) {
+    throw ConfigError("--level-min", "must not exceed --level-max (" + std::to_string(level_max) + "); got " + std::to_string(level_min));
+  }
+  if (capacity == 0 || !std::has_single_bit(capacity) || capacity > (1u << 31)) {
+    throw ConfigError("--capacity", "must be a power of two in [1, 2^31]; got " + std::to_string(capacity));
+  }
+  if (probe_limit == 0 || probe_limit > capacity) {
+    throw ConfigError("--probe-limit", "must lie in [1, capacity = " + std::to_string(capacity) + "]; got " + std::to_string(probe_limit));
+  }
+  if (fingerprint_bits < 8 || fingerprint_bits > 32) {
+    throw ConfigError("--fingerprint-bits", "must lie in [8, 32]; got " + std::to_string(fingerprint_bits));
+  }
+}
+
+std::string FilterConfig::ToString() const {
+  return "[ FilterConfig filter_width_px: " + FormatFloat(filter_width_px) + " jitter_scale: " + FormatFloat(jitter_scale) +
+         " normal: " + normal.ToString() + " normal_in_index: " + (normal_in_index ? "true" : "false") +
+         " lod: " + (lod ? "on" : "off") + " cell_size: " + FormatFloat(cell_size) + " level: [" +
+         std::to_string(level_min) + ", " + std::to_string(level_max) + "] accum: " + hpsf::ToString(accumulation) +
+         " capacity: " + std::to_string(capacity) + " probe_limit: " + std::to_string(probe_limit) +
+         " fingerprint_bits: " + std::to_string(fingerprint_bits) + " seed: " + std::to_string(seed) +
+         " frame: " + std::to_string(frame) + " ]";
+}
+
+shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {
+  config.Validate();
+  if (!(std::isfinite(footprint_scale) && footprint_scale >= 0.0f)) {
+    throw ConfigError("--filter-width", "gives a footprint scale that is not finite and >= 0: " + FormatFloat(footprint_scale));
+  }
+  shared::KeyParams p{};
+  p.footprint_scale = footprint_scale;
+  p.jitter_scale = config.jitter_scale;
+  p.cell_size = config.cell_size;
+  p.inverse_cell_size = 1.0f / config.cell_size;  // correctly rounded on the host
+  p.level_min = config.level_min;
+  p.level_max = config.level_max;
+  p.lod_enabled = config.lod ? 1u : 0u;
+  p.normal_mode = config.normal.mode == NormalMode::kNone   ? shared::kNormalNone
+                  : config.normal.mode == NormalMode::kSign ? shared::kNormalSign
+                                                            : shared::kNormalOctahedral;
+  p.normal_bits = config.normal.octahedral_bits;
+  p.normal_in_index = config.normal_in_index ? 1u : 0u;
+  p.capacity_mask = config.capacity - 1u;
+  p.fingerprint_bits = config.fingerprint_bits;
+  p.seed = config.seed;
+  p.frame = config.frame;
+  p.record_count = record_count;
+  return p;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,52 @@
+// Every option of the filter, validated as a whole: a bad value is a ConfigError that names the option.
+#ifndef HPSF_CORE_FILTER_CONFIG_H
+#define HPSF_CORE_FILTER_CONFIG_H
+
+#include <cstdint>
+#include <string>
+
+#include "core/shared/key_params.h"
+
+namespace hpsf {
+
+enum class NormalMode { kNone, kSign, kOctahedral };
+enum class Accumulation { kFixed64, kFloat32 };
+
+struct NormalKey {
+  NormalMode mode = NormalMode::kSign;
+  std::uint32_t octahedral_bits = 0;  // per axis, 1..16, octahedral only
+  std::string ToString() const;       // "none", "sign", "octahedral:4"
+};
+
+// Parses "none", "sign" or "octahedral:B"; a ConfigError naming --normal otherwise.
+NormalKey ParseNormalKey(const std::string& text);
+Accumulation ParseAccumulation(const std::string& text);
+std::string ToString(Accumulation accumulation);
+
+struct FilterConfig {
+  float filter_width_px = 4.0f;     // --filter-width: a cell spans this many pixels at a primary hit
+  float jitter_scale = 1.0f;        // --jitter: amplitude in units of the cell size; 0 turns jitter off
+  NormalKey normal;                 // --normal
+  bool normal_in_index = true;      // --normal-in-index: false keeps the bucket in the fingerprint only
+  bool lod = true;                  // --lod on|off
+  float cell_size = 1.0f;           // --cell-size: the cell edge when level of detail is off
+  int level_min = -126;             // --level-min, --level-max: clamp of the level, inside [-126, 126]
+  int level_max = 126;
+  Accumulation accumulation = Accumulation::kFixed64;  // --accum
+  std::uint32_t capacity = 1u << 22;                   // --capacity: slots, a power of two
+  std::uint32_t probe_limit = 16;                      // --probe-limit: slots tried before a probe failure
+  std::uint32_t fingerprint_bits = 32;                 // --fingerprint-bits: 8..32
+  std::uint32_t seed = 1;                              // --seed
+  std::uint32_t frame = 0;
+
+  // Throws ConfigError for the first invalid option.
+  void Validate() const;
+  std::string ToString() const;
+};
+
+// The key path's view of a validated config. footprint_scale comes from the camera (core/footprint.h).
+shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_FILTER_CONFIG_H

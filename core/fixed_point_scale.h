@@ -1,0 +1,25 @@
+// The per-batch choice of F, the fraction bits of fixed64 accumulation: the largest F in [-126, 126] such that,
+// for every channel, the sum over all accepted vertex records of ceil(c * 2^F) stays below 2^63. Rounding never
+// exceeds the ceiling, so no cell, and not even the whole table, can overflow. F goes into every report.
+#ifndef HPSF_CORE_FIXED_POINT_SCALE_H
+#define HPSF_CORE_FIXED_POINT_SCALE_H
+
+#include <cstdint>
+#include <span>
+
+#include "core/record.h"
+
+namespace hpsf {
+
+int ChooseFixedPointBits(std::span<const Record> records);
+
+// The channel total bound of the choice above, exact: sum of ceil(c * 2^F) over accepted vertex records.
+// Saturates at 2^127 instead of wrapping.
+unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int channel, int fraction_bits);
+
+// Back to a real number: value * 2^-F in double (exact below 2^53).
+double FromFixedPoint(std::uint64_t value, int fraction_bits);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_FIXED_POINT_SCALE_H

@@ -1,0 +1,28 @@
+#include "core/format.h"
+
+#include <bit>
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+
+namespace hpsf {
+
+std::string FormatFloat(float x) {
+  char buffer[32];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+
+std::string FormatHex(unsigned int bits) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "0x%08x", bits);
+  return buffer;
+}
+
+std::string FormatFloatBits(float x) { return FormatFloat(x) + " (" + FormatHex(std::bit_cast<std::uint32_t>(x)) + ")"; }
+
+std::string FormatVec3(glm::vec3 v) {
+  return "(" + FormatFloat(v.x) + ", " + FormatFloat(v.y) + ", " + FormatFloat(v.z) + ")";
+}
+
+}  // namespace hpsf

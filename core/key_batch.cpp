@@ -1,0 +1,34 @@
+#include "core/key_batch.h"
+
+#include <cstring>
+
+#include "core/format.h"
+
+namespace hpsf {
+
+std::vector<KeyResult> ComputeKeys(std::span<const Record> records, const KeyParams& params) {
+  std::vector<KeyResult> keys(records.size());
+  for (std::size_t i = 0; i < records.size(); ++i) keys[i] = shared::ComputeKey(params, records[i]);
+  return keys;
+}
+
+std::array<std::uint32_t, 10> KeyResultWords(const KeyResult& key) {
+  std::array<std::uint32_t, 10> words;
+  std::memcpy(words.data(), &key, sizeof key);
+  return words;
+}
+
+const char* KeyResultWordName(int index) {
+  static const char* const kNames[10] = {"cell_x", "cell_y", "cell_z", "level_word", "normal",
+                                         "extra",  "slot0",  "fingerprint", "level", "status"};
+  return index >= 0 && index < 10 ? kNames[index] : "?";
+}
+
+std::string ToString(const KeyResult& key) {
+  std::string s = "[ KeyResult";
+  const auto words = KeyResultWords(key);
+  for (int i = 0; i < 10; ++i) s += std::string(" ") + KeyResultWordName(i) + ": " + FormatHex(words[i]);
+  return s + " ]";
+}
+
+}  // namespace hpsf

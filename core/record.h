@@ -1,0 +1,51 @@
+// Sample records on the host: the shared GPU layout, a batch with the image it came from, and builders that
+// compute the host-side fields (tangent frame, octahedral normal) once.
+#ifndef HPSF_CORE_RECORD_H
+#define HPSF_CORE_RECORD_H
+
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/shared/record_layout.h"
+
+namespace hpsf {
+
+using Record = shared::Record;
+static_assert(sizeof(Record) == 144 && std::is_standard_layout_v<Record>, "Record must match the std430 layout");
+
+// One camera sample's filter vertex, before the host derives the rest of the record.
+struct VertexSample {
+  std::uint32_t pixel = 0;
+  std::uint32_t sample = 0;
+  std::uint32_t bounce = 0;     // index of the filter vertex along the path, 0 for the primary hit
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};  // unit, facing the incoming ray
+  glm::vec3 previous{0.0f};
+  float d_prefix = 0.0f;
+  glm::vec3 contribution{0.0f};
+  glm::vec3 throughput{0.0f};
+  glm::vec3 radiance_before{0.0f};
+};
+
+Record MakeVertexRecord(const VertexSample& vertex);
+// A sample without a filter vertex (sky hit, path ended): it carries radiance_before only.
+Record MakeRecordWithoutVertex(std::uint32_t pixel, std::uint32_t sample, glm::vec3 radiance_before);
+
+// Every camera sample of one image, one record each, in (pixel, sample) order.
+struct RecordBatch {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t samples_per_pixel = 0;
+  float footprint_scale = 0.0f;  // from the camera, core/footprint.h
+  std::vector<Record> records;
+};
+
+std::string ToString(const Record& record);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_RECORD_H

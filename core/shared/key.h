@@ -1,0 +1,104 @@
+// The whole key path of one record, written once for C++ and GLSL: path length, level, jitter, level again,
+// cell, key words, first slot and fingerprint. keys.comp runs exactly this; so does every C++ backend.
+#ifndef HPSF_CORE_SHARED_KEY_H
+#define HPSF_CORE_SHARED_KEY_H
+
+#include "cell.h"
+#include "jitter.h"
+#include "key_params.h"
+#include "key_words.h"
+#include "level_of_detail.h"
+#include "normal_bucket.h"
+#include "record_layout.h"
+#include "rng.h"
+
+HPSF_SHARED_BEGIN
+
+const uint kKeyed = 0u;
+const uint kKeyNoVertex = 1u;    // sky hit or path ended: the record carries radiance_before only
+const uint kKeyUnkeyable = 2u;   // |q| >= 2^31 in some axis: falls back to its own contribution
+
+struct KeyResult {
+  KeyWords words;
+  uint slot0;
+  uint fingerprint;
+  int level;    // l' after jitter (the fixed level of the cell size with level of detail off)
+  uint status;  // kKeyed, kKeyNoVertex or kKeyUnkeyable
+};
+
+HPSF_FN KeyResult EmptyKeyResult(uint status) {
+  KeyResult k;
+  k.words.cell_x = 0u;
+  k.words.cell_y = 0u;
+  k.words.cell_z = 0u;
+  k.words.level = 0u;
+  k.words.normal = 0u;
+  k.words.extra = 0u;
+  k.slot0 = 0u;
+  k.fingerprint = 0u;
+  k.level = 0;
+  k.status = status;
+  return k;
+}
+
+HPSF_FN RngCounter JitterCounter(KeyParams p, Record r) {
+  RngCounter c;
+  c.seed = p.seed;
+  c.frame = p.frame;
+  c.pixel = RecordPixel(r);
+  c.sample_index = RecordSample(r);
+  c.bounce = RecordBounce(r);
+  return c;
+}
+
+HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
+  if (!RecordHasVertex(r)) return EmptyKeyResult(kKeyNoVertex);
+
+  vec3 x = vec3(r.position);
+  vec3 x_prev = vec3(r.previous);
+  float d_prefix = r.position.w;
+  RngCounter counter = JitterCounter(p, r);
+  float u1 = RandomFloat(counter, kJitterDimensionU);
+  float u2 = RandomFloat(counter, kJitterDimensionV);
+
+  int level;
+  float inverse_size;
+  if (p.lod_enabled != 0u) {
+    int level_before = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, x, x_prev), p.level_min, p.level_max);
+    HPSF_PRECISE float amplitude = Flush(p.jitter_scale * PowerOfTwo(level_before));
+    vec3 jittered = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
+    // The level is recomputed after the jitter (DESIGN.md D5): the cell must match the jittered position.
+    level = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, jittered, x_prev), p.level_min, p.level_max);
+    inverse_size = PowerOfTwo(-level);
+    x = jittered;
+  } else {
+    HPSF_PRECISE float amplitude = Flush(p.jitter_scale * p.cell_size);
+    x = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
+    level = UnbiasedExponent(p.cell_size);
+    inverse_size = p.inverse_cell_size;
+  }
+
+  Cell cell = CellOf(x, inverse_size);
+  if (!cell.keyable) {
+    KeyResult unkeyable = EmptyKeyResult(kKeyUnkeyable);
+    unkeyable.level = level;
+    return unkeyable;
+  }
+
+  KeyResult k;
+  k.words.cell_x = uint(cell.index.x);
+  k.words.cell_y = uint(cell.index.y);
+  k.words.cell_z = uint(cell.index.z);
+  k.words.level = uint(level + int(kLevelWordBias));
+  k.words.normal = NormalBucket(p, r);
+  k.words.extra = 0u;
+  k.slot0 = IndexHash(k.words, p.normal_in_index) & p.capacity_mask;
+  k.fingerprint = Fingerprint(k.words, p.fingerprint_bits);
+  k.level = level;
+  k.status = kKeyed;
+  return k;
+}
+
+HPSF_SHARED_END
+
+#endif  // HPSF_CORE_SHARED_KEY_H

@@ -1,0 +1,38 @@
+// The small prelude that lets core/shared/ compile both as C++ (through glm, which mirrors GLSL) and as
+// GLSL 4.50. Everything in core/shared/ is written in the common subset: GLSL syntax, glm types and
+// functions, no references, no templates; functions are HPSF_FN and key-path values HPSF_PRECISE.
+#ifndef HPSF_CORE_SHARED_PRELUDE_H
+#define HPSF_CORE_SHARED_PRELUDE_H
+
+#ifndef __cplusplus  // GLSL: the shader includes this first, right after #version and its #extension lines.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#define HPSF_FN
+#define HPSF_PRECISE precise
+#define HPSF_SHARED_BEGIN
+#define HPSF_SHARED_END
+#define HPSF_ROUND_EVEN(x) roundEven(x)
+
+#else  // C++
+#include <cmath>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#define HPSF_FN inline
+#define HPSF_PRECISE
+#define HPSF_SHARED_BEGIN \
+  namespace hpsf::shared { \
+  using namespace glm;
+#define HPSF_SHARED_END }
+// std::nearbyint rounds half to even in the default rounding mode, as GLSL's roundEven does; glm's roundEven
+// goes through integer conversions that are wrong above 2^31.
+#define HPSF_ROUND_EVEN(x) std::nearbyint(x)
+
+namespace hpsf::shared {
+using uint = std::uint32_t;
+using std::int64_t;
+using std::uint64_t;
+}  // namespace hpsf::shared
+#endif
+
+#endif  // HPSF_CORE_SHARED_PRELUDE_H

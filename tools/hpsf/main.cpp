@@ -1,0 +1,28 @@
+// hpsf: a verification harness for hashed path space filtering. Exit codes: 0 pass, 1 warn, 2 a failed check,
+// 3 bad input (a bad option or file, or no usable Vulkan device).
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "core/error.h"
+#include "tools/hpsf/device_command.h"
+#include "vulkan/vulkan_device.h"
+
+int main(int argc, char** argv) {
+  CLI::App app("hpsf: makes GPU hash tables for hashed path space filtering trustworthy", "hpsf");
+  app.require_subcommand(1);
+  hpsf::AddDeviceCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? hpsf::kExitOk : hpsf::kExitBadInput;
+  } catch (const hpsf::InputError& e) {
+    std::cerr << "hpsf: " << e.what() << "\n";
+    return hpsf::kExitBadInput;
+  } catch (const hpsf::VulkanUnavailable& e) {
+    std::cerr << "hpsf: " << e.what() << "\n";
+    return hpsf::kExitBadInput;
+  }
+  return hpsf::kExitOk;
+}

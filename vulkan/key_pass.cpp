@@ -1,0 +1,71 @@
+#include "vulkan/key_pass.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "keys_spv.h"
+#include "vulkan/vulkan_internal.h"
+
+namespace hpsf {
+
+using vulkan_internal::HostBuffer;
+
+namespace {
+
+constexpr std::uint32_t kWorkgroupSize = 128;   // keys.comp's local_size_x
+constexpr std::uint32_t kMaxWorkgroups = 65535;  // the guaranteed minimum of maxComputeWorkGroupCount[0]
+
+}  // namespace
+
+struct KeyPass::Impl {
+  VulkanDevice::Impl& device;
+  vulkan_internal::ComputeProgram program;
+  HostBuffer records;
+  HostBuffer keys;
+  std::uint32_t count = 0;
+};
+
+KeyPass::KeyPass(VulkanDevice& device)
+    : impl_(new Impl{device.impl(), vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, 2, sizeof(KeyParams)),
+                     {}, {}, 0}) {}
+
+KeyPass::~KeyPass() = default;
+
+void KeyPass::Upload(std::span<const Record> records) {
+  Impl& p = *impl_;
+  if (records.size() > UINT32_MAX) throw std::length_error("KeyPass: more than 2^32 - 1 records");
+  const vk::DeviceSize record_bytes = records.size_bytes(), key_bytes = records.size() * sizeof(KeyResult);
+  if (p.records.size < record_bytes || !*p.records.buffer) p.records = vulkan_internal::CreateHostBuffer(p.device, record_bytes);
+  if (p.keys.size < key_bytes || !*p.keys.buffer) p.keys = vulkan_internal::CreateHostBuffer(p.device, key_bytes);
+  if (!records.empty()) std::memcpy(p.records.mapped, records.data(), record_bytes);
+  p.count = static_cast<std::uint32_t>(records.size());
+  HostBuffer* const bindings[] = {&p.records, &p.keys};
+  vulkan_internal::BindBuffers(p.device, p.program, bindings);
+}
+
+double KeyPass::Dispatch(const KeyParams& params) {
+  Impl& p = *impl_;
+  KeyParams pushed = params;
+  pushed.record_count = p.count;
+  const std::uint32_t groups = std::clamp<std::uint32_t>((p.count + kWorkgroupSize - 1) / kWorkgroupSize, 1, kMaxWorkgroups);
+  return vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *p.program.pipeline);
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *p.program.layout, 0, *p.program.set, nullptr);
+    cb.pushConstants<KeyParams>(*p.program.layout, vk::ShaderStageFlagBits::eCompute, 0, pushed);
+    cb.dispatch(groups, 1, 1);
+  });
+}
+
+std::vector<KeyResult> KeyPass::Download() const {
+  std::vector<KeyResult> keys(impl_->count);
+  if (!keys.empty()) std::memcpy(keys.data(), impl_->keys.mapped, keys.size() * sizeof(KeyResult));
+  return keys;
+}
+
+std::vector<KeyResult> KeyPass::Run(std::span<const Record> records, const KeyParams& params) {
+  Upload(records);
+  Dispatch(params);
+  return Download();
+}
+
+}  // namespace hpsf
