@@ -1,14 +1,20 @@
 #include "core/key_batch.h"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "core/format.h"
 
 namespace hpsf {
 
+void ComputeKeys(std::span<const Record> records, const KeyParams& params, std::span<KeyResult> keys) {
+  if (keys.size() != records.size()) throw std::length_error("ComputeKeys: one result per record");
+  for (std::size_t i = 0; i < records.size(); ++i) keys[i] = shared::ComputeKey(params, records[i]);
+}
+
 std::vector<KeyResult> ComputeKeys(std::span<const Record> records, const KeyParams& params) {
   std::vector<KeyResult> keys(records.size());
-  for (std::size_t i = 0; i < records.size(); ++i) keys[i] = shared::ComputeKey(params, records[i]);
+  ComputeKeys(records, params, keys);
   return keys;
 }
 

@@ -20,6 +20,8 @@ static_assert(sizeof(KeyResult) == 40 && std::is_standard_layout_v<KeyResult>, "
 static_assert(sizeof(KeyParams) == 64 && std::is_standard_layout_v<KeyParams>, "KeyParams must match std430");
 
 std::vector<KeyResult> ComputeKeys(std::span<const Record> records, const KeyParams& params);
+// Into a buffer the caller keeps, of records.size() results.
+void ComputeKeys(std::span<const Record> records, const KeyParams& params, std::span<KeyResult> keys);
 
 // The ten 32-bit words of a result, in layout order: six key words, slot0, fingerprint, level, status.
 std::array<std::uint32_t, 10> KeyResultWords(const KeyResult& key);

@@ -57,9 +57,9 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   vec3 x = vec3(r.position);
   vec3 x_prev = vec3(r.previous);
   float d_prefix = r.position.w;
-  RngCounter counter = JitterCounter(p, r);
-  float u1 = RandomFloat(counter, kJitterDimensionU);
-  float u2 = RandomFloat(counter, kJitterDimensionV);
+  uint rng = RngPrefix(JitterCounter(p, r));
+  float u1 = RandomFloatFromPrefix(rng, kJitterDimensionU);
+  float u2 = RandomFloatFromPrefix(rng, kJitterDimensionV);
 
   int level;
   float inverse_size;

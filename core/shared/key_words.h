@@ -20,25 +20,29 @@ struct KeyWords {
   uint extra;   // 0; reserved for glossy and layer keys
 };
 
-// A chain of PCG permutations. With normal_in_index 0 the bucket only enters the fingerprint, so records with
-// different normals share a window and probing searches similar normals (Binder et al. §3.2.2).
+// Both hashes absorb the six words with xxHash32's round, from different seeds, as two independent chains a
+// CPU or GPU overlaps, the cell words last since they are known last; the index hash then ends in a PCG permutation, the fingerprint in xxHash32's avalanche.
+// With normal_in_index 0 the bucket only enters the fingerprint, so records with different normals share a
+// window and probing searches similar normals (Binder et al. §3.2.2).
 HPSF_FN uint IndexHash(KeyWords k, uint normal_in_index) {
-  uint h = Pcg(kIndexHashSeed + k.cell_x);
-  h = Pcg(h + k.cell_y);
-  h = Pcg(h + k.cell_z);
-  h = Pcg(h + k.level);
-  h = Pcg(h + (normal_in_index != 0u ? k.normal : 0u));
-  return Pcg(h + k.extra);
+  uint h = XxBegin(kIndexHashSeed, 6u);
+  h = XxAdd(h, normal_in_index != 0u ? k.normal : 0u);
+  h = XxAdd(h, k.extra);
+  h = XxAdd(h, k.level);
+  h = XxAdd(h, k.cell_x);
+  h = XxAdd(h, k.cell_y);
+  h = XxAdd(h, k.cell_z);
+  return Pcg(h);
 }
 
 HPSF_FN uint FullFingerprint(KeyWords k) {
   uint h = XxBegin(kFingerprintSeed, 6u);
+  h = XxAdd(h, k.normal);
+  h = XxAdd(h, k.extra);
+  h = XxAdd(h, k.level);
   h = XxAdd(h, k.cell_x);
   h = XxAdd(h, k.cell_y);
   h = XxAdd(h, k.cell_z);
-  h = XxAdd(h, k.level);
-  h = XxAdd(h, k.normal);
-  h = XxAdd(h, k.extra);
   return XxFinish(h);
 }
 

