@@ -18,22 +18,22 @@ std::vector<KeyResult> ComputeKeys(std::span<const Record> records, const KeyPar
   return keys;
 }
 
-std::array<std::uint32_t, 10> KeyResultWords(const KeyResult& key) {
-  std::array<std::uint32_t, 10> words;
+std::array<std::uint32_t, 12> KeyResultWords(const KeyResult& key) {
+  std::array<std::uint32_t, 12> words;
   std::memcpy(words.data(), &key, sizeof key);
   return words;
 }
 
 const char* KeyResultWordName(int index) {
-  static const char* const kNames[10] = {"cell_x", "cell_y", "cell_z", "level_word", "normal",
-                                         "extra",  "slot0",  "fingerprint", "level", "status"};
-  return index >= 0 && index < 10 ? kNames[index] : "?";
+  static const char* const kNames[12] = {"cell_x", "cell_y", "cell_z",      "level_word", "normal",   "extra",
+                                         "slot0",  "fingerprint", "level", "status",     "padding0", "padding1"};
+  return index >= 0 && index < 12 ? kNames[index] : "?";
 }
 
 std::string ToString(const KeyResult& key) {
   std::string s = "[ KeyResult";
   const auto words = KeyResultWords(key);
-  for (int i = 0; i < 10; ++i) s += std::string(" ") + KeyResultWordName(i) + ": " + FormatHex(words[i]);
+  for (int i = 0; i < 12; ++i) s += std::string(" ") + KeyResultWordName(i) + ": " + FormatHex(words[i]);
   return s + " ]";
 }
 

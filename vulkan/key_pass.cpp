@@ -25,9 +25,12 @@ struct KeyPass::Impl {
   std::uint32_t count = 0;
 };
 
+constexpr vulkan_internal::BindingKind kKeyBindings[] = {vulkan_internal::BindingKind::kUniformTexelBuffer,
+                                                        vulkan_internal::BindingKind::kStorageBuffer};
+
 KeyPass::KeyPass(VulkanDevice& device)
-    : impl_(new Impl{device.impl(), vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, 2, sizeof(KeyParams)),
-                     {}, {}, 0}) {}
+    : impl_(new Impl{device.impl(),
+                     vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, kKeyBindings, sizeof(KeyParams)), {}, {}, 0}) {}
 
 KeyPass::~KeyPass() = default;
 

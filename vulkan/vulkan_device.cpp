@@ -168,11 +168,20 @@ VulkanDevice::~VulkanDevice() = default;
 const VulkanDeviceInfo& VulkanDevice::info() const { return impl_->info; }
 
 namespace vulkan_internal {
+namespace {
+
+vk::DescriptorType DescriptorType(BindingKind kind) {
+  return kind == BindingKind::kStorageBuffer ? vk::DescriptorType::eStorageBuffer : vk::DescriptorType::eUniformTexelBuffer;
+}
+
+}  // namespace
 
 HostBuffer CreateHostBuffer(VulkanDevice::Impl& d, vk::DeviceSize size) {
   HostBuffer b;
   b.size = std::max<vk::DeviceSize>(size, 16);
-  b.buffer = vk::raii::Buffer(d.device, vk::BufferCreateInfo({}, b.size, vk::BufferUsageFlagBits::eStorageBuffer));
+  b.buffer = vk::raii::Buffer(d.device, vk::BufferCreateInfo({}, b.size,
+                                                              vk::BufferUsageFlagBits::eStorageBuffer |
+                                                                  vk::BufferUsageFlagBits::eUniformTexelBuffer));
   const vk::MemoryRequirements requirements = b.buffer.getMemoryRequirements();
   const vk::PhysicalDeviceMemoryProperties memory = d.physical.getMemoryProperties();
   const auto wanted = vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent;
@@ -187,17 +196,24 @@ HostBuffer CreateHostBuffer(VulkanDevice::Impl& d, vk::DeviceSize size) {
   b.memory = vk::raii::DeviceMemory(d.device, vk::MemoryAllocateInfo(requirements.size, type));
   b.buffer.bindMemory(*b.memory, 0);
   b.mapped = b.memory.mapMemory(0, b.size);
+  if (b.size % 16 == 0 && b.size / 16 <= d.physical.getProperties().limits.maxTexelBufferElements) {
+    b.texels = vk::raii::BufferView(d.device, vk::BufferViewCreateInfo({}, *b.buffer, vk::Format::eR32G32B32A32Uint, 0, b.size));
+  }
   return b;
 }
 
 ComputeProgram CreateComputeProgram(VulkanDevice::Impl& d, std::span<const std::uint32_t> spirv,
-                                    std::uint32_t binding_count, std::uint32_t push_constant_size) {
+                                    std::span<const BindingKind> kinds, std::uint32_t push_constant_size) {
   ComputeProgram p;
+  p.bindings.assign(kinds.begin(), kinds.end());
   p.push_constant_size = push_constant_size;
   p.module = vk::raii::ShaderModule(d.device, vk::ShaderModuleCreateInfo({}, spirv.size_bytes(), spirv.data()));
   std::vector<vk::DescriptorSetLayoutBinding> bindings;
-  for (std::uint32_t i = 0; i < binding_count; ++i) {
-    bindings.emplace_back(i, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute);
+  std::vector<vk::DescriptorPoolSize> pool_sizes;
+  for (std::uint32_t i = 0; i < kinds.size(); ++i) {
+    const vk::DescriptorType type = DescriptorType(kinds[i]);
+    bindings.emplace_back(i, type, 1, vk::ShaderStageFlagBits::eCompute);
+    pool_sizes.emplace_back(type, 1);
   }
   p.set_layout = vk::raii::DescriptorSetLayout(d.device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
   const vk::PushConstantRange push(vk::ShaderStageFlagBits::eCompute, 0, push_constant_size);
@@ -205,20 +221,38 @@ ComputeProgram CreateComputeProgram(VulkanDevice::Impl& d, std::span<const std::
   p.layout = vk::raii::PipelineLayout(d.device, vk::PipelineLayoutCreateInfo({}, set_layout, push));
   const vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *p.module, "main");
   p.pipeline = vk::raii::Pipeline(d.device, nullptr, vk::ComputePipelineCreateInfo({}, stage, *p.layout));
-  const vk::DescriptorPoolSize pool_size(vk::DescriptorType::eStorageBuffer, binding_count);
   p.pool = vk::raii::DescriptorPool(
-      d.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, pool_size));
+      d.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, pool_sizes));
   vk::raii::DescriptorSets sets(d.device, vk::DescriptorSetAllocateInfo(*p.pool, set_layout));
   p.set = std::move(sets.front());
   return p;
 }
 
 void BindBuffers(VulkanDevice::Impl& d, ComputeProgram& program, std::span<HostBuffer* const> buffers) {
-  std::vector<vk::DescriptorBufferInfo> infos;
-  for (HostBuffer* b : buffers) infos.emplace_back(*b->buffer, 0, b->size);
+  const vk::DeviceSize storage_range = d.physical.getProperties().limits.maxStorageBufferRange;
+  std::vector<vk::DescriptorBufferInfo> infos(buffers.size());
+  std::vector<vk::BufferView> views(buffers.size());
   std::vector<vk::WriteDescriptorSet> writes;
-  for (std::uint32_t i = 0; i < infos.size(); ++i) {
-    writes.emplace_back(*program.set, i, 0, vk::DescriptorType::eStorageBuffer, nullptr, infos[i]);
+  for (std::uint32_t i = 0; i < buffers.size(); ++i) {
+    HostBuffer& b = *buffers[i];
+    const vk::DescriptorType type = DescriptorType(program.bindings.at(i));
+    vk::WriteDescriptorSet write(*program.set, i, 0, 1, type);
+    if (program.bindings[i] == BindingKind::kStorageBuffer) {
+      if (b.size > storage_range) {
+        throw std::length_error("a storage buffer of " + std::to_string(b.size) + " bytes exceeds maxStorageBufferRange (" +
+                                std::to_string(storage_range) + ") of '" + d.info.name + "'");
+      }
+      infos[i] = vk::DescriptorBufferInfo(*b.buffer, 0, b.size);
+      write.setBufferInfo(infos[i]);
+    } else {
+      if (!*b.texels) {
+        throw std::length_error("a texel buffer of " + std::to_string(b.size) + " bytes exceeds maxTexelBufferElements of '" +
+                                d.info.name + "'");
+      }
+      views[i] = *b.texels;
+      write.setTexelBufferView(views[i]);
+    }
+    writes.push_back(write);
   }
   d.device.updateDescriptorSets(writes, nullptr);
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include <vulkan/vulkan_raii.hpp>
 
@@ -34,13 +35,19 @@ namespace vulkan_internal {
 struct HostBuffer {
   vk::raii::Buffer buffer{nullptr};
   vk::raii::DeviceMemory memory{nullptr};
+  vk::raii::BufferView texels{nullptr};  // an RGBA32UI view, for buffers read as texel buffers
   void* mapped = nullptr;
   vk::DeviceSize size = 0;
 };
 
 HostBuffer CreateHostBuffer(VulkanDevice::Impl& device, vk::DeviceSize size);
 
-// A compute pipeline whose bindings 0..binding_count-1 are storage buffers, with one push-constant block.
+// How a shader sees a buffer. Record batches are read through uniform texel buffers of RGBA32UI: lavapipe
+// fetches a whole texel per lane with vector gathers, where a storage-buffer load costs a scalar loop per
+// lane and per load, and texel buffers reach 2^27 texels where lavapipe's storage range stops at 128 MiB.
+enum class BindingKind { kStorageBuffer, kUniformTexelBuffer };
+
+// A compute pipeline with one binding per entry of `bindings`, in order, and one push-constant block.
 struct ComputeProgram {
   vk::raii::ShaderModule module{nullptr};
   vk::raii::DescriptorSetLayout set_layout{nullptr};
@@ -48,13 +55,14 @@ struct ComputeProgram {
   vk::raii::Pipeline pipeline{nullptr};
   vk::raii::DescriptorPool pool{nullptr};
   vk::raii::DescriptorSet set{nullptr};
+  std::vector<BindingKind> bindings;
   std::uint32_t push_constant_size = 0;
 };
 
 ComputeProgram CreateComputeProgram(VulkanDevice::Impl& device, std::span<const std::uint32_t> spirv,
-                                    std::uint32_t binding_count, std::uint32_t push_constant_size);
+                                    std::span<const BindingKind> bindings, std::uint32_t push_constant_size);
 
-// Points binding i of the program at buffers[i].
+// Points binding i of the program at buffers[i]; a texel binding gets the buffer's RGBA32UI view.
 void BindBuffers(VulkanDevice::Impl& device, ComputeProgram& program, std::span<HostBuffer* const> buffers);
 
 // Records work into a fresh command buffer between two timestamps, submits it, waits, and returns the device

@@ -18,12 +18,15 @@ const uint kKeyed = 0u;
 const uint kKeyNoVertex = 1u;    // sky hit or path ended: the record carries radiance_before only
 const uint kKeyUnkeyable = 2u;   // |q| >= 2^31 in some axis: falls back to its own contribution
 
+// 48 bytes, so a shader writes it as three 16-byte vectors (lavapipe stores per lane and per store).
 struct KeyResult {
   KeyWords words;
   uint slot0;
   uint fingerprint;
   int level;    // l' after jitter (the fixed level of the cell size with level of detail off)
   uint status;  // kKeyed, kKeyNoVertex or kKeyUnkeyable
+  uint padding0;  // always 0
+  uint padding1;  // always 0
 };
 
 HPSF_FN KeyResult EmptyKeyResult(uint status) {
@@ -38,6 +41,8 @@ HPSF_FN KeyResult EmptyKeyResult(uint status) {
   k.fingerprint = 0u;
   k.level = 0;
   k.status = status;
+  k.padding0 = 0u;
+  k.padding1 = 0u;
   return k;
 }
 
@@ -61,24 +66,22 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   float u1 = RandomFloatFromPrefix(rng, kJitterDimensionU);
   float u2 = RandomFloatFromPrefix(rng, kJitterDimensionV);
 
-  int level;
-  float inverse_size;
-  if (p.lod_enabled != 0u) {
-    int level_before = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, x, x_prev), p.level_min, p.level_max);
-    HPSF_PRECISE float amplitude = Flush(p.jitter_scale * PowerOfTwo(level_before));
-    vec3 jittered = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
-    // The level is recomputed after the jitter (DESIGN.md D5): the cell must match the jittered position.
-    level = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, jittered, x_prev), p.level_min, p.level_max);
-    inverse_size = PowerOfTwo(-level);
-    x = jittered;
-  } else {
-    HPSF_PRECISE float amplitude = Flush(p.jitter_scale * p.cell_size);
-    x = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
-    level = UnbiasedExponent(p.cell_size);
-    inverse_size = p.inverse_cell_size;
-  }
+  // Both modes run one straight line, every value computed and then selected, with no branch on
+  // lod_enabled: a SIMD device executing a branch under a mask pays for both sides (and the jitter twice).
+  bool lod = p.lod_enabled != 0u;
+  int level_before = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, x, x_prev), p.level_min, p.level_max);
+  float cell_before = PowerOfTwo(level_before);
+  float cell_size = lod ? cell_before : p.cell_size;
+  HPSF_PRECISE float amplitude = Flush(p.jitter_scale * cell_size);
+  vec3 jittered = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
+  // The level is recomputed after the jitter (DESIGN.md D5): the cell must match the jittered position.
+  int level_after = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, jittered, x_prev), p.level_min, p.level_max);
+  int level_fixed = UnbiasedExponent(p.cell_size);
+  int level = lod ? level_after : level_fixed;
+  float inverse_after = PowerOfTwo(-level_after);
+  float inverse_size = lod ? inverse_after : p.inverse_cell_size;
 
-  Cell cell = CellOf(x, inverse_size);
+  Cell cell = CellOf(jittered, inverse_size);
   if (!cell.keyable) {
     KeyResult unkeyable = EmptyKeyResult(kKeyUnkeyable);
     unkeyable.level = level;
@@ -96,6 +99,8 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   k.fingerprint = Fingerprint(k.words, p.fingerprint_bits);
   k.level = level;
   k.status = kKeyed;
+  k.padding0 = 0u;
+  k.padding1 = 0u;
   return k;
 }
 
