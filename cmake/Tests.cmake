@@ -7,6 +7,12 @@ function(hpsf_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBRARIES} rapidcheck_gtest rapidcheck GTest::gtest_main)
   gtest_discover_tests(${name}
-    PROPERTIES LABELS "${ARG_LABELS}" ENVIRONMENT "RC_PARAMS=${HPSF_RAPIDCHECK_PARAMS}"
+    PROPERTIES ENVIRONMENT "RC_PARAMS=${HPSF_RAPIDCHECK_PARAMS}"
     DISCOVERY_TIMEOUT 60)
+  # Labels are applied after discovery, from the list of discovered tests: a list value passed through
+  # gtest_discover_tests' PROPERTIES loses its semicolons, and a test would get only the first label.
+  set(label_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${label_file}
+    "foreach(test IN LISTS ${name}_TESTS)\n  set_tests_properties(\${test} PROPERTIES LABELS [==[${ARG_LABELS}]==])\nendforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${label_file})
 endfunction()
