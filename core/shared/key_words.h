@@ -21,30 +21,24 @@ struct KeyWords {
 };
 
 // Both hashes absorb the six words with xxHash32's round, from different seeds, as two independent chains a
-// CPU or GPU overlaps, the cell words last since they are known last; the index hash then ends in a PCG permutation, the fingerprint in xxHash32's avalanche.
-// With normal_in_index 0 the bucket only enters the fingerprint, so records with different normals share a
+// CPU or GPU overlaps (the cell words last, since they are known last); the index hash then ends in a PCG
+// permutation, the fingerprint in xxHash32's avalanche. With normal_in_index 0 the bucket only enters the fingerprint, so records with different normals share a
 // window and probing searches similar normals (Binder et al. §3.2.2).
-HPSF_FN uint IndexHash(KeyWords k, uint normal_in_index) {
-  uint h = XxBegin(kIndexHashSeed, 6u);
-  h = XxAdd(h, normal_in_index != 0u ? k.normal : 0u);
+HPSF_FN uint AbsorbKeyWords(uint seed, KeyWords k, uint normal) {
+  uint h = XxBegin(seed, 6u);
+  h = XxAdd(h, normal);
   h = XxAdd(h, k.extra);
   h = XxAdd(h, k.level);
   h = XxAdd(h, k.cell_x);
   h = XxAdd(h, k.cell_y);
-  h = XxAdd(h, k.cell_z);
-  return Pcg(h);
+  return XxAdd(h, k.cell_z);
 }
 
-HPSF_FN uint FullFingerprint(KeyWords k) {
-  uint h = XxBegin(kFingerprintSeed, 6u);
-  h = XxAdd(h, k.normal);
-  h = XxAdd(h, k.extra);
-  h = XxAdd(h, k.level);
-  h = XxAdd(h, k.cell_x);
-  h = XxAdd(h, k.cell_y);
-  h = XxAdd(h, k.cell_z);
-  return XxFinish(h);
+HPSF_FN uint IndexHash(KeyWords k, uint normal_in_index) {
+  return Pcg(AbsorbKeyWords(kIndexHashSeed, k, normal_in_index != 0u ? k.normal : 0u));
 }
+
+HPSF_FN uint FullFingerprint(KeyWords k) { return XxFinish(AbsorbKeyWords(kFingerprintSeed, k, k.normal)); }
 
 // The top `bits` bits (8..32) of a full fingerprint; 0 becomes 1, since 0 is the empty-slot tag.
 HPSF_FN uint ReduceFingerprint(uint full, uint bits) {
