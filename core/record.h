@@ -40,7 +40,7 @@ struct RecordBatch {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::uint32_t samples_per_pixel = 0;
-  float footprint_scale = 0.0f;  // from the camera, core/footprint.h
+  double fov_y_radians = 0.0;  // the camera's, for the footprint scale (core/footprint.h)
   std::vector<Record> records;
 };
 

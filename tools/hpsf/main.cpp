@@ -6,12 +6,15 @@
 
 #include "core/error.h"
 #include "tools/hpsf/device_command.h"
+#include "tools/hpsf/render_command.h"
 #include "vulkan/vulkan_device.h"
 
 int main(int argc, char** argv) {
   CLI::App app("hpsf: makes GPU hash tables for hashed path space filtering trustworthy", "hpsf");
   app.require_subcommand(1);
   hpsf::AddDeviceCommand(app);
+  hpsf::AddRenderCommand(app);
+  hpsf::AddReplayCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,47 @@
+// What every backend returns from filtering one batch (DESIGN.md, "Layout"): the image, the table as cells,
+// where each record went, and the counts a report needs.
+#ifndef HPSF_CORE_FILTER_RESULT_H
+#define HPSF_CORE_FILTER_RESULT_H
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace hpsf {
+
+inline constexpr std::uint32_t kNoCell = 0xFFFFFFFFu;
+
+// One cell of the table: its key words and what was accumulated into it.
+struct TableCell {
+  std::array<std::uint32_t, 6> key;
+  std::array<std::uint64_t, 3> fixed_sum{};  // fixed64: exact sums with F fraction bits
+  std::array<float, 3> float_sum{};          // float32: sums in record order
+  std::uint64_t count = 0;
+};
+
+struct FilterStats {
+  std::uint64_t records = 0;
+  std::uint64_t records_with_vertex = 0;
+  std::uint64_t records_without_vertex = 0;  // sky hits and paths that ended before the filter vertex
+  std::uint64_t unkeyable = 0;               // fell back to their own contribution
+  std::uint64_t rejected_non_finite = 0;     // never entered a table; contribute 0 to their pixel
+  std::uint64_t rejected_negative = 0;
+  std::uint64_t cells = 0;
+  std::uint64_t max_records_per_cell = 0;
+  double mean_records_per_cell = 0.0;
+  int fixed_point_bits = 0;  // F of fixed64 for this batch
+};
+
+struct FilterResult {
+  Image image;
+  std::vector<TableCell> cells;
+  std::vector<std::uint32_t> placement;  // per record: index into cells, or kNoCell
+  FilterStats stats;
+};
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_FILTER_RESULT_H

@@ -1,0 +1,124 @@
+#include "reference/reference_filter.h"
+
+#include <algorithm>
+#include <map>
+
+#include "core/error.h"
+#include "core/fixed_point_scale.h"
+#include "core/footprint.h"
+#include "core/input_check.h"
+#include "core/key_batch.h"
+#include "core/shared/fixed_point.h"
+
+namespace hpsf {
+namespace {
+
+void CheckBatchShape(const RecordBatch& batch) {
+  if (std::uint64_t(batch.width) * batch.height * batch.samples_per_pixel != batch.records.size()) {
+    throw InputError("record batch: " + std::to_string(batch.records.size()) + " records do not fill a " +
+                     std::to_string(batch.width) + "x" + std::to_string(batch.height) + " image at " +
+                     std::to_string(batch.samples_per_pixel) + " samples per pixel");
+  }
+}
+
+glm::dvec3 D(glm::vec4 v) { return glm::dvec3(v.x, v.y, v.z); }
+
+// Each pixel is the mean of its records' values, in sample order.
+Image AveragePixels(const RecordBatch& batch, const std::vector<glm::dvec3>& values) {
+  Image image(batch.width, batch.height);
+  const std::size_t spp = batch.samples_per_pixel;
+  for (std::size_t pixel = 0; pixel < image.pixels.size(); ++pixel) {
+    glm::dvec3 sum(0.0);
+    for (std::size_t s = 0; s < spp; ++s) sum += values[pixel * spp + s];
+    image.pixels[pixel] = glm::vec3(sum / double(spp));
+  }
+  return image;
+}
+
+}  // namespace
+
+FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config) {
+  CheckBatchShape(batch);
+  config.Validate();
+  const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
+  const KeyParams params = MakeKeyParams(config, footprint, static_cast<std::uint32_t>(batch.records.size()));
+
+  FilterResult result;
+  FilterStats& stats = result.stats;
+  stats.records = batch.records.size();
+  stats.fixed_point_bits = ChooseFixedPointBits(batch.records);
+  const float scale = shared::PowerOfTwo(stats.fixed_point_bits);
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+
+  std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
+  result.placement.assign(batch.records.size(), kNoCell);
+  std::vector<InputVerdict> verdicts(batch.records.size());
+  std::vector<KeyResult> keys(batch.records.size());
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    const Record& r = batch.records[i];
+    verdicts[i] = CheckRecordInputs(r);
+    if (verdicts[i] == InputVerdict::kNonFinite) ++stats.rejected_non_finite;
+    if (verdicts[i] == InputVerdict::kNegative) ++stats.rejected_negative;
+    if (verdicts[i] != InputVerdict::kAccepted) continue;
+    if (!shared::RecordHasVertex(r)) {
+      ++stats.records_without_vertex;
+      continue;
+    }
+    ++stats.records_with_vertex;
+    keys[i] = shared::ComputeKey(params, r);
+    if (keys[i].status == shared::kKeyUnkeyable) {
+      ++stats.unkeyable;
+      continue;
+    }
+    const shared::KeyWords& w = keys[i].words;
+    const std::array<std::uint32_t, 6> key = {w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
+    auto [it, inserted] = cell_of_key.emplace(key, static_cast<std::uint32_t>(result.cells.size()));
+    if (inserted) result.cells.push_back(TableCell{key});
+    TableCell& cell = result.cells[it->second];
+    for (int c = 0; c < 3; ++c) {
+      if (fixed) {
+        cell.fixed_sum[c] += shared::ToFixedPoint(r.contribution[c], scale);
+      } else {
+        cell.float_sum[c] += r.contribution[c];
+      }
+    }
+    ++cell.count;
+    result.placement[i] = it->second;
+  }
+
+  std::vector<glm::dvec3> averages(result.cells.size());
+  for (std::size_t c = 0; c < result.cells.size(); ++c) {
+    const TableCell& cell = result.cells[c];
+    for (int k = 0; k < 3; ++k) {
+      const double sum = fixed ? FromFixedPoint(cell.fixed_sum[k], stats.fixed_point_bits) : double(cell.float_sum[k]);
+      averages[c][k] = sum / double(cell.count);
+    }
+    stats.max_records_per_cell = std::max(stats.max_records_per_cell, cell.count);
+  }
+  stats.cells = result.cells.size();
+  stats.mean_records_per_cell = stats.cells ? double(stats.records_with_vertex - stats.unkeyable) / double(stats.cells) : 0.0;
+
+  std::vector<glm::dvec3> values(batch.records.size(), glm::dvec3(0.0));
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    if (verdicts[i] != InputVerdict::kAccepted) continue;  // rejected: contributes nothing
+    const Record& r = batch.records[i];
+    const glm::dvec3 own = shared::RecordHasVertex(r) ? D(r.contribution) : glm::dvec3(0.0);
+    const glm::dvec3 incident = result.placement[i] != kNoCell ? averages[result.placement[i]] : own;
+    values[i] = D(r.radiance_before) + D(r.throughput) * incident;
+  }
+  result.image = AveragePixels(batch, values);
+  return result;
+}
+
+Image UnfilteredImage(const RecordBatch& batch) {
+  CheckBatchShape(batch);
+  std::vector<glm::dvec3> values(batch.records.size(), glm::dvec3(0.0));
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    const Record& r = batch.records[i];
+    if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
+    values[i] = D(r.radiance_before) + (shared::RecordHasVertex(r) ? D(r.throughput) * D(r.contribution) : glm::dvec3(0.0));
+  }
+  return AveragePixels(batch, values);
+}
+
+}  // namespace hpsf

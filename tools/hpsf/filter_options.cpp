@@ -1,0 +1,53 @@
+#include "tools/hpsf/filter_options.h"
+
+#include "core/error.h"
+
+namespace hpsf {
+
+void AddFilterOptions(CLI::App& command, FilterOptions& o) {
+  FilterConfig& c = o.config;
+  command.add_flag("--no-filter", o.no_filter, "Plain path tracing: each sample keeps its own contribution");
+  command.add_option("--filter-width", c.filter_width_px, "Cell size in pixels at a primary hit")->capture_default_str();
+  command.add_option("--jitter", c.jitter_scale, "Jitter amplitude in cells (0: off)")->capture_default_str();
+  command.add_option("--normal", o.normal, "Normal key: none, sign or octahedral:B")->capture_default_str();
+  command.add_flag("!--normal-in-fingerprint-only", c.normal_in_index, "Keep the normal bucket out of the index hash");
+  command.add_option("--lod", o.lod, "Level of detail from the path length: on or off")->capture_default_str();
+  command.add_option("--cell-size", c.cell_size, "Cell edge when --lod off")->capture_default_str();
+  command.add_option("--level-min", c.level_min, "Smallest level, in [-126, 126]")->capture_default_str();
+  command.add_option("--level-max", c.level_max, "Largest level, in [-126, 126]")->capture_default_str();
+  command.add_option("--accum", o.accumulation, "Accumulation: fixed64 or float32")->capture_default_str();
+  command.add_option("--seed", c.seed, "Seed of every random number")->capture_default_str();
+}
+
+FilterConfig ResolveFilterConfig(const FilterOptions& o) {
+  FilterConfig config = o.config;
+  config.normal = ParseNormalKey(o.normal);
+  config.accumulation = ParseAccumulation(o.accumulation);
+  if (o.lod != "on" && o.lod != "off") throw ConfigError("--lod", "expected on or off; got '" + o.lod + "'");
+  config.lod = o.lod == "on";
+  config.Validate();
+  return config;
+}
+
+nlohmann::json ToJson(const FilterConfig& c) {
+  return {{"filter_width_px", c.filter_width_px}, {"jitter", c.jitter_scale},         {"normal", c.normal.ToString()},
+          {"normal_in_index", c.normal_in_index}, {"lod", c.lod},                     {"cell_size", c.cell_size},
+          {"level_min", c.level_min},             {"level_max", c.level_max},         {"accum", ToString(c.accumulation)},
+          {"capacity", c.capacity},               {"probe_limit", c.probe_limit},     {"fingerprint_bits", c.fingerprint_bits},
+          {"seed", c.seed},                       {"frame", c.frame}};
+}
+
+nlohmann::json ToJson(const FilterStats& s) {
+  return {{"records", s.records},
+          {"records_with_vertex", s.records_with_vertex},
+          {"records_without_vertex", s.records_without_vertex},
+          {"unkeyable", s.unkeyable},
+          {"rejected_non_finite", s.rejected_non_finite},
+          {"rejected_negative", s.rejected_negative},
+          {"cells", s.cells},
+          {"mean_records_per_cell", s.mean_records_per_cell},
+          {"max_records_per_cell", s.max_records_per_cell},
+          {"fixed_point_bits", s.fixed_point_bits}};
+}
+
+}  // namespace hpsf

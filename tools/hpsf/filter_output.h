@@ -1,0 +1,31 @@
+// The back half of `hpsf render` and `hpsf replay`: filter a batch with the chosen backend (or not at all),
+// write the EXR and its PNG preview, and return the report's filter part.
+#ifndef HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
+#define HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/record.h"
+#include "tools/hpsf/filter_options.h"
+
+namespace hpsf {
+
+struct OutputRequest {
+  std::string scene;    // name recorded in the metadata
+  std::string backend;  // "reference" (the only backend so far)
+  std::string output;   // OUT.exr
+};
+
+nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request);
+
+// Prints the report as JSON, or a short human summary.
+void PrintReport(const nlohmann::json& report, bool as_json);
+
+// A backend name hpsf accepts; the others arrive with later issues.
+void CheckBackend(const std::string& backend);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_HPSF_FILTER_OUTPUT_H

@@ -1,0 +1,82 @@
+#include "tools/hpsf/image_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+
+namespace hpsf {
+namespace {
+
+std::uint8_t EncodeSrgb(float linear) {
+  const float c = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
+  const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
+}
+
+void Write(const std::string& path, const OIIO::ImageSpec& spec, const void* data, const std::string& shown_as) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out || !out->open(path, spec) || !out->write_image(spec.format, data) || !out->close()) {
+    throw InputError(shown_as + ": cannot write the image: " + (out ? out->geterror() : OIIO::geterror()));
+  }
+}
+
+}  // namespace
+
+std::string WriteImageFiles(const std::string& exr_path, const Image& image, const std::map<std::string, std::string>& metadata) {
+  const std::filesystem::path exr(exr_path);
+  if (exr.extension() != ".exr") throw InputError(exr_path + ": the output must be an .exr file");
+  const std::filesystem::path png = std::filesystem::path(exr).replace_extension(".png");
+  // Temporary names keep their extension, which tells OpenImageIO the format.
+  const std::filesystem::path exr_temporary = exr.parent_path() / ("." + exr.stem().string() + ".partial.exr");
+  const std::filesystem::path png_temporary = exr.parent_path() / ("." + exr.stem().string() + ".partial.png");
+
+  OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
+  for (const auto& [key, value] : metadata) spec.attribute("hpsf:" + key, value);
+  std::vector<std::uint8_t> preview(image.pixels.size() * 3);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) preview[3 * i + c] = EncodeSrgb(image.pixels[i][c]);
+  }
+  OIIO::ImageSpec preview_spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
+  try {
+    Write(exr_temporary.string(), spec, image.pixels.data(), exr_path);
+    Write(png_temporary.string(), preview_spec, preview.data(), png.string());
+    std::filesystem::rename(exr_temporary, exr);
+    std::filesystem::rename(png_temporary, png);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(exr_temporary, ignored);
+    std::filesystem::remove(png_temporary, ignored);
+    throw;
+  }
+  return png.string();
+}
+
+Image ReadExr(const std::string& path, std::map<std::string, std::string>* metadata) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError(path + ": cannot read the image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.nchannels < 3) throw InputError(path + ": expected an RGB image");
+  Image image(std::uint32_t(spec.width), std::uint32_t(spec.height));
+  std::vector<float> data(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data())) {
+    throw InputError(path + ": cannot read the pixels: " + in->geterror());
+  }
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    image.pixels[i] = glm::vec3(data[i * spec.nchannels], data[i * spec.nchannels + 1], data[i * spec.nchannels + 2]);
+  }
+  if (metadata) {
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+      const std::string name = p.name().string();
+      if (name.rfind("hpsf:", 0) == 0) (*metadata)[name.substr(5)] = p.get_string();
+    }
+  }
+  return image;
+}
+
+}  // namespace hpsf

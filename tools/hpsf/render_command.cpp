@@ -1,0 +1,124 @@
+#include "tools/hpsf/render_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <regex>
+
+#include "core/error.h"
+#include "core/record_file.h"
+#include "tools/hpsf/filter_output.h"
+#include "tracer/path_tracer.h"
+#include "tracer/scene_file.h"
+
+namespace hpsf {
+namespace {
+
+struct RenderOptions {
+  std::string scene;
+  std::string output;
+  std::string backend = "reference";
+  std::string size = "256x256";
+  std::string dump_records;
+  TraceOptions trace;
+  FilterOptions filter;
+  bool json = false;
+};
+
+void ParseSize(const std::string& text, TraceOptions& trace) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})x(\d{1,5}))"))) {
+    throw ConfigError("--size", "expected WIDTHxHEIGHT, as in 256x256; got '" + text + "'");
+  }
+  trace.width = std::stoul(m[1]);
+  trace.height = std::stoul(m[2]);
+}
+
+// Progress on a terminal only, so logs and pipes stay clean.
+std::function<void(std::uint32_t, std::uint32_t)> TerminalProgress() {
+  if (!isatty(STDERR_FILENO)) return {};
+  return [](std::uint32_t done, std::uint32_t total) { std::fprintf(stderr, "\rtracing %3u%%", 100 * done / total); };
+}
+
+void RunRender(RenderOptions& o) {
+  CheckBackend(o.backend);
+  ParseSize(o.size, o.trace);
+  o.trace.seed = o.filter.config.seed;
+  o.trace.Validate();
+  ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
+  const Scene scene = LoadScene(o.scene);
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto progress = TerminalProgress();
+  TraceResult traced = TraceRecords(scene, o.trace, progress);
+  if (progress) std::fprintf(stderr, "\r              \r");
+  const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
+
+  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output});
+  report["version"] = 1;
+  report["command"] = "render";
+  report["scene"] = scene.name;
+  report["trace"] = {{"width", o.trace.width},       {"height", o.trace.height},
+                     {"spp", o.trace.samples_per_pixel}, {"max_depth", o.trace.max_depth},
+                     {"filter_bounce", o.trace.filter_bounce}, {"threads", o.trace.threads}};
+  report["rays"] = traced.stats.Rays();
+  report["timings"]["trace_s"] = trace_seconds;
+  report["rays_per_s"] = trace_seconds > 0.0 ? double(traced.stats.Rays()) / trace_seconds : 0.0;
+  if (!o.dump_records.empty()) report["records_file"] = o.dump_records;
+  PrintReport(report, o.json);
+}
+
+struct ReplayOptions {
+  std::string records;
+  std::string output;
+  std::string backend = "reference";
+  FilterOptions filter;
+  bool json = false;
+};
+
+void RunReplay(const ReplayOptions& o) {
+  CheckBackend(o.backend);
+  ResolveFilterConfig(o.filter);
+  const RecordBatch batch = ReadRecordFile(o.records);
+  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output});
+  report["version"] = 1;
+  report["command"] = "replay";
+  report["records_file"] = o.records;
+  PrintReport(report, o.json);
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* c = app.add_subcommand("render", "Trace a scene into sample records, filter them, write OUT.exr and OUT.png");
+  c->add_option("scene", o->scene, "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
+                                   "cornell-zero-red) or a scene file")->required();
+  c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
+  c->add_option("--backend", o->backend, "Filter backend: reference")->capture_default_str();
+  c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
+  c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded (Russian roulette)")->capture_default_str();
+  c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")->capture_default_str();
+  c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")->capture_default_str();
+  c->add_option("--dump-records", o->dump_records, "Also write the traced batch to FILE.hpsfv");
+  c->add_flag("--json", o->json, "Print the report as JSON");
+  AddFilterOptions(*c, o->filter);
+  c->callback([o] { RunRender(*o); });
+}
+
+void AddReplayCommand(CLI::App& app) {
+  auto o = std::make_shared<ReplayOptions>();
+  CLI::App* c = app.add_subcommand("replay", "Filter a recorded batch (.hpsfv) and write OUT.exr and OUT.png");
+  c->add_option("records", o->records, "The .hpsfv file")->required();
+  c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
+  c->add_option("--backend", o->backend, "Filter backend: reference")->capture_default_str();
+  c->add_flag("--json", o->json, "Print the report as JSON");
+  AddFilterOptions(*c, o->filter);
+  c->callback([o] { RunReplay(*o); });
+}
+
+}  // namespace hpsf

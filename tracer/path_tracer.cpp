@@ -1,0 +1,277 @@
+#include "tracer/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range2d.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "core/shared/rng.h"
+#include "core/tangent_frame.h"
+#include "tracer/embree_scene.h"
+
+namespace hpsf {
+namespace {
+
+// RNG dimensions within one bounce; the bounce index separates vertices.
+constexpr std::uint32_t kPixelU = 0, kPixelV = 1, kLightPick = 2, kLightU = 3, kLightV = 4, kBounceU = 5, kBounceV = 6,
+                        kRoulette = 7;
+constexpr std::uint32_t kTile = 16;
+constexpr int kRouletteStart = 4;
+
+double MaxAbs(glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double MaxComponent(glm::dvec3 v) { return std::max({v.x, v.y, v.z}); }
+
+// Emitting triangles, picked in proportion to their area.
+class EmitterSampler {
+ public:
+  explicit EmitterSampler(const Scene& scene) {
+    for (std::uint32_t i = 0; i < scene.triangles.size(); ++i) {
+      if (!scene.materials[scene.triangles[i].material].IsEmissive()) continue;
+      const Triangle& t = scene.triangles[i];
+      const double area = 0.5 * glm::length(glm::cross(glm::dvec3(t.p1) - glm::dvec3(t.p0), glm::dvec3(t.p2) - glm::dvec3(t.p0)));
+      if (!(area > 0.0)) continue;
+      total_area_ += area;
+      triangles_.push_back(i);
+      cumulative_.push_back(total_area_);
+    }
+  }
+  bool Empty() const { return triangles_.empty(); }
+  double TotalArea() const { return total_area_; }
+  std::uint32_t Pick(double u) const {
+    const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), u * total_area_);
+    return triangles_[std::min<std::size_t>(it - cumulative_.begin(), triangles_.size() - 1)];
+  }
+
+ private:
+  std::vector<std::uint32_t> triangles_;
+  std::vector<double> cumulative_;
+  double total_area_ = 0.0;
+};
+
+struct SurfacePoint {
+  glm::dvec3 position;
+  glm::dvec3 normal;  // unit, facing the incoming ray
+  const Material* material;
+};
+
+class Tracer {
+ public:
+  Tracer(const Scene& scene, const TraceOptions& options)
+      : scene_(scene), options_(options), embree_(scene), emitters_(scene), extent_(scene.Extent()) {
+    const Camera& c = scene.camera;
+    forward_ = glm::normalize(c.look_at - c.position);
+    right_ = glm::normalize(glm::cross(forward_, c.up));
+    up_ = glm::cross(right_, forward_);
+    tan_half_fov_ = std::tan(c.fov_y_degrees * std::numbers::pi / 360.0);
+  }
+
+  Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats) const;
+
+ private:
+  float Random(std::uint32_t pixel, std::uint32_t sample, std::uint32_t bounce, std::uint32_t dimension) const {
+    return shared::RandomFloat(shared::RngCounter{options_.seed, options_.frame, pixel, sample, bounce}, dimension);
+  }
+
+  // Rays leave a surface from a point pushed along the normal by a few float spacings of the scene's largest
+  // coordinate, so they do not hit the surface they start on, however far from the origin the scene is.
+  glm::dvec3 Offset(const SurfacePoint& p) const {
+    const double spacing = std::ldexp(1.0, std::ilogb(std::max({MaxAbs(p.position), extent_ * 1e-3, 1e-30})) - 23);
+    return p.position + p.normal * (32.0 * spacing);
+  }
+
+  std::optional<SurfacePoint> Cast(glm::dvec3 origin, glm::dvec3 direction) const {
+    const auto hit = embree_.Intersect(glm::vec3(origin), glm::vec3(direction), 0.0f, INFINITY);
+    if (!hit) return std::nullopt;
+    const Triangle& t = scene_.triangles[hit->triangle];
+    const glm::dvec3 p0(t.p0), p1(t.p1), p2(t.p2);
+    SurfacePoint s;
+    s.position = p0 * (1.0 - double(hit->u) - double(hit->v)) + p1 * double(hit->u) + p2 * double(hit->v);
+    s.normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    if (glm::dot(s.normal, direction) > 0.0) s.normal = -s.normal;
+    s.material = &scene_.materials[t.material];
+    return s;
+  }
+
+  // Incident radiance from the emitters at p, times cos / pi (the diffuse lobe without albedo): one sample.
+  glm::dvec3 DirectLight(const SurfacePoint& p, std::uint32_t pixel, std::uint32_t sample, std::uint32_t bounce,
+                         TraceStats& stats) const {
+    if (emitters_.Empty()) return glm::dvec3(0.0);
+    const Triangle& light = scene_.triangles[emitters_.Pick(Random(pixel, sample, bounce, kLightPick))];
+    double su = Random(pixel, sample, bounce, kLightU), sv = Random(pixel, sample, bounce, kLightV);
+    const double root = std::sqrt(su);
+    const glm::dvec3 y = glm::dvec3(light.p0) * (1.0 - root) + glm::dvec3(light.p1) * (root * (1.0 - sv)) +
+                         glm::dvec3(light.p2) * (root * sv);
+    const glm::dvec3 origin = Offset(p);
+    const glm::dvec3 to_light = y - origin;
+    const double distance = glm::length(to_light);
+    if (!(distance > 0.0)) return glm::dvec3(0.0);
+    const glm::dvec3 wi = to_light / distance;
+    const double cos_surface = glm::dot(p.normal, wi);
+    const glm::dvec3 light_normal =
+        glm::normalize(glm::cross(glm::dvec3(light.p1) - glm::dvec3(light.p0), glm::dvec3(light.p2) - glm::dvec3(light.p0)));
+    const double cos_light = std::abs(glm::dot(light_normal, wi));  // emission is two-sided
+    if (cos_surface <= 0.0 || cos_light <= 0.0) return glm::dvec3(0.0);
+    ++stats.shadow_rays;
+    const double margin = 64.0 * std::ldexp(1.0, std::ilogb(std::max({MaxAbs(y), extent_ * 1e-3, 1e-30})) - 23);
+    if (distance <= margin ||
+        embree_.Occluded(glm::vec3(origin), glm::vec3(wi), 0.0f, static_cast<float>(distance - margin))) {
+      return glm::dvec3(0.0);
+    }
+    const double geometry = cos_surface * cos_light / (distance * distance);
+    return glm::dvec3(scene_.materials[light.material].emission) * (geometry * emitters_.TotalArea() / std::numbers::pi);
+  }
+
+  const Scene& scene_;
+  const TraceOptions& options_;
+  EmbreeScene embree_;
+  EmitterSampler emitters_;
+  double extent_;
+  glm::dvec3 forward_, right_, up_;
+  double tan_half_fov_;
+};
+
+Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats) const {
+  const double px = pixel % options_.width, py = pixel / options_.width;
+  const double aspect = double(options_.width) / double(options_.height);
+  const double sx = (2.0 * (px + Random(pixel, sample, 0, kPixelU)) / options_.width - 1.0) * tan_half_fov_ * aspect;
+  const double sy = (1.0 - 2.0 * (py + Random(pixel, sample, 0, kPixelV)) / options_.height) * tan_half_fov_;
+  glm::dvec3 origin = scene_.camera.position;
+  glm::dvec3 direction = glm::normalize(forward_ + right_ * sx + up_ * sy);
+  ++stats.camera_rays;
+
+  // Before the filter vertex, `weight` is the camera-to-vertex throughput including albedos and `gathered` is
+  // radiance_before; after it, `weight` restarts at 1 without the filter vertex's albedo and `gathered` sums
+  // the contribution. Nothing is ever divided by an albedo.
+  glm::dvec3 weight(1.0), gathered(0.0);
+  glm::dvec3 radiance_before(0.0), record_throughput(0.0);
+  VertexSample vertex;
+  bool has_vertex = false;
+  glm::dvec3 previous = origin;
+  double d_prefix = 0.0;
+  const std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
+
+  for (std::uint32_t bounce = 0; bounce < max_vertices; ++bounce) {
+    const auto hit = Cast(origin, direction);
+    if (!hit) {
+      gathered += weight * glm::dvec3(scene_.sky);
+      break;
+    }
+    const SurfacePoint& p = *hit;
+    const glm::dvec3 albedo(p.material->albedo);
+    // Emission is counted where the camera sees it; after that, next-event estimation accounts for it.
+    if (bounce == 0) gathered += weight * glm::dvec3(p.material->emission);
+    const double segment = MaxAbs(p.position - previous);
+
+    if (bounce == options_.filter_bounce) {
+      has_vertex = true;
+      radiance_before = gathered;
+      record_throughput = weight * albedo;
+      vertex.position = glm::vec3(p.position);
+      vertex.normal = glm::vec3(p.normal);
+      vertex.previous = glm::vec3(previous);
+      vertex.d_prefix = static_cast<float>(d_prefix);
+      vertex.bounce = bounce;
+      weight = glm::dvec3(1.0);
+      gathered = glm::dvec3(0.0);
+      gathered += DirectLight(p, pixel, sample, bounce, stats);
+    } else {
+      weight *= albedo;
+      gathered += weight * DirectLight(p, pixel, sample, bounce, stats);
+    }
+    d_prefix += segment;
+    previous = p.position;
+
+    if (options_.max_depth < 0 && bounce + 1 >= kRouletteStart) {
+      const double survive = std::min(0.95, MaxComponent(has_vertex ? weight * record_throughput : weight));
+      if (survive <= 0.0 || Random(pixel, sample, bounce, kRoulette) >= survive) break;
+      weight /= survive;
+    }
+    if (bounce + 1 >= max_vertices) break;
+
+    // Cosine-weighted bounce: cos / pdf cancels the 1 / pi of the lobe, leaving the albedo (applied above).
+    const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));
+    const double r = std::sqrt(double(Random(pixel, sample, bounce, kBounceU)));
+    const double phi = 2.0 * std::numbers::pi * Random(pixel, sample, bounce, kBounceV);
+    const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
+    direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) + glm::dvec3(frame.bitangent) * (r * std::sin(phi)) +
+                               p.normal * z);
+    origin = Offset(p);
+    ++stats.bounce_rays;
+  }
+
+  if (!has_vertex) return MakeRecordWithoutVertex(pixel, sample, glm::vec3(gathered));
+  vertex.pixel = pixel;
+  vertex.sample = sample;
+  vertex.contribution = glm::vec3(gathered);
+  vertex.throughput = glm::vec3(record_throughput);
+  vertex.radiance_before = glm::vec3(radiance_before);
+  return MakeVertexRecord(vertex);
+}
+
+}  // namespace
+
+void TraceOptions::Validate() const {
+  if (width == 0 || height == 0 || width > 16384 || height > 16384) {
+    throw ConfigError("--size", "width and height must lie in [1, 16384]; got " + std::to_string(width) + "x" + std::to_string(height));
+  }
+  if (samples_per_pixel == 0 || samples_per_pixel > 65536) {
+    throw ConfigError("--spp", "must lie in [1, 65536]; got " + std::to_string(samples_per_pixel));
+  }
+  if (std::uint64_t(width) * height * samples_per_pixel > (1ull << 31)) {
+    throw ConfigError("--spp", "width x height x spp must stay below 2^31 records");
+  }
+  if (max_depth < -1 || max_depth > 1024) throw ConfigError("--max-depth", "must be -1 (unbounded) or lie in [0, 1024]");
+  if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
+}
+
+TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+  options.Validate();
+  const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const Tracer tracer(scene, options);
+
+  TraceResult result;
+  RecordBatch& batch = result.batch;
+  batch.width = options.width;
+  batch.height = options.height;
+  batch.samples_per_pixel = options.samples_per_pixel;
+  batch.fov_y_radians = scene.camera.fov_y_degrees * std::numbers::pi / 180.0;
+  batch.records.resize(std::size_t(options.width) * options.height * options.samples_per_pixel);
+
+  const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
+  std::atomic<std::uint32_t> tiles_done{0};
+  std::mutex stats_mutex;
+  tbb::parallel_for(tbb::blocked_range2d<std::uint32_t>(0, tiles_y, 1, 0, tiles_x, 1), [&](const auto& range) {
+    TraceStats local;
+    for (std::uint32_t ty = range.rows().begin(); ty < range.rows().end(); ++ty) {
+      for (std::uint32_t tx = range.cols().begin(); tx < range.cols().end(); ++tx) {
+        for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
+          for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
+            const std::uint32_t pixel = y * options.width + x;
+            for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
+              batch.records[std::size_t(pixel) * options.samples_per_pixel + s] = tracer.TraceSample(pixel, s, local);
+            }
+          }
+        }
+        ++tiles_done;
+      }
+    }
+    std::lock_guard lock(stats_mutex);
+    result.stats.camera_rays += local.camera_rays;
+    result.stats.bounce_rays += local.bounce_rays;
+    result.stats.shadow_rays += local.shadow_rays;
+    if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
+  });
+  return result;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,48 @@
+// The deterministic path tracer: Embree 3 rays, cosine-sampled diffuse bounces, next-event estimation to the
+// emitting triangles, Russian roulette for unbounded depth. It emits exactly one record per camera sample, in
+// (pixel, sample) order: the filter vertex of DESIGN.md ("Sample records") or, without one, radiance_before.
+// Every random number comes from the counter RNG and TBB splits the image into tiles whose samples are
+// independent, so no output bit depends on the thread count.
+#ifndef HPSF_TRACER_PATH_TRACER_H
+#define HPSF_TRACER_PATH_TRACER_H
+
+#include <cstdint>
+#include <functional>
+
+#include "core/record.h"
+#include "tracer/scene.h"
+
+namespace hpsf {
+
+struct TraceOptions {
+  std::uint32_t width = 256;
+  std::uint32_t height = 256;
+  std::uint32_t samples_per_pixel = 4;
+  std::uint32_t seed = 1;
+  std::uint32_t frame = 0;
+  int max_depth = 8;              // surface vertices per path; -1: unbounded, ended by Russian roulette
+  std::uint32_t filter_bounce = 0;  // which diffuse vertex becomes the filter vertex; 0 is the primary hit
+  int threads = 0;                // 0: all cores
+
+  void Validate() const;  // ConfigError naming the option
+};
+
+struct TraceStats {
+  std::uint64_t camera_rays = 0;
+  std::uint64_t bounce_rays = 0;
+  std::uint64_t shadow_rays = 0;
+  std::uint64_t Rays() const { return camera_rays + bounce_rays + shadow_rays; }
+};
+
+struct TraceResult {
+  RecordBatch batch;
+  TraceStats stats;
+};
+
+// progress(done, total) is called now and then from the calling thread's view of finished tiles.
+TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress = {});
+
+}  // namespace hpsf
+
+#endif  // HPSF_TRACER_PATH_TRACER_H
