@@ -126,7 +126,25 @@ class Tracer {
       return glm::dvec3(0.0);
     }
     const double geometry = cos_surface * cos_light / (distance * distance);
-    return glm::dvec3(scene_.materials[light.material].emission) * (geometry * emitters_.TotalArea() / std::numbers::pi);
+    const double light_pdf = distance * distance / (cos_light * emitters_.TotalArea());  // per solid angle
+    const double mis = PowerHeuristic(light_pdf, cos_surface / std::numbers::pi);
+    return glm::dvec3(scene_.materials[light.material].emission) *
+           (mis * geometry * emitters_.TotalArea() / std::numbers::pi);
+  }
+
+  // The weight of emission found by a cosine-sampled bounce from `from` that hit the emitter point `p`: the
+  // other half of multiple importance sampling with the next-event estimate above.
+  double BounceEmissionWeight(const SurfacePoint& from, const SurfacePoint& p, glm::dvec3 direction) const {
+    const double distance = glm::length(p.position - from.position);
+    const double cos_light = std::abs(glm::dot(p.normal, direction));
+    if (!(cos_light > 0.0) || emitters_.Empty()) return 1.0;
+    const double light_pdf = distance * distance / (cos_light * emitters_.TotalArea());
+    return PowerHeuristic(glm::dot(from.normal, direction) / std::numbers::pi, light_pdf);
+  }
+
+  static double PowerHeuristic(double pdf, double other_pdf) {
+    const double a = pdf * pdf, b = other_pdf * other_pdf;
+    return a + b > 0.0 ? a / (a + b) : 0.0;
   }
 
   const Scene& scene_;
@@ -148,13 +166,14 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   ++stats.camera_rays;
 
   // Before the filter vertex, `weight` is the camera-to-vertex throughput including albedos and `gathered` is
-  // radiance_before; after it, `weight` restarts at 1 without the filter vertex's albedo and `gathered` sums
+  // radiance_before (emission found at the filter vertex included); after it, `weight` restarts at 1 without the filter vertex's albedo and `gathered` sums
   // the contribution. Nothing is ever divided by an albedo.
   glm::dvec3 weight(1.0), gathered(0.0);
   glm::dvec3 radiance_before(0.0), record_throughput(0.0);
   VertexSample vertex;
   bool has_vertex = false;
   glm::dvec3 previous = origin;
+  std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
   const std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
 
@@ -166,8 +185,12 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     }
     const SurfacePoint& p = *hit;
     const glm::dvec3 albedo(p.material->albedo);
-    // Emission is counted where the camera sees it; after that, next-event estimation accounts for it.
-    if (bounce == 0) gathered += weight * glm::dvec3(p.material->emission);
+    // Emission the camera sees counts in full; emission a bounce finds shares the work with next-event
+    // estimation through multiple importance sampling.
+    if (p.material->IsEmissive()) {
+      const double mis = bounce == 0 ? 1.0 : BounceEmissionWeight(*last, p, direction);
+      gathered += weight * glm::dvec3(p.material->emission) * mis;
+    }
     const double segment = MaxAbs(p.position - previous);
 
     if (bounce == options_.filter_bounce) {
@@ -188,6 +211,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     }
     d_prefix += segment;
     previous = p.position;
+    last = p;
 
     if (options_.max_depth < 0 && bounce + 1 >= kRouletteStart) {
       const double survive = std::min(0.95, MaxComponent(has_vertex ? weight * record_throughput : weight));

@@ -1,0 +1,114 @@
+#include "tracer/path_tracer.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "core/input_check.h"
+#include "reference/reference_filter.h"
+#include "tracer/scene_file.h"
+
+namespace hpsf {
+namespace {
+
+TraceOptions SmallOptions(std::uint32_t size, std::uint32_t spp, int max_depth = 8) {
+  TraceOptions o;
+  o.width = o.height = size;
+  o.samples_per_pixel = spp;
+  o.max_depth = max_depth;
+  return o;
+}
+
+glm::dvec3 RecordValue(const Record& r) {
+  glm::dvec3 v(r.radiance_before.x, r.radiance_before.y, r.radiance_before.z);
+  if (shared::RecordHasVertex(r)) v += glm::dvec3(r.throughput) * glm::dvec3(r.contribution);
+  return v;
+}
+
+struct MeanAndVariance {
+  double mean = 0.0, variance = 0.0;
+};
+
+MeanAndVariance Moments(const std::vector<double>& x) {
+  MeanAndVariance m;
+  for (double v : x) m.mean += v;
+  m.mean /= double(x.size());
+  for (double v : x) m.variance += (v - m.mean) * (v - m.mean);
+  m.variance /= double(x.size() - 1);
+  return m;
+}
+
+double PixelVariance(const Image& image) {
+  std::vector<double> luminance;
+  for (const glm::vec3& p : image.pixels) luminance.push_back((p.x + p.y + p.z) / 3.0);
+  return Moments(luminance).variance;
+}
+
+// The furnace's radiance is exactly 2 everywhere with unbounded depth. The 99.9% confidence interval of the
+// mean comes from the sample variance of the per-sample values (z = 3.29).
+TEST(Furnace, MeanRadianceIsTwoFilteredAndUnfiltered) {
+  const TraceResult traced = TraceRecords(LoadScene("furnace"), SmallOptions(48, 16, -1));
+  std::vector<double> samples;
+  for (const Record& r : traced.batch.records) {
+    ASSERT_EQ(CheckRecordInputs(r), InputVerdict::kAccepted);
+    samples.push_back(RecordValue(r).y);
+  }
+  const MeanAndVariance m = Moments(samples);
+  const double half_width = 3.29 * std::sqrt(m.variance / double(samples.size()));
+  EXPECT_NEAR(m.mean, 2.0, half_width) << "variance " << m.variance;
+  EXPECT_LT(half_width, 0.05) << "the interval must be narrow enough to mean something";
+
+  const Image unfiltered = UnfilteredImage(traced.batch);
+  const FilterResult filtered = ReferenceFilter(traced.batch, FilterConfig{});
+  double filtered_mean = 0.0;
+  for (const glm::vec3& p : filtered.image.pixels) filtered_mean += p.y;
+  filtered_mean /= double(filtered.image.pixels.size());
+  // The throughput is the same for every record (albedo 0.5), so filtering moves light between samples but
+  // keeps the mean: the same interval applies.
+  EXPECT_NEAR(filtered_mean, 2.0, half_width);
+  EXPECT_LT(PixelVariance(filtered.image), 0.5 * PixelVariance(unfiltered));
+}
+
+TEST(PathTracer, OneRecordPerSampleInPixelSampleOrder) {
+  const TraceResult traced = TraceRecords(LoadScene("cornell"), SmallOptions(24, 3));
+  ASSERT_EQ(traced.batch.records.size(), 24u * 24u * 3u);
+  for (std::size_t i = 0; i < traced.batch.records.size(); ++i) {
+    EXPECT_EQ(shared::RecordPixel(traced.batch.records[i]), i / 3);
+    EXPECT_EQ(shared::RecordSample(traced.batch.records[i]), i % 3);
+  }
+  EXPECT_GT(traced.stats.camera_rays, 0u);
+}
+
+TEST(PathTracer, BitsDoNotDependOnTheThreadCount) {
+  const Scene scene = LoadScene("cornell");
+  TraceOptions one = SmallOptions(40, 2), two = one;
+  one.threads = 1;
+  two.threads = 2;
+  const RecordBatch a = TraceRecords(scene, one).batch, b = TraceRecords(scene, two).batch, c = TraceRecords(scene, two).batch;
+  ASSERT_EQ(a.records.size(), b.records.size());
+  EXPECT_EQ(std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(Record)), 0);
+  EXPECT_EQ(std::memcmp(b.records.data(), c.records.data(), b.records.size() * sizeof(Record)), 0);
+  const Image ia = ReferenceFilter(a, FilterConfig{}).image, ib = ReferenceFilter(b, FilterConfig{}).image;
+  EXPECT_EQ(std::memcmp(ia.pixels.data(), ib.pixels.data(), ia.pixels.size() * sizeof(glm::vec3)), 0);
+}
+
+TEST(PathTracer, SkyHitsAreSamplesOfTheirPixel) {
+  const Scene scene = ParseScene(R"({"hpsf_scene": 1, "sky": [0.25, 0.5, 1],
+      "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "fov_y_degrees": 40},
+      "materials": [{"name": "grey", "albedo": [0.5, 0.5, 0.5]}],
+      "shapes": [{"material": "grey", "quad": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]}]})",
+                                 "sky-test", ".");
+  const TraceResult traced = TraceRecords(scene, SmallOptions(16, 4, 1));
+  const Image image = UnfilteredImage(traced.batch);
+  // A corner pixel sees only sky: all its samples are records without a vertex, and its value is the sky.
+  EXPECT_EQ(image.At(0, 0), glm::vec3(0.25f, 0.5f, 1.0f));
+  for (std::uint32_t s = 0; s < 4; ++s) EXPECT_FALSE(shared::RecordHasVertex(traced.batch.records[s]));
+  const FilterResult filtered = ReferenceFilter(traced.batch, FilterConfig{});
+  EXPECT_EQ(filtered.image.At(0, 0), glm::vec3(0.25f, 0.5f, 1.0f));
+  EXPECT_GT(filtered.stats.records_without_vertex, 0u);
+  EXPECT_EQ(filtered.stats.records_with_vertex + filtered.stats.records_without_vertex, filtered.stats.records);
+}
+
+}  // namespace
+}  // namespace hpsf
