@@ -36,8 +36,13 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image, con
   const std::filesystem::path exr_temporary = exr.parent_path() / ("." + exr.stem().string() + ".partial.exr");
   const std::filesystem::path png_temporary = exr.parent_path() / ("." + exr.stem().string() + ".partial.png");
 
+  // OpenEXR writes chunks in the order its threads finish them; one thread makes the file bytes, not only the
+  // pixels, the same on every run, so files can be compared as files.
+  OIIO::attribute("exr_threads", 1);
   OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
   for (const auto& [key, value] : metadata) spec.attribute("hpsf:" + key, value);
+  // No timestamp either (OpenEXR's capDate): the same render gives the same file.
+  spec.attribute("DateTime", "");
   std::vector<std::uint8_t> preview(image.pixels.size() * 3);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) preview[3 * i + c] = EncodeSrgb(image.pixels[i][c]);

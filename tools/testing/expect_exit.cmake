@@ -1,5 +1,9 @@
 # ctest driver: runs COMMAND (a ;-list) with optional ENV (a ;-list of NAME=VALUE), and requires exit code
-# EXPECT_CODE and, when given, stderr or stdout matching EXPECT_MESSAGE.
+# EXPECT_CODE, when given, stderr or stdout matching EXPECT_MESSAGE, and, when given, no file at ABSENT (bad
+# input must leave no partial output).
+if(ABSENT)
+  file(REMOVE ${ABSENT})
+endif()
 set(env_prefix)
 if(ENV)
   set(env_prefix ${CMAKE_COMMAND} -E env ${ENV})
@@ -11,4 +15,7 @@ if(NOT code EQUAL EXPECT_CODE)
 endif()
 if(EXPECT_MESSAGE AND NOT "${out}${err}" MATCHES "${EXPECT_MESSAGE}")
   message(FATAL_ERROR "output does not match '${EXPECT_MESSAGE}'")
+endif()
+if(ABSENT AND EXISTS ${ABSENT})
+  message(FATAL_ERROR "${ABSENT} exists: bad input left output behind")
 endif()

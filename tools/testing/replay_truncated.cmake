@@ -1,0 +1,21 @@
+# Records a small batch, cuts its tail off, and requires `hpsf replay` to refuse it with exit code 3, naming the
+# file and the byte, and to write no image.
+set(records ${OUT}/truncated.hpsfv)
+set(image ${OUT}/truncated.exr)
+file(REMOVE ${records} ${image})
+execute_process(COMMAND ${HPSF} render cornell --size 8x8 --spp 1 -o ${OUT}/for_truncation.exr --dump-records ${records}
+                RESULT_VARIABLE code)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "recording the batch failed (${code})")
+endif()
+file(SIZE ${records} size)
+math(EXPR cut "${size} - 300")
+execute_process(COMMAND truncate -s ${cut} ${records})
+execute_process(COMMAND ${HPSF} replay ${records} -o ${image} RESULT_VARIABLE code ERROR_VARIABLE err)
+message("exit ${code}: ${err}")
+if(NOT code EQUAL 3 OR NOT err MATCHES "truncated.hpsfv: byte [0-9]+: truncated")
+  message(FATAL_ERROR "a truncated record file must be refused with exit code 3 and the byte named")
+endif()
+if(EXISTS ${image})
+  message(FATAL_ERROR "${image} exists: bad input left output behind")
+endif()
