@@ -1,6 +1,8 @@
 #include "core/fixed_point_scale.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/input_check.h"
 #include "core/shared/fixed_point.h"
@@ -31,24 +33,40 @@ unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int chan
 }
 
 int ChooseFixedPointBits(std::span<const Record> records) {
+  std::vector<glm::vec3> contributions;
+  contributions.reserve(records.size());
+  glm::dvec3 total(0.0);
+  for (const Record& r : records) {
+    if (!EntersTable(r)) continue;
+    contributions.push_back(glm::vec3(r.contribution));
+    total += glm::dvec3(contributions.back());
+  }
+  // Exact test of one F: every c * 2^F is exact in double; each ceiling below 2^63 fits a uint64.
   auto fits = [&](int f) {
+    const double scale = std::ldexp(1.0, f);
     for (int channel = 0; channel < 3; ++channel) {
-      if (FixedPointCeilingSum(records, channel, f) >= kLimit) return false;
+      std::uint64_t sum = 0;
+      for (const glm::vec3& c : contributions) {
+        const double ceiling = std::ceil(double(c[channel]) * scale);
+        if (ceiling >= 0x1p63) return false;
+        sum += static_cast<std::uint64_t>(ceiling);  // both terms below 2^63: no wrap
+        if (sum >= (std::uint64_t(1) << 63)) return false;
+      }
     }
     return true;
   };
-  // The sums grow with F, so binary search for the last F that fits.
-  int low = shared::kFixedPointBitsMin, high = shared::kFixedPointBitsMax;
-  if (!fits(low)) return low;  // unreachable for finite floats: every c * 2^-126 is below 2^2
-  while (low < high) {
-    const int mid = low + (high - low + 1) / 2;
-    if (fits(mid)) {
-      low = mid;
-    } else {
-      high = mid - 1;
-    }
+  // Start from the estimate sum(ceil(c 2^F)) <= 2^F sum(c) + n, then step to the exact answer: usually one or
+  // two passes instead of a binary search over all 253 values.
+  const double largest = std::max({total.x, total.y, total.z});
+  int f = shared::kFixedPointBitsMax;
+  if (largest > 0.0) {
+    const double room = 0x1p63 - double(contributions.size()) - 1.0;
+    f = static_cast<int>(std::clamp(std::floor(std::log2(room / largest)), double(shared::kFixedPointBitsMin),
+                                    double(shared::kFixedPointBitsMax)));
   }
-  return low;
+  while (f > shared::kFixedPointBitsMin && !fits(f)) --f;
+  while (f < shared::kFixedPointBitsMax && fits(f + 1)) ++f;
+  return f;
 }
 
 double FromFixedPoint(std::uint64_t value, int fraction_bits) {
