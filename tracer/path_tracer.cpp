@@ -76,8 +76,13 @@ class Tracer {
   Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats) const;
 
  private:
-  float Random(std::uint32_t pixel, std::uint32_t sample, std::uint32_t bounce, std::uint32_t dimension) const {
-    return shared::RandomFloat(shared::RngCounter{options_.seed, options_.frame, pixel, sample, bounce}, dimension);
+  // The random numbers of one path vertex: the counter's prefix is hashed once, each dimension then finishes it.
+  struct VertexRandom {
+    std::uint32_t prefix;
+    float operator()(std::uint32_t dimension) const { return shared::RandomFloatFromPrefix(prefix, dimension); }
+  };
+  VertexRandom RandomAt(std::uint32_t pixel, std::uint32_t sample, std::uint32_t bounce) const {
+    return {shared::RngPrefix(shared::RngCounter{options_.seed, options_.frame, pixel, sample, bounce})};
   }
 
   // Rays leave a surface from a point pushed along the normal by a few float spacings of the scene's largest
@@ -101,11 +106,10 @@ class Tracer {
   }
 
   // Incident radiance from the emitters at p, times cos / pi (the diffuse lobe without albedo): one sample.
-  glm::dvec3 DirectLight(const SurfacePoint& p, std::uint32_t pixel, std::uint32_t sample, std::uint32_t bounce,
-                         TraceStats& stats) const {
+  glm::dvec3 DirectLight(const SurfacePoint& p, const VertexRandom& random, TraceStats& stats) const {
     if (emitters_.Empty()) return glm::dvec3(0.0);
-    const Triangle& light = scene_.triangles[emitters_.Pick(Random(pixel, sample, bounce, kLightPick))];
-    double su = Random(pixel, sample, bounce, kLightU), sv = Random(pixel, sample, bounce, kLightV);
+    const Triangle& light = scene_.triangles[emitters_.Pick(random(kLightPick))];
+    const double su = random(kLightU), sv = random(kLightV);
     const double root = std::sqrt(su);
     const glm::dvec3 y = glm::dvec3(light.p0) * (1.0 - root) + glm::dvec3(light.p1) * (root * (1.0 - sv)) +
                          glm::dvec3(light.p2) * (root * sv);
@@ -159,8 +163,9 @@ class Tracer {
 Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats) const {
   const double px = pixel % options_.width, py = pixel / options_.width;
   const double aspect = double(options_.width) / double(options_.height);
-  const double sx = (2.0 * (px + Random(pixel, sample, 0, kPixelU)) / options_.width - 1.0) * tan_half_fov_ * aspect;
-  const double sy = (1.0 - 2.0 * (py + Random(pixel, sample, 0, kPixelV)) / options_.height) * tan_half_fov_;
+  const VertexRandom camera_random = RandomAt(pixel, sample, 0);
+  const double sx = (2.0 * (px + camera_random(kPixelU)) / options_.width - 1.0) * tan_half_fov_ * aspect;
+  const double sy = (1.0 - 2.0 * (py + camera_random(kPixelV)) / options_.height) * tan_half_fov_;
   glm::dvec3 origin = scene_.camera.position;
   glm::dvec3 direction = glm::normalize(forward_ + right_ * sx + up_ * sy);
   ++stats.camera_rays;
@@ -185,6 +190,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     }
     const SurfacePoint& p = *hit;
     const glm::dvec3 albedo(p.material->albedo);
+    const VertexRandom random = RandomAt(pixel, sample, bounce);
     // Emission the camera sees counts in full; emission a bounce finds shares the work with next-event
     // estimation through multiple importance sampling.
     if (p.material->IsEmissive()) {
@@ -204,10 +210,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       vertex.bounce = bounce;
       weight = glm::dvec3(1.0);
       gathered = glm::dvec3(0.0);
-      gathered += DirectLight(p, pixel, sample, bounce, stats);
+      gathered += DirectLight(p, random, stats);
     } else {
       weight *= albedo;
-      gathered += weight * DirectLight(p, pixel, sample, bounce, stats);
+      gathered += weight * DirectLight(p, random, stats);
     }
     d_prefix += segment;
     previous = p.position;
@@ -215,15 +221,15 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
 
     if (options_.max_depth < 0 && bounce + 1 >= kRouletteStart) {
       const double survive = std::min(0.95, MaxComponent(has_vertex ? weight * record_throughput : weight));
-      if (survive <= 0.0 || Random(pixel, sample, bounce, kRoulette) >= survive) break;
+      if (survive <= 0.0 || random(kRoulette) >= survive) break;
       weight /= survive;
     }
     if (bounce + 1 >= max_vertices) break;
 
     // Cosine-weighted bounce: cos / pdf cancels the 1 / pi of the lobe, leaving the albedo (applied above).
     const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));
-    const double r = std::sqrt(double(Random(pixel, sample, bounce, kBounceU)));
-    const double phi = 2.0 * std::numbers::pi * Random(pixel, sample, bounce, kBounceV);
+    const double r = std::sqrt(double(random(kBounceU)));
+    const double phi = 2.0 * std::numbers::pi * random(kBounceV);
     const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
     direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) + glm::dvec3(frame.bitangent) * (r * std::sin(phi)) +
                                p.normal * z);

@@ -112,3 +112,29 @@ TEST(PathTracer, SkyHitsAreSamplesOfTheirPixel) {
 
 }  // namespace
 }  // namespace hpsf
+
+namespace hpsf {
+namespace {
+
+// --filter-bounce moves the filter vertex along the same paths: the records split each path's radiance
+// differently, but unfiltered they add up to the same pixels.
+TEST(PathTracer, LaterFilterBounceSplitsTheSamePaths) {
+  const Scene scene = LoadScene("cornell");
+  TraceOptions first = SmallOptions(24, 2), second = first;
+  second.filter_bounce = 1;
+  const RecordBatch a = TraceRecords(scene, first).batch, b = TraceRecords(scene, second).batch;
+  int later = 0;
+  for (const Record& r : b.records) {
+    if (!shared::RecordHasVertex(r)) continue;
+    EXPECT_EQ(shared::RecordBounce(r), 1u);
+    ++later;
+  }
+  EXPECT_GT(later, int(b.records.size()) / 2);
+  const Image ia = UnfilteredImage(a), ib = UnfilteredImage(b);
+  for (std::size_t i = 0; i < ia.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(ib.pixels[i][c], ia.pixels[i][c], 1e-4f * (1.0f + ia.pixels[i][c])) << i;
+  }
+}
+
+}  // namespace
+}  // namespace hpsf
