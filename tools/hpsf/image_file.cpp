@@ -48,6 +48,8 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image, con
     for (int c = 0; c < 3; ++c) preview[3 * i + c] = EncodeSrgb(image.pixels[i][c]);
   }
   OIIO::ImageSpec preview_spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
+  std::error_code created;
+  if (!exr.parent_path().empty()) std::filesystem::create_directories(exr.parent_path(), created);
   try {
     Write(exr_temporary.string(), spec, image.pixels.data(), exr_path);
     Write(png_temporary.string(), preview_spec, preview.data(), png.string());
