@@ -1,0 +1,114 @@
+#include "emulated/simt/launcher.h"
+
+#include <algorithm>
+#include <deque>
+#include <optional>
+#include <stdexcept>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+namespace hpsf::simt {
+namespace {
+
+class TraceHash {
+ public:
+  void Add(std::uint64_t word) {
+    for (int byte = 0; byte < 8; ++byte) hash_ = (hash_ ^ ((word >> (8 * byte)) & 0xFFu)) * 0x100000001b3ull;
+  }
+  std::uint64_t Value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
+                            Schedule& schedule) {
+  if (warp_size == 0) throw std::invalid_argument("warp size must be at least 1");
+  std::deque<ThreadContext> contexts;  // stable addresses: kernels keep a reference
+  std::vector<KernelTask> tasks;
+  tasks.reserve(threads);
+  for (std::uint32_t t = 0; t < threads; ++t) {
+    contexts.emplace_back(t, memory, Mode::kFaithful);
+    tasks.push_back(kernel(contexts.back()));
+    tasks.back().Resume();  // to the first memory operation
+  }
+  const std::uint32_t warps = (threads + warp_size - 1) / warp_size;
+  std::vector<std::uint32_t> pending_in_warp(warps, 0);
+  for (std::uint32_t t = 0; t < threads; ++t) pending_in_warp[t / warp_size] += contexts[t].Pending() != nullptr;
+
+  LaunchReport report;
+  TraceHash trace;
+  std::vector<std::uint32_t> ready, lanes, order, group;
+  while (true) {
+    ready.clear();
+    for (std::uint32_t w = 0; w < warps; ++w) {
+      if (pending_in_warp[w] > 0) ready.push_back(w);
+    }
+    if (ready.empty()) break;
+    const std::uint32_t warp = ready[schedule.PickWarp(ready)];
+    lanes.clear();
+    for (std::uint32_t t = warp * warp_size; t < std::min(threads, (warp + 1) * warp_size); ++t) {
+      if (contexts[t].Pending()) lanes.push_back(t);
+    }
+    // Group the step's operations by address, in lane order of first appearance; a group with a write and more
+    // than one operation is a conflict the schedule orders.
+    order.clear();
+    std::vector<bool> placed(lanes.size(), false);
+    std::uint32_t conflicts = 0;
+    for (std::size_t i = 0; i < lanes.size(); ++i) {
+      if (placed[i]) continue;
+      group.clear();
+      bool writes = false;
+      for (std::size_t j = i; j < lanes.size(); ++j) {
+        if (!placed[j] && contexts[lanes[j]].Pending()->address == contexts[lanes[i]].Pending()->address) {
+          placed[j] = true;
+          group.push_back(lanes[j]);
+          writes = writes || IsWrite(contexts[lanes[j]].Pending()->kind);
+        }
+      }
+      if (group.size() > 1 && writes) {
+        schedule.OrderConflict(group);
+        ++conflicts;
+      }
+      order.insert(order.end(), group.begin(), group.end());
+    }
+    for (std::uint32_t lane : order) {
+      MemoryOp& op = *contexts[lane].Pending();
+      memory.Apply(op);
+      if (op.kind == OpKind::kAtomicCas && op.result != op.compare) ++report.stats.cas_failures;
+      for (std::uint64_t word : {std::uint64_t(warp), std::uint64_t(lane), std::uint64_t(op.kind), std::uint64_t(op.address.buffer),
+                                 op.address.index, op.value, op.compare, op.result}) {
+        trace.Add(word);
+      }
+    }
+    for (std::uint32_t lane : lanes) {
+      tasks[lane].Resume();
+      if (!contexts[lane].Pending()) --pending_in_warp[warp];
+    }
+    ++report.stats.steps;
+    report.stats.operations += lanes.size();
+    report.stats.conflict_groups += conflicts;
+    ++report.stats.active_lanes[std::uint32_t(lanes.size())];
+    ++report.stats.conflicts_per_step[conflicts];
+  }
+  report.trace_hash = trace.Value();
+  return report;
+}
+
+void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads) {
+  std::optional<tbb::global_control> limit;
+  if (worker_threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(worker_threads));
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, threads, 1024), [&](const tbb::blocked_range<std::uint32_t>& range) {
+    for (std::uint32_t t = range.begin(); t < range.end(); ++t) {
+      ThreadContext context(t, memory, Mode::kFast);
+      KernelTask task = kernel(context);
+      task.Resume();  // never suspends in fast mode: runs to the end
+      if (!task.Done()) throw std::logic_error("a kernel suspended in fast mode");
+    }
+  });
+}
+
+}  // namespace hpsf::simt

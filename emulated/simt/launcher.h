@@ -1,0 +1,42 @@
+// Launching a kernel over N threads on the emulator. Faithful mode: warps of `warp_size` lanes take warp steps
+// in the order the schedule picks; a step applies each active lane's pending operation (conflicting ones in
+// the schedule's order) and runs those lanes to their next operation. Every faithful run hashes its trace.
+// Fast mode: the same kernels run to completion on all cores, operations applied with std::atomic_ref.
+#ifndef HPSF_EMULATED_SIMT_LAUNCHER_H
+#define HPSF_EMULATED_SIMT_LAUNCHER_H
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "emulated/simt/kernel_task.h"
+#include "emulated/simt/schedule.h"
+
+namespace hpsf::simt {
+
+using Kernel = std::function<KernelTask(ThreadContext&)>;
+
+struct LaunchStats {
+  std::uint64_t steps = 0;
+  std::uint64_t operations = 0;
+  std::uint64_t cas_failures = 0;                   // CAS operations whose comparison failed
+  std::uint64_t conflict_groups = 0;                // same-address groups with a write, summed over steps
+  std::map<std::uint32_t, std::uint64_t> active_lanes;  // lanes with an operation in a step -> steps
+  std::map<std::uint32_t, std::uint64_t> conflicts_per_step;  // conflict groups in a step -> steps
+};
+
+struct LaunchReport {
+  std::uint64_t trace_hash = 0;  // faithful mode: a function of (kernel, inputs, warp size, schedule)
+  LaunchStats stats;
+};
+
+LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
+                            Schedule& schedule);
+// worker_threads: 0 for all cores.
+void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads = 0);
+
+}  // namespace hpsf::simt
+
+#endif  // HPSF_EMULATED_SIMT_LAUNCHER_H
