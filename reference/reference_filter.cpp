@@ -2,41 +2,17 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
 #include "core/input_check.h"
 #include "core/key_batch.h"
+#include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 
 namespace hpsf {
-namespace {
-
-void CheckBatchShape(const RecordBatch& batch) {
-  if (std::uint64_t(batch.width) * batch.height * batch.samples_per_pixel != batch.records.size()) {
-    throw InputError("record batch: " + std::to_string(batch.records.size()) + " records do not fill a " +
-                     std::to_string(batch.width) + "x" + std::to_string(batch.height) + " image at " +
-                     std::to_string(batch.samples_per_pixel) + " samples per pixel");
-  }
-}
-
-glm::dvec3 D(glm::vec4 v) { return glm::dvec3(v.x, v.y, v.z); }
-
-// Each pixel is the mean of its records' values, in sample order.
-Image AveragePixels(const RecordBatch& batch, const std::vector<glm::dvec3>& values) {
-  Image image(batch.width, batch.height);
-  const std::size_t spp = batch.samples_per_pixel;
-  for (std::size_t pixel = 0; pixel < image.pixels.size(); ++pixel) {
-    glm::dvec3 sum(0.0);
-    for (std::size_t s = 0; s < spp; ++s) sum += values[pixel * spp + s];
-    image.pixels[pixel] = glm::vec3(sum / double(spp));
-  }
-  return image;
-}
-
-}  // namespace
-
 FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config) {
   CheckBatchShape(batch);
   config.Validate();
@@ -52,14 +28,13 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
 
   std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
   result.placement.assign(batch.records.size(), kNoCell);
-  std::vector<InputVerdict> verdicts(batch.records.size());
   std::vector<KeyResult> keys(batch.records.size());
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     const Record& r = batch.records[i];
-    verdicts[i] = CheckRecordInputs(r);
-    if (verdicts[i] == InputVerdict::kNonFinite) ++stats.rejected_non_finite;
-    if (verdicts[i] == InputVerdict::kNegative) ++stats.rejected_negative;
-    if (verdicts[i] != InputVerdict::kAccepted) continue;
+    const InputVerdict verdict = CheckRecordInputs(r);
+    if (verdict == InputVerdict::kNonFinite) ++stats.rejected_non_finite;
+    if (verdict == InputVerdict::kNegative) ++stats.rejected_negative;
+    if (verdict != InputVerdict::kAccepted) continue;
     if (!shared::RecordHasVertex(r)) {
       ++stats.records_without_vertex;
       continue;
@@ -98,27 +73,16 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
   stats.cells = result.cells.size();
   stats.mean_records_per_cell = stats.cells ? double(stats.records_with_vertex - stats.unkeyable) / double(stats.cells) : 0.0;
 
-  std::vector<glm::dvec3> values(batch.records.size(), glm::dvec3(0.0));
+  std::vector<std::optional<glm::dvec3>> cell_average(batch.records.size());
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    if (verdicts[i] != InputVerdict::kAccepted) continue;  // rejected: contributes nothing
-    const Record& r = batch.records[i];
-    const glm::dvec3 own = shared::RecordHasVertex(r) ? D(r.contribution) : glm::dvec3(0.0);
-    const glm::dvec3 incident = result.placement[i] != kNoCell ? averages[result.placement[i]] : own;
-    values[i] = D(r.radiance_before) + D(r.throughput) * incident;
+    if (result.placement[i] != kNoCell) cell_average[i] = averages[result.placement[i]];
   }
-  result.image = AveragePixels(batch, values);
+  result.image = ResolvePixels(batch, cell_average);
   return result;
 }
 
 Image UnfilteredImage(const RecordBatch& batch) {
-  CheckBatchShape(batch);
-  std::vector<glm::dvec3> values(batch.records.size(), glm::dvec3(0.0));
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    const Record& r = batch.records[i];
-    if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
-    values[i] = D(r.radiance_before) + (shared::RecordHasVertex(r) ? D(r.throughput) * D(r.contribution) : glm::dvec3(0.0));
-  }
-  return AveragePixels(batch, values);
+  return ResolvePixels(batch, std::vector<std::optional<glm::dvec3>>(batch.records.size()));
 }
 
 }  // namespace hpsf

@@ -1,0 +1,37 @@
+// The GPU hash table's final state, as every hashed backend dumps it: one tag, three channel sums and a count
+// per slot. The table checker judges a backend from this and the per-record placements alone.
+#ifndef HPSF_CORE_HASH_TABLE_H
+#define HPSF_CORE_HASH_TABLE_H
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/filter_config.h"
+
+namespace hpsf {
+
+// A slot's tag: 0 marks an empty slot, anything else is a reduced fingerprint. A named type so that a priority
+// field (Binder et al. §3.4.3) can widen it later.
+using SlotTag = std::uint32_t;
+inline constexpr SlotTag kEmptyTag = 0;
+
+// Placement of a record: the slot it was added to, or one of these.
+inline constexpr std::uint32_t kNotPlaced = 0xFFFFFFFFu;    // no vertex, unkeyable or rejected: never probed
+inline constexpr std::uint32_t kProbeFailure = 0xFFFFFFFEu;  // probed its whole window without finding a slot
+
+struct HashTableDump {
+  std::uint32_t capacity = 0;
+  std::uint32_t probe_limit = 0;
+  std::uint32_t fingerprint_bits = 32;
+  Accumulation accumulation = Accumulation::kFixed64;
+  int fixed_point_bits = 0;
+  std::vector<SlotTag> tags;
+  std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64
+  std::vector<std::array<float, 3>> float_sums;          // float32
+  std::vector<std::uint64_t> counts;
+};
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_HASH_TABLE_H

@@ -1,0 +1,41 @@
+#include "emulated/accumulate_kernel.h"
+
+#include <bit>
+
+#include "core/hash_table.h"
+#include "core/shared/fixed_point.h"
+
+namespace hpsf {
+
+simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  const std::uint32_t i = ctx.Thread();
+  const KeyResult& key = args.keys[i];
+  const TableBuffers& b = args.buffers;
+  if (!args.accepted[i] || key.status != shared::kKeyed) {
+    co_await ctx.Store(b.placements, i, kNotPlaced);
+    co_return;
+  }
+  const Record& r = args.records[i];
+  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+    const std::uint32_t slot = (key.slot0 + probe) & (args.capacity - 1u);
+    std::uint64_t tag = co_await ctx.Load(b.tags, slot);
+    if (tag == kEmptyTag) tag = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, key.fingerprint);
+    // An empty slot we just claimed (CAS returned 0) or a slot that holds our fingerprint: add here, once.
+    if (tag != kEmptyTag && tag != key.fingerprint) continue;
+    for (int c = 0; c < 3; ++c) {
+      if (args.accumulation == Accumulation::kFixed64) {
+        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+        const std::uint64_t old = co_await ctx.AtomicAdd(b.sums[c], slot, add);
+        if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
+      } else {
+        co_await ctx.AtomicAddFloat(b.sums[c], slot, std::bit_cast<std::uint32_t>(r.contribution[c]));
+      }
+    }
+    co_await ctx.AtomicAdd(b.counts, slot, 1);
+    co_await ctx.Store(b.placements, i, slot);
+    co_return;
+  }
+  co_await ctx.Store(b.placements, i, kProbeFailure);
+}
+
+}  // namespace hpsf

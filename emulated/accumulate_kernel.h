@@ -1,0 +1,41 @@
+// The accumulate pass of DESIGN.md, "The algorithm", as an emulator kernel: one thread per record; bounded
+// linear probing from slot0; a slot whose tag equals the fingerprint is joined, an empty one is claimed with a
+// compare-and-swap; each channel is added atomically, then the count; the record's slot is stored. No slot
+// within the probe limit is a probe failure. fixed64 adds also report wrap (new < old).
+#ifndef HPSF_EMULATED_ACCUMULATE_KERNEL_H
+#define HPSF_EMULATED_ACCUMULATE_KERNEL_H
+
+#include <cstdint>
+#include <span>
+
+#include "core/filter_config.h"
+#include "core/key_batch.h"
+#include "core/record.h"
+#include "emulated/simt/kernel_task.h"
+
+namespace hpsf {
+
+struct TableBuffers {
+  std::uint32_t tags;         // 32-bit
+  std::uint32_t sums[3];      // 64-bit (fixed64) or 32-bit float bits (float32)
+  std::uint32_t counts;       // 64-bit
+  std::uint32_t placements;   // 32-bit, one per record
+  std::uint32_t wraps;        // 64-bit, one word: fixed64 adds that wrapped
+};
+
+struct AccumulateArgs {
+  std::span<const Record> records;
+  std::span<const KeyResult> keys;        // from core, per record
+  std::span<const std::uint8_t> accepted;  // CheckRecordInputs passed
+  std::uint32_t capacity = 0;
+  std::uint32_t probe_limit = 0;
+  Accumulation accumulation = Accumulation::kFixed64;
+  float fixed_point_scale = 1.0f;  // 2^F
+  TableBuffers buffers{};
+};
+
+simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
+}  // namespace hpsf
+
+#endif  // HPSF_EMULATED_ACCUMULATE_KERNEL_H
