@@ -1,0 +1,105 @@
+#include "emulated/emulated_filter.h"
+
+#include <bit>
+#include <optional>
+
+#include "core/error.h"
+#include "core/fixed_point_scale.h"
+#include "core/footprint.h"
+#include "core/input_check.h"
+#include "core/resolve.h"
+#include "emulated/accumulate_kernel.h"
+
+namespace hpsf {
+
+void EmulatorOptions::Validate() const {
+  if (warp_size == 0 || warp_size > 1024) throw ConfigError("--warp-size", "must lie in [1, 1024]; got " + std::to_string(warp_size));
+  if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
+  if (mode == simt::Mode::kFaithful) simt::MakeSchedule(schedule, 1, 1);  // parses, or names --schedule
+}
+
+EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options) {
+  CheckBatchShape(batch);
+  config.Validate();
+  options.Validate();
+  const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
+  const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
+
+  EmulatedRun run;
+  run.keys = ComputeKeys(batch.records, params);
+  std::vector<std::uint8_t> accepted(n);
+  for (std::uint32_t i = 0; i < n; ++i) accepted[i] = CheckRecordInputs(batch.records[i]) == InputVerdict::kAccepted;
+
+  HashTableDump& table = run.table;
+  table.capacity = config.capacity;
+  table.probe_limit = config.probe_limit;
+  table.fingerprint_bits = config.fingerprint_bits;
+  table.accumulation = config.accumulation;
+  table.fixed_point_bits = ChooseFixedPointBits(batch.records);
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+
+  simt::DeviceMemory memory;
+  AccumulateArgs args;
+  args.records = batch.records;
+  args.keys = run.keys;
+  args.accepted = accepted;
+  args.capacity = config.capacity;
+  args.probe_limit = config.probe_limit;
+  args.accumulation = config.accumulation;
+  args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
+  TableBuffers& b = args.buffers;
+  b.tags = memory.Allocate32("tags", config.capacity);
+  for (int c = 0; c < 3; ++c) {
+    b.sums[c] = fixed ? memory.Allocate64("sums", config.capacity) : memory.Allocate32("sums", config.capacity);
+  }
+  b.counts = memory.Allocate64("counts", config.capacity);
+  b.placements = memory.Allocate32("placements", n);
+  b.wraps = memory.Allocate64("wraps", 1);
+
+  const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return AccumulateKernel(ctx, args); };
+  if (options.mode == simt::Mode::kFast) {
+    simt::LaunchFast(memory, n, kernel, options.threads);
+  } else {
+    const std::uint32_t warps = (n + options.warp_size - 1) / options.warp_size;
+    auto schedule = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
+    run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule);
+  }
+
+  // The dump: the final state of the device buffers.
+  const auto tags = memory.Words32(b.tags);
+  table.tags.assign(tags.begin(), tags.end());
+  table.counts.assign(memory.Words64(b.counts).begin(), memory.Words64(b.counts).end());
+  if (fixed) {
+    table.fixed_sums.resize(config.capacity);
+    for (int c = 0; c < 3; ++c) {
+      for (std::uint32_t s = 0; s < config.capacity; ++s) table.fixed_sums[s][c] = memory.Words64(b.sums[c])[s];
+    }
+  } else {
+    table.float_sums.resize(config.capacity);
+    for (int c = 0; c < 3; ++c) {
+      for (std::uint32_t s = 0; s < config.capacity; ++s) table.float_sums[s][c] = std::bit_cast<float>(memory.Words32(b.sums[c])[s]);
+    }
+  }
+  run.placements.assign(memory.Words32(b.placements).begin(), memory.Words32(b.placements).end());
+  run.wraps = memory.Words64(b.wraps)[0];
+
+  // Probe lengths follow from the placements; resolve uses each placed record's slot average.
+  run.probe_lengths.assign(config.probe_limit, 0);
+  std::vector<std::optional<glm::dvec3>> averages(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t slot = run.placements[i];
+    if (slot == kProbeFailure) ++run.probe_failures;
+    if (slot >= config.capacity) continue;
+    ++run.probe_lengths[(slot - run.keys[i].slot0) & (config.capacity - 1u)];
+    glm::dvec3 average;
+    for (int c = 0; c < 3; ++c) {
+      const double sum = fixed ? FromFixedPoint(table.fixed_sums[slot][c], table.fixed_point_bits) : double(table.float_sums[slot][c]);
+      average[c] = sum / double(table.counts[slot]);
+    }
+    averages[i] = average;
+  }
+  run.image = ResolvePixels(batch, averages);
+  return run;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,43 @@
+// The emulated backend: the GPU hash table (index hash, fingerprint, bounded linear probing, atomics) run by
+// the SIMT emulator, faithfully (warp steps in a scheduled order, traced) or fast (all cores, atomic_ref).
+// Keys come from the same core code the reference uses; resolve is core/resolve.
+#ifndef HPSF_EMULATED_EMULATED_FILTER_H
+#define HPSF_EMULATED_EMULATED_FILTER_H
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/filter_config.h"
+#include "core/hash_table.h"
+#include "core/image.h"
+#include "core/key_batch.h"
+#include "core/record.h"
+#include "emulated/simt/launcher.h"
+
+namespace hpsf {
+
+struct EmulatorOptions {
+  simt::Mode mode = simt::Mode::kFast;
+  std::uint32_t warp_size = 32;          // 8 (lavapipe), 32 (NVIDIA), 64 (AMD wave64)
+  std::string schedule = "round-robin";  // faithful mode: round-robin | random:SEED | pct:SEED:DEPTH
+  int threads = 0;                       // fast mode workers; 0: all cores
+  void Validate() const;                 // ConfigError naming the option
+};
+
+struct EmulatedRun {
+  Image image;
+  HashTableDump table;
+  std::vector<KeyResult> keys;            // per record, from core
+  std::vector<std::uint32_t> placements;  // per record: a slot, kProbeFailure or kNotPlaced
+  std::uint64_t probe_failures = 0;
+  std::uint64_t wraps = 0;                       // fixed64 adds whose sum wrapped
+  std::vector<std::uint64_t> probe_lengths;      // [k]: records placed after probing k + 1 slots
+  simt::LaunchReport launch;                     // faithful mode: trace hash and step statistics
+};
+
+EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options);
+
+}  // namespace hpsf
+
+#endif  // HPSF_EMULATED_EMULATED_FILTER_H

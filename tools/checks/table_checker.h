@@ -1,0 +1,51 @@
+// The table checker (DESIGN.md, "The table checker and the cross-check contract"): judges a hashed backend from
+// its final tags, sums and counts and each record's key and placement alone, without knowing the insertion
+// order. Every violation names the invariant, the slot and the records involved.
+#ifndef HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
+#define HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/hash_table.h"
+#include "core/key_batch.h"
+#include "core/record.h"
+
+namespace hpsf {
+
+enum class TableInvariant {
+  kPlacementOfUnkeyedRecord,    // a record without a key was placed, or a keyed one was neither placed nor failed
+  kSlotOutsideWindow,           // a placed record's slot is not within probe_limit of its slot0
+  kTagIsNotTheFingerprint,      // a placed record's slot holds another tag
+  kEarlierSlotEmptyOrMatching,  // an earlier slot of the window is empty or holds the fingerprint
+  kFailureWindowNotFull,        // a probe failure's window holds an empty slot or the fingerprint
+  kCountMismatch,               // a slot's count differs from the records placed there
+  kSumMismatch,                 // fixed64: not the exact sum; float32: outside gamma(n-1) * sum|c|
+  kEmptySlotNotZero,            // tag 0 with a count or sum
+  kOrphanTag,                   // a non-zero tag that no placed record carries
+  kTotalMismatch,               // the table total differs from the placed contributions
+};
+const char* ToString(TableInvariant invariant);
+
+struct TableViolation {
+  TableInvariant invariant;
+  std::uint32_t slot = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> records;
+  std::string detail;
+  std::string ToString() const;
+};
+
+struct TableCheckInput {
+  const HashTableDump& table;
+  std::span<const Record> records;
+  std::span<const KeyResult> keys;            // per record, from core
+  std::span<const std::uint32_t> placements;  // per record
+};
+
+std::vector<TableViolation> CheckTable(const TableCheckInput& input);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
