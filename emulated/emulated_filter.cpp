@@ -8,7 +8,6 @@
 #include "core/footprint.h"
 #include "core/input_check.h"
 #include "core/resolve.h"
-#include "emulated/accumulate_kernel.h"
 
 namespace hpsf {
 
@@ -18,7 +17,8 @@ void EmulatorOptions::Validate() const {
   if (mode == simt::Mode::kFaithful) simt::MakeSchedule(schedule, 1, 1);  // parses, or names --schedule
 }
 
-EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options) {
+EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
+                           AccumulateKernelFn accumulate) {
   CheckBatchShape(batch);
   config.Validate();
   options.Validate();
@@ -56,7 +56,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   b.placements = memory.Allocate32("placements", n);
   b.wraps = memory.Allocate64("wraps", 1);
 
-  const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return AccumulateKernel(ctx, args); };
+  const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
   if (options.mode == simt::Mode::kFast) {
     simt::LaunchFast(memory, n, kernel, options.threads);
   } else {

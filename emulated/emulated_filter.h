@@ -13,6 +13,7 @@
 #include "core/image.h"
 #include "core/key_batch.h"
 #include "core/record.h"
+#include "emulated/accumulate_kernel.h"
 #include "emulated/simt/launcher.h"
 
 namespace hpsf {
@@ -36,7 +37,11 @@ struct EmulatedRun {
   simt::LaunchReport launch;                     // faithful mode: trace hash and step statistics
 };
 
-EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options);
+// The accumulate kernel to run; tests pass broken variants of it (DESIGN.md, "Known defects").
+using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const AccumulateArgs&);
+
+EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
+                           AccumulateKernelFn kernel = AccumulateKernel);
 
 }  // namespace hpsf
 

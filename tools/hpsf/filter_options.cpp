@@ -17,6 +17,9 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command.add_option("--level-max", c.level_max, "Largest level, in [-126, 126]")->capture_default_str();
   command.add_option("--accum", o.accumulation, "Accumulation: fixed64 or float32")->capture_default_str();
   command.add_option("--seed", c.seed, "Seed of every random number")->capture_default_str();
+  command.add_option("--capacity", c.capacity, "Hash table slots (a power of two)")->capture_default_str();
+  command.add_option("--probe-limit", c.probe_limit, "Slots probed before a probe failure")->capture_default_str();
+  command.add_option("--fingerprint-bits", c.fingerprint_bits, "Fingerprint width, 8..32")->capture_default_str();
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {

@@ -5,7 +5,6 @@
 #include <iostream>
 
 #include "core/error.h"
-#include "reference/reference_filter.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/version.h"
 
@@ -18,20 +17,15 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-void CheckBackend(const std::string& backend) {
-  if (backend != "reference") {
-    throw ConfigError("--backend", "'" + backend + "' is not available; this build has: reference");
-  }
-}
-
 nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request) {
   CheckBackend(request.backend);
   const FilterConfig config = ResolveFilterConfig(options);
   nlohmann::json report;
   const auto filter_start = std::chrono::steady_clock::now();
-  FilterResult result = ReferenceFilter(batch, config);  // its stats are wanted even when not filtering
+  const BackendOutput result = RunBackend(request.backend, batch, config, request.emulator);
   const double filter_seconds = SecondsSince(filter_start);
   const Image image = options.no_filter ? UnfilteredImage(batch) : result.image;
+  const int fixed_point_bits = result.reference ? result.reference->stats.fixed_point_bits : result.emulated->table.fixed_point_bits;
 
   const std::map<std::string, std::string> metadata = {
       {"scene", request.scene},
@@ -39,14 +33,14 @@ nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& opt
       {"seed", std::to_string(config.seed)},
       {"backend", options.no_filter ? "none (unfiltered)" : request.backend},
       {"version", kHpsfVersion},
-      {"F", std::to_string(result.stats.fixed_point_bits)}};
+      {"F", std::to_string(fixed_point_bits)}};
   const auto write_start = std::chrono::steady_clock::now();
   const std::string preview = WriteImageFiles(request.output, image, metadata);
 
   report["filtered"] = !options.no_filter;
   report["backend"] = request.backend;
   report["config"] = ToJson(config);
-  report["stats"] = ToJson(result.stats);
+  report["stats"] = result.stats;
   report["output"] = request.output;
   report["preview"] = preview;
   report["timings"]["filter_s"] = filter_seconds;
@@ -63,10 +57,16 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
   const auto& s = report["stats"];
   std::cout << "wrote " << report["output"].get<std::string>() << " and " << report["preview"].get<std::string>() << " ("
             << (report["filtered"].get<bool>() ? "filtered, " + report["backend"].get<std::string>() : std::string("unfiltered"))
-            << ")\n"
-            << "records " << s["records"] << ", without vertex " << s["records_without_vertex"] << ", unkeyable "
-            << s["unkeyable"] << ", rejected " << s["rejected_non_finite"].get<std::uint64_t>() + s["rejected_negative"].get<std::uint64_t>()
-            << ", cells " << s["cells"] << ", F " << s["fixed_point_bits"] << "\n";
+            << ")\n";
+  if (s.contains("cells")) {
+    std::cout << "records " << s["records"] << ", without vertex " << s["records_without_vertex"] << ", unkeyable "
+              << s["unkeyable"] << ", rejected " << s["rejected_non_finite"].get<std::uint64_t>() + s["rejected_negative"].get<std::uint64_t>()
+              << ", cells " << s["cells"] << ", F " << s["fixed_point_bits"] << "\n";
+  } else {
+    std::cout << "emulated (" << s["mode"].get<std::string>() << "): slots used " << s["slots_used"] << ", probe failures "
+              << s["probe_failures"] << ", F " << s["fixed_point_bits"]
+              << (s.contains("trace_hash") ? ", trace " + s["trace_hash"].get<std::string>() : std::string()) << "\n";
+  }
   if (report.contains("rays_per_s")) {
     std::printf("%.3g rays/s, %.3g records/s filtered\n", report["rays_per_s"].get<double>(), report["records_per_s"].get<double>());
   }

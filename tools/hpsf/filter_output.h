@@ -8,14 +8,16 @@
 #include <nlohmann/json.hpp>
 
 #include "core/record.h"
+#include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/filter_options.h"
 
 namespace hpsf {
 
 struct OutputRequest {
   std::string scene;    // name recorded in the metadata
-  std::string backend;  // "reference" (the only backend so far)
+  std::string backend;  // reference or emulated
   std::string output;   // OUT.exr
+  EmulatorOptions emulator;
 };
 
 nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request);
@@ -23,8 +25,6 @@ nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& opt
 // Prints the report as JSON, or a short human summary.
 void PrintReport(const nlohmann::json& report, bool as_json);
 
-// A backend name hpsf accepts; the others arrive with later issues.
-void CheckBackend(const std::string& backend);
 
 }  // namespace hpsf
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
 #include "tools/hpsf/render_command.h"
 #include "vulkan/vulkan_device.h"
@@ -15,6 +16,8 @@ int main(int argc, char** argv) {
   hpsf::AddDeviceCommand(app);
   hpsf::AddRenderCommand(app);
   hpsf::AddReplayCommand(app);
+  int exit_code = hpsf::kExitOk;
+  hpsf::AddCrosscheckCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -27,5 +30,5 @@ int main(int argc, char** argv) {
     std::cerr << "hpsf: " << e.what() << "\n";
     return hpsf::kExitBadInput;
   }
-  return hpsf::kExitOk;
+  return exit_code;
 }

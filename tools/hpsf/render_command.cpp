@@ -24,6 +24,7 @@ struct RenderOptions {
   std::string dump_records;
   TraceOptions trace;
   FilterOptions filter;
+  EmulatorFlags emulator;
   bool json = false;
 };
 
@@ -44,6 +45,7 @@ std::function<void(std::uint32_t, std::uint32_t)> TerminalProgress() {
 
 void RunRender(RenderOptions& o) {
   CheckBackend(o.backend);
+  const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ParseSize(o.size, o.trace);
   o.trace.seed = o.filter.config.seed;
   o.trace.Validate();
@@ -57,7 +59,7 @@ void RunRender(RenderOptions& o) {
   const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
 
-  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output});
+  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output, emulator});
   report["version"] = 1;
   report["command"] = "render";
   report["scene"] = scene.name;
@@ -76,14 +78,16 @@ struct ReplayOptions {
   std::string output;
   std::string backend = "reference";
   FilterOptions filter;
+  EmulatorFlags emulator;
   bool json = false;
 };
 
 void RunReplay(const ReplayOptions& o) {
   CheckBackend(o.backend);
+  const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ResolveFilterConfig(o.filter);
   const RecordBatch batch = ReadRecordFile(o.records);
-  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output});
+  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output, emulator});
   report["version"] = 1;
   report["command"] = "replay";
   report["records_file"] = o.records;
@@ -98,7 +102,7 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("scene", o->scene, "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
                                    "cornell-zero-red) or a scene file")->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
-  c->add_option("--backend", o->backend, "Filter backend: reference")->capture_default_str();
+  c->add_option("--backend", o->backend, "Filter backend: reference or emulated")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded (Russian roulette)")->capture_default_str();
@@ -107,6 +111,7 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("--dump-records", o->dump_records, "Also write the traced batch to FILE.hpsfv");
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
+  AddEmulatorOptions(*c, o->emulator);
   c->callback([o] { RunRender(*o); });
 }
 
@@ -115,9 +120,10 @@ void AddReplayCommand(CLI::App& app) {
   CLI::App* c = app.add_subcommand("replay", "Filter a recorded batch (.hpsfv) and write OUT.exr and OUT.png");
   c->add_option("records", o->records, "The .hpsfv file")->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
-  c->add_option("--backend", o->backend, "Filter backend: reference")->capture_default_str();
+  c->add_option("--backend", o->backend, "Filter backend: reference or emulated")->capture_default_str();
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
+  AddEmulatorOptions(*c, o->emulator);
   c->callback([o] { RunReplay(*o); });
 }
 

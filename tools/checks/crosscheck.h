@@ -1,0 +1,49 @@
+// The cross-check contract of DESIGN.md between backends on one batch: level 1 keys (joins with Vulkan),
+// level 2 every hashed backend passes the table checker, level 3 agreement with the reference outside the
+// records a backend classified (probe failures, aliased slots), level 4 determinism of a rerun. One module
+// for `hpsf crosscheck` and the tests.
+#ifndef HPSF_TOOLS_CHECKS_CROSSCHECK_H
+#define HPSF_TOOLS_CHECKS_CROSSCHECK_H
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/filter_config.h"
+#include "core/record.h"
+#include "emulated/emulated_filter.h"
+
+namespace hpsf {
+
+struct LevelVerdict {
+  int level = 0;
+  std::string name;
+  bool applicable = true;
+  bool passed = true;
+  std::string note;                   // why not applicable, or what was compared
+  std::vector<std::string> failures;  // the first few, each naming records or slots
+};
+
+struct QualityFigures {
+  std::string backend;
+  std::uint64_t probe_failures = 0;
+  std::uint64_t aliased_slots = 0;    // slots holding records of two or more full keys
+  std::uint64_t aliased_records = 0;  // records placed in such slots
+};
+
+struct CrosscheckReport {
+  std::vector<LevelVerdict> levels;
+  std::vector<QualityFigures> quality;
+  bool Passed() const;
+  nlohmann::json ToJson() const;  // versioned
+};
+
+// backends: "reference" and "emulated" (the reference is always run: it is the ideal).
+CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
+                            const EmulatorOptions& emulator);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_CHECKS_CROSSCHECK_H

@@ -1,0 +1,76 @@
+#include "tools/hpsf/backend_options.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+#include "tools/hpsf/filter_options.h"
+
+namespace hpsf {
+
+void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
+  command.add_option("--mode", flags.mode, "Emulator mode: fast (all cores) or faithful (warp steps, scheduled)")->capture_default_str();
+  command.add_option("--warp-size", flags.options.warp_size, "Emulated warp size: 8 (lavapipe), 32, 64")->capture_default_str();
+  command.add_option("--schedule", flags.options.schedule, "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH")
+      ->capture_default_str();
+}
+
+EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags) {
+  EmulatorOptions options = flags.options;
+  if (flags.mode != "fast" && flags.mode != "faithful") throw ConfigError("--mode", "expected fast or faithful; got '" + flags.mode + "'");
+  options.mode = flags.mode == "fast" ? simt::Mode::kFast : simt::Mode::kFaithful;
+  if (options.mode == simt::Mode::kFaithful && options.schedule == "exhaustive") {
+    throw ConfigError("--schedule", "exhaustive is for litmus launches of a few threads, not for a render");
+  }
+  options.Validate();
+  return options;
+}
+
+void CheckBackend(const std::string& backend) {
+  if (backend != "reference" && backend != "emulated") {
+    throw ConfigError("--backend", "'" + backend + "' is not available; this build has: reference, emulated");
+  }
+}
+
+nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
+  std::uint64_t slots_used = 0;
+  for (SlotTag tag : run.table.tags) slots_used += tag != kEmptyTag;
+  nlohmann::json j = {{"mode", options.mode == simt::Mode::kFast ? "fast" : "faithful"},
+                      {"probe_failures", run.probe_failures},
+                      {"fixed64_wraps", run.wraps},
+                      {"slots_used", slots_used},
+                      {"probe_lengths", run.probe_lengths},
+                      {"fixed_point_bits", run.table.fixed_point_bits}};
+  if (options.mode == simt::Mode::kFaithful) {
+    char hash[32];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.launch.trace_hash));
+    j["warp_size"] = options.warp_size;
+    j["schedule"] = options.schedule;
+    j["trace_hash"] = hash;
+    j["steps"] = run.launch.stats.steps;
+    j["operations"] = run.launch.stats.operations;
+    j["cas_failures"] = run.launch.stats.cas_failures;
+    j["conflict_groups"] = run.launch.stats.conflict_groups;
+    nlohmann::json lanes = nlohmann::json::object();
+    for (const auto& [active, steps] : run.launch.stats.active_lanes) lanes[std::to_string(active)] = steps;
+    j["active_lanes_per_step"] = lanes;
+  }
+  return j;
+}
+
+BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
+                         const EmulatorOptions& emulator) {
+  CheckBackend(backend);
+  BackendOutput out;
+  if (backend == "reference") {
+    out.reference = ReferenceFilter(batch, config);
+    out.image = out.reference->image;
+    out.stats = ToJson(out.reference->stats);
+  } else {
+    out.emulated = EmulatedFilter(batch, config, emulator);
+    out.image = out.emulated->image;
+    out.stats = ToJson(*out.emulated, emulator);
+  }
+  return out;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,43 @@
+// Which backend filters a batch, with the emulator's options: shared by render, replay and crosscheck.
+#ifndef HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
+#define HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/filter_config.h"
+#include "core/image.h"
+#include "core/record.h"
+#include "emulated/emulated_filter.h"
+#include "reference/reference_filter.h"
+
+namespace hpsf {
+
+struct EmulatorFlags {
+  std::string mode = "fast";
+  EmulatorOptions options;
+};
+
+void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags);
+EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags);  // ConfigError naming the option
+
+// Backends this build has: reference, emulated.
+void CheckBackend(const std::string& backend);
+
+struct BackendOutput {
+  Image image;
+  nlohmann::json stats;
+  std::optional<FilterResult> reference;
+  std::optional<EmulatedRun> emulated;
+};
+
+BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
+                         const EmulatorOptions& emulator);
+
+nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H

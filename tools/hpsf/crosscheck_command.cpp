@@ -1,0 +1,121 @@
+#include "tools/hpsf/crosscheck_command.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/record_file.h"
+#include "tools/checks/crosscheck.h"
+#include "tools/hpsf/backend_options.h"
+#include "tools/hpsf/filter_options.h"
+#include "tracer/path_tracer.h"
+#include "tracer/scene_file.h"
+
+namespace hpsf {
+namespace {
+
+struct CrosscheckOptions {
+  std::string input;
+  std::string backends = "reference,emulated";
+  std::string repro_dir = "hpsf-repro";
+  std::uint32_t size = 128;
+  TraceOptions trace;
+  FilterOptions filter;
+  EmulatorFlags emulator;
+  bool json = false;
+  std::vector<std::string> arguments;  // as given, for the bundle's command line
+};
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  return items;
+}
+
+void WriteBundle(const CrosscheckOptions& o, const RecordBatch& batch, const CrosscheckReport& report) {
+  const std::filesystem::path dir = o.repro_dir;
+  std::filesystem::create_directories(dir);
+  const std::string records = (dir / "records.hpsfv").string();
+  WriteRecordFile(records, batch);
+  std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
+  // The same check on the same records: the options that decide the outcome, with the input replaced.
+  std::string command = "hpsf crosscheck " + records;
+  for (std::size_t i = 0; i < o.arguments.size(); ++i) {
+    if (o.arguments[i] == o.input) continue;
+    command += " " + o.arguments[i];
+  }
+  std::ofstream(dir / "reproduce.sh") << "#!/bin/sh\n# Reproduces the failed cross-check exactly (same records, options, seed, schedule).\n"
+                                      << command << "\n";
+  std::cerr << "hpsf: the contract does not hold; repro bundle in " << dir.string() << " (run reproduce.sh)\n";
+}
+
+int Run(CrosscheckOptions& o) {
+  const FilterConfig config = ResolveFilterConfig(o.filter);
+  const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
+  RecordBatch batch;
+  if (std::filesystem::path(o.input).extension() == ".hpsfv") {
+    batch = ReadRecordFile(o.input);
+  } else {
+    o.trace.width = o.trace.height = o.size;
+    o.trace.seed = config.seed;
+    o.trace.Validate();
+    batch = TraceRecords(LoadScene(o.input), o.trace).batch;
+  }
+  const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator);
+  if (o.json) {
+    std::cout << report.ToJson().dump(2) << "\n";
+  } else {
+    for (const LevelVerdict& v : report.levels) {
+      std::cout << "level " << v.level << " " << v.name << ": " << (!v.applicable ? "n/a" : v.passed ? "PASS" : "FAIL") << " ("
+                << v.note << ")\n";
+      for (const std::string& f : v.failures) std::cout << "  " << f << "\n";
+    }
+    for (const QualityFigures& q : report.quality) {
+      std::cout << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
+                << ", records in aliased slots " << q.aliased_records << "\n";
+    }
+  }
+  if (report.Passed()) return kExitOk;
+  WriteBundle(o, batch, report);
+  return kExitCheckFailed;
+}
+
+}  // namespace
+
+void AddCrosscheckCommand(CLI::App& app, int* exit_code) {
+  auto o = std::make_shared<CrosscheckOptions>();
+  CLI::App* c = app.add_subcommand("crosscheck", "Run the backends on one batch and judge them by the cross-check contract");
+  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
+  c->add_option("--backends", o->backends, "Comma-separated: reference, emulated")->capture_default_str();
+  c->add_option("--size", o->size, "Traced image width and height")->capture_default_str();
+  c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
+  c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded")->capture_default_str();
+  c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
+  c->add_option("--repro-dir", o->repro_dir, "Where a failing check writes its repro bundle")->capture_default_str();
+  c->add_flag("--json", o->json, "Print the versioned report as JSON");
+  AddFilterOptions(*c, o->filter);
+  AddEmulatorOptions(*c, o->emulator);
+  c->callback([o, exit_code] { *exit_code = Run(*o); });
+  c->parse_complete_callback([o, c] {
+    // Keep the given options for the bundle's command line.
+    o->arguments.clear();
+    for (const CLI::Option* option : c->get_options()) {
+      if (option->count() == 0 || option->get_name().empty() || option->get_name() == "--help") continue;
+      if (option->get_positional()) continue;
+      if (option->get_type_size() == 0) {
+        o->arguments.push_back(option->get_name());
+        continue;
+      }
+      for (const std::string& value : option->results()) {
+        o->arguments.push_back(option->get_name());
+        o->arguments.push_back(value);
+      }
+    }
+  });
+}
+
+}  // namespace hpsf

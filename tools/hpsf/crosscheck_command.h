@@ -1,0 +1,15 @@
+// `hpsf crosscheck SCENE|FILE.hpsfv`: the backends on one batch, the verdict per level and the quality
+// figures; exit 0 when the contract holds, 2 when it does not, and then a repro bundle.
+#ifndef HPSF_TOOLS_HPSF_CROSSCHECK_COMMAND_H
+#define HPSF_TOOLS_HPSF_CROSSCHECK_COMMAND_H
+
+#include <CLI/CLI.hpp>
+
+namespace hpsf {
+
+// Sets *exit_code to 2 when the contract does not hold.
+void AddCrosscheckCommand(CLI::App& app, int* exit_code);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_HPSF_CROSSCHECK_COMMAND_H
