@@ -1,7 +1,7 @@
-// The gate has teeth: broken variants of the accumulate kernel, one per known defect of DESIGN.md (D2, D3, D8,
-// D9, D13), run on inputs constructed to reach the defect. For each, the table checker or the cross-check
-// contract must fail. D9 and D13 need a particular interleaving: the tests report which schedule policies found
-// them and after how many schedules.
+// The gate has teeth: the broken variants of the accumulate kernel (emulated/defect_injection), one per known
+// defect of DESIGN.md (D2, D3, D8, D9, D13), run on inputs constructed to reach the defect. For each, the table
+// checker or the cross-check contract must fail. D9 and D13 need a particular interleaving: the tests report
+// which schedule policies found them and after how many schedules.
 #include <bit>
 #include <cstdio>
 #include <optional>
@@ -10,69 +10,12 @@
 
 #include "core/hash_table.h"
 #include "core/input_check.h"
-#include "core/shared/fixed_point.h"
+#include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "tools/checks/table_checker.h"
 
 namespace hpsf {
 namespace {
-
-enum class Defect { kD2AddsAgain, kD3ZeroFingerprint, kD8ClampedProbe, kD9NonAtomicAdd, kD13LoadThenStoreClaim };
-
-// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in.
-simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect) {
-  const std::uint32_t i = ctx.Thread();
-  const KeyResult& key = args.keys[i];
-  const TableBuffers& b = args.buffers;
-  if (!args.accepted[i] || key.status != shared::kKeyed) {
-    co_await ctx.Store(b.placements, i, kNotPlaced);
-    co_return;
-  }
-  // D3: the reduced fingerprint without its 0 -> 1 fix.
-  const std::uint32_t fingerprint =
-      defect == Defect::kD3ZeroFingerprint ? shared::FullFingerprint(key.words) >> 24 : key.fingerprint;
-  const Record& r = args.records[i];
-  bool placed = false;
-  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
-    // D8: the probe index clamped to the last slot instead of wrapped.
-    const std::uint32_t slot = defect == Defect::kD8ClampedProbe ? std::min(key.slot0 + probe, args.capacity - 1u)
-                                                                 : (key.slot0 + probe) & (args.capacity - 1u);
-    std::uint64_t tag = co_await ctx.Load(b.tags, slot);
-    if (tag == kEmptyTag) {
-      if (defect == Defect::kD13LoadThenStoreClaim) {  // D13: claim by a plain store after the load
-        co_await ctx.Store(b.tags, slot, fingerprint);
-      } else {
-        tag = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, fingerprint);
-      }
-    }
-    if (tag != kEmptyTag && tag != fingerprint) continue;
-    for (int c = 0; c < 3; ++c) {
-      const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
-      if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
-        const std::uint64_t old = co_await ctx.Load(b.sums[c], slot);
-        co_await ctx.Store(b.sums[c], slot, old + add);
-      } else {
-        co_await ctx.AtomicAdd(b.sums[c], slot, add);
-      }
-    }
-    if (defect == Defect::kD9NonAtomicAdd) {
-      const std::uint64_t count = co_await ctx.Load(b.counts, slot);
-      co_await ctx.Store(b.counts, slot, count + 1);
-    } else {
-      co_await ctx.AtomicAdd(b.counts, slot, 1);
-    }
-    co_await ctx.Store(b.placements, i, slot);
-    placed = true;
-    if (defect != Defect::kD2AddsAgain) co_return;  // D2: keeps probing and adds again (Meijer Algorithm 4)
-  }
-  if (!placed) co_await ctx.Store(b.placements, i, kProbeFailure);
-}
-
-simt::KernelTask D2(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD2AddsAgain); }
-simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD3ZeroFingerprint); }
-simt::KernelTask D8(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8ClampedProbe); }
-simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD9NonAtomicAdd); }
-simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
 
 // Keys chosen by cell: level of detail off, unit cells, no jitter, no normal bucket, so a record at
 // (x + 0.5, y + 0.5, z + 0.5) has the cell (x, y, z) and everything about its key is known in advance.
@@ -146,7 +89,7 @@ TEST(BrokenKernels, CorrectKernelPassesOnEveryConstructedInput) {
 TEST(BrokenKernels, D2AddingAgainAfterAMatchIsCaught) {
   const FilterConfig config = ConstructedConfig(64, 4);
   const RecordBatch batch = BatchOfCells({{1, 2, 3}, {1, 2, 3}, {9, 9, 9}});
-  const auto violations = CheckRun(batch, RunFaithful(batch, config, D2));
+  const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD2AddsAgain)));
   ASSERT_FALSE(violations.empty());
   std::printf("D2 caught: %s\n", violations.front().ToString().c_str());
 }
@@ -156,7 +99,7 @@ TEST(BrokenKernels, D3AZeroFingerprintIsCaught) {
   const FilterConfig config = ConstructedConfig(64, 4, 8);
   const glm::ivec3 zero = FindCell(config, [](const KeyResult& k) { return (shared::FullFingerprint(k.words) >> 24) == 0u; });
   const RecordBatch batch = BatchOfCells({zero, zero});
-  const auto violations = CheckRun(batch, RunFaithful(batch, config, D3));
+  const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD3ZeroFingerprint)));
   ASSERT_FALSE(violations.empty());
   std::printf("D3 caught: %s\n", violations.front().ToString().c_str());
 }
@@ -167,7 +110,7 @@ TEST(BrokenKernels, D8AClampedProbeIsCaught) {
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
   const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
   const RecordBatch batch = BatchOfCells({a, b});
-  const auto violations = CheckRun(batch, RunFaithful(batch, config, D8));
+  const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD8ClampedProbe)));
   ASSERT_FALSE(violations.empty());
   std::printf("D8 caught: %s\n", violations.front().ToString().c_str());
 }
@@ -209,9 +152,9 @@ TEST(BrokenKernels, D9LostUpdatesAreCaughtAndReportedPerPolicy) {
   // Eight records of one cell in different warps (warp size 1): their load-then-store adds can interleave.
   const FilterConfig config = ConstructedConfig(64, 4);
   const RecordBatch batch = BatchOfCells(std::vector<glm::ivec3>(8, glm::ivec3(5, 5, 5)));
-  Report("D9", HuntDefect(batch, config, D9, 1));
+  Report("D9", HuntDefect(batch, config, KernelWithDefect(Defect::kD9NonAtomicAdd), 1));
   // Within one warp the lanes load together and store in turn: every schedule loses updates.
-  EXPECT_FALSE(CheckRun(batch, RunFaithful(batch, config, D9, "round-robin", 8)).empty());
+  EXPECT_FALSE(CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD9NonAtomicAdd), "round-robin", 8)).empty());
 }
 
 TEST(BrokenKernels, D13TwoKeysRacingForOneEmptySlotAreCaughtAndReportedPerPolicy) {
@@ -219,7 +162,7 @@ TEST(BrokenKernels, D13TwoKeysRacingForOneEmptySlotAreCaughtAndReportedPerPolicy
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; });
   const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; }, a.x + 1);
   const RecordBatch batch = BatchOfCells({a, b, a, b});
-  Report("D13", HuntDefect(batch, config, D13, 1));
+  Report("D13", HuntDefect(batch, config, KernelWithDefect(Defect::kD13LoadThenStoreClaim), 1));
 }
 
 }  // namespace

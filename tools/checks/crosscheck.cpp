@@ -69,7 +69,7 @@ nlohmann::json CrosscheckReport::ToJson() const {
 }
 
 CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator) {
+                            const EmulatorOptions& emulator, Defect defect) {
   for (const std::string& b : backends) {
     if (b != "reference" && b != "emulated") {
       throw ConfigError("--backends", "'" + b + "' is not available; this build has: reference, emulated");
@@ -84,7 +84,8 @@ CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config
 
   const FilterResult reference = ReferenceFilter(batch, config);
   if (emulated) {
-    const EmulatedRun run = EmulatedFilter(batch, config, emulator);
+    const AccumulateKernelFn kernel = KernelWithDefect(defect);
+    const EmulatedRun run = EmulatedFilter(batch, config, emulator, kernel);
     for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, v.ToString());
 
     QualityFigures quality;
@@ -121,7 +122,7 @@ CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config
     }
 
     // Level 4: the same inputs again give the same bits (and, faithfully, the same trace).
-    const EmulatedRun again = EmulatedFilter(batch, config, emulator);
+    const EmulatedRun again = EmulatedFilter(batch, config, emulator, kernel);
     if (emulator.mode == simt::Mode::kFaithful) {
       determinism.note = "faithful rerun: same trace hash and image";
       if (again.launch.trace_hash != run.launch.trace_hash) Fail(determinism, "the trace hash changed between two identical runs");

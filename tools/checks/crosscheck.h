@@ -13,6 +13,7 @@
 
 #include "core/filter_config.h"
 #include "core/record.h"
+#include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 
 namespace hpsf {
@@ -41,8 +42,9 @@ struct CrosscheckReport {
 };
 
 // backends: "reference" and "emulated" (the reference is always run: it is the ideal).
+// defect: a known broken kernel for the emulated backend, to show the gate fails.
 CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator);
+                            const EmulatorOptions& emulator, Defect defect = Defect::kNone);
 
 }  // namespace hpsf
 

@@ -12,6 +12,8 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--warp-size", flags.options.warp_size, "Emulated warp size: 8 (lavapipe), 32, 64")->capture_default_str();
   command.add_option("--schedule", flags.options.schedule, "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH")
       ->capture_default_str();
+  command.add_option("--inject-defect", flags.defect, "Self-test of the gate: run a known broken kernel (D2, D3, D8, D9, D13)")
+      ->capture_default_str();
 }
 
 EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags) {
@@ -58,7 +60,7 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
 }
 
 BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
-                         const EmulatorOptions& emulator) {
+                         const EmulatorOptions& emulator, Defect defect) {
   CheckBackend(backend);
   BackendOutput out;
   if (backend == "reference") {
@@ -66,7 +68,7 @@ BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, c
     out.image = out.reference->image;
     out.stats = ToJson(out.reference->stats);
   } else {
-    out.emulated = EmulatedFilter(batch, config, emulator);
+    out.emulated = EmulatedFilter(batch, config, emulator, KernelWithDefect(defect));
     out.image = out.emulated->image;
     out.stats = ToJson(*out.emulated, emulator);
   }

@@ -10,6 +10,7 @@
 #include "core/filter_config.h"
 #include "core/image.h"
 #include "core/record.h"
+#include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
 
@@ -17,6 +18,7 @@ namespace hpsf {
 
 struct EmulatorFlags {
   std::string mode = "fast";
+  std::string defect = "none";
   EmulatorOptions options;
 };
 
@@ -34,7 +36,7 @@ struct BackendOutput {
 };
 
 BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
-                         const EmulatorOptions& emulator);
+                         const EmulatorOptions& emulator, Defect defect = Defect::kNone);
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
 

@@ -42,20 +42,28 @@ void WriteBundle(const CrosscheckOptions& o, const RecordBatch& batch, const Cro
   const std::string records = (dir / "records.hpsfv").string();
   WriteRecordFile(records, batch);
   std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
-  // The same check on the same records: the options that decide the outcome, with the input replaced.
-  std::string command = "hpsf crosscheck " + records;
+  // The same check on the same records: every option that decides the outcome, the input replaced by the
+  // recorded batch, and a bundle of its own so the original is kept for comparison.
+  std::string command = "exec '" + std::filesystem::read_symlink("/proc/self/exe").string() + "' crosscheck records.hpsfv";
   for (std::size_t i = 0; i < o.arguments.size(); ++i) {
-    if (o.arguments[i] == o.input) continue;
-    command += " " + o.arguments[i];
+    if (o.arguments[i] == "--repro-dir") {
+      ++i;
+      continue;
+    }
+    command += " '" + o.arguments[i] + "'";
   }
-  std::ofstream(dir / "reproduce.sh") << "#!/bin/sh\n# Reproduces the failed cross-check exactly (same records, options, seed, schedule).\n"
-                                      << command << "\n";
-  std::cerr << "hpsf: the contract does not hold; repro bundle in " << dir.string() << " (run reproduce.sh)\n";
+  std::ofstream(dir / "reproduce.sh") << "#!/bin/sh\n# Reproduces the failed cross-check exactly: same records, options, seed and schedule.\n"
+                                      << "cd \"$(dirname \"$0\")\" || exit 3\n"
+                                      << command << " --repro-dir reproduced --json > reproduced.json\n";
+  std::filesystem::permissions(dir / "reproduce.sh", std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
+  std::cerr << "hpsf: the contract does not hold; repro bundle in " << dir.string()
+            << " (records.hpsfv, report.json; reproduce.sh reruns the check and writes reproduced.json)\n";
 }
 
 int Run(CrosscheckOptions& o) {
   const FilterConfig config = ResolveFilterConfig(o.filter);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
+  ParseDefect(o.emulator.defect);  // a bad name is bad input before any tracing
   RecordBatch batch;
   if (std::filesystem::path(o.input).extension() == ".hpsfv") {
     batch = ReadRecordFile(o.input);
@@ -65,7 +73,7 @@ int Run(CrosscheckOptions& o) {
     o.trace.Validate();
     batch = TraceRecords(LoadScene(o.input), o.trace).batch;
   }
-  const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator);
+  const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator, ParseDefect(o.emulator.defect));
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {

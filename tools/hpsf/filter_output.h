@@ -18,6 +18,7 @@ struct OutputRequest {
   std::string backend;  // reference or emulated
   std::string output;   // OUT.exr
   EmulatorOptions emulator;
+  Defect defect = Defect::kNone;
 };
 
 nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request);

@@ -1,0 +1,103 @@
+#include "emulated/defect_injection.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/hash_table.h"
+#include "core/shared/fixed_point.h"
+
+namespace hpsf {
+namespace {
+
+// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in.
+simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect) {
+  const std::uint32_t i = ctx.Thread();
+  const KeyResult& key = args.keys[i];
+  const TableBuffers& b = args.buffers;
+  if (!args.accepted[i] || key.status != shared::kKeyed) {
+    co_await ctx.Store(b.placements, i, kNotPlaced);
+    co_return;
+  }
+  // D3: the reduced fingerprint without its 0 -> 1 fix.
+  const std::uint32_t fingerprint =
+      defect == Defect::kD3ZeroFingerprint ? shared::FullFingerprint(key.words) >> 24 : key.fingerprint;
+  const Record& r = args.records[i];
+  bool placed = false;
+  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+    // D8: the probe index clamped to the last slot instead of wrapped.
+    const std::uint32_t slot = defect == Defect::kD8ClampedProbe ? std::min(key.slot0 + probe, args.capacity - 1u)
+                                                                 : (key.slot0 + probe) & (args.capacity - 1u);
+    std::uint64_t tag = co_await ctx.Load(b.tags, slot);
+    if (tag == kEmptyTag) {
+      if (defect == Defect::kD13LoadThenStoreClaim) {  // D13: claim by a plain store after the load
+        co_await ctx.Store(b.tags, slot, fingerprint);
+      } else {
+        tag = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, fingerprint);
+      }
+    }
+    if (tag != kEmptyTag && tag != fingerprint) continue;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+      if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
+        const std::uint64_t old = co_await ctx.Load(b.sums[c], slot);
+        co_await ctx.Store(b.sums[c], slot, old + add);
+      } else {
+        co_await ctx.AtomicAdd(b.sums[c], slot, add);
+      }
+    }
+    if (defect == Defect::kD9NonAtomicAdd) {
+      const std::uint64_t count = co_await ctx.Load(b.counts, slot);
+      co_await ctx.Store(b.counts, slot, count + 1);
+    } else {
+      co_await ctx.AtomicAdd(b.counts, slot, 1);
+    }
+    co_await ctx.Store(b.placements, i, slot);
+    placed = true;
+    if (defect != Defect::kD2AddsAgain) co_return;  // D2: keeps probing and adds again (Meijer Algorithm 4)
+  }
+  if (!placed) co_await ctx.Store(b.placements, i, kProbeFailure);
+}
+
+simt::KernelTask D2(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD2AddsAgain); }
+simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD3ZeroFingerprint); }
+simt::KernelTask D8(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8ClampedProbe); }
+simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD9NonAtomicAdd); }
+simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
+
+}  // namespace
+
+Defect ParseDefect(const std::string& text) {
+  if (text == "none") return Defect::kNone;
+  if (text == "D2") return Defect::kD2AddsAgain;
+  if (text == "D3") return Defect::kD3ZeroFingerprint;
+  if (text == "D8") return Defect::kD8ClampedProbe;
+  if (text == "D9") return Defect::kD9NonAtomicAdd;
+  if (text == "D13") return Defect::kD13LoadThenStoreClaim;
+  throw ConfigError("--inject-defect", "expected none, D2, D3, D8, D9 or D13; got '" + text + "'");
+}
+
+std::string ToString(Defect defect) {
+  switch (defect) {
+    case Defect::kNone: return "none";
+    case Defect::kD2AddsAgain: return "D2";
+    case Defect::kD3ZeroFingerprint: return "D3";
+    case Defect::kD8ClampedProbe: return "D8";
+    case Defect::kD9NonAtomicAdd: return "D9";
+    case Defect::kD13LoadThenStoreClaim: return "D13";
+  }
+  return "?";
+}
+
+AccumulateKernelFn KernelWithDefect(Defect defect) {
+  switch (defect) {
+    case Defect::kNone: return AccumulateKernel;
+    case Defect::kD2AddsAgain: return D2;
+    case Defect::kD3ZeroFingerprint: return D3;
+    case Defect::kD8ClampedProbe: return D8;
+    case Defect::kD9NonAtomicAdd: return D9;
+    case Defect::kD13LoadThenStoreClaim: return D13;
+  }
+  return AccumulateKernel;
+}
+
+}  // namespace hpsf

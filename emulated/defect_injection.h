@@ -1,0 +1,29 @@
+// Known defects of DESIGN.md injected into the accumulate kernel, one at a time, so the harness can prove its
+// gate has teeth: `hpsf crosscheck --inject-defect D9` must fail. Each variant is the correct kernel
+// (accumulate_kernel.cpp) with exactly one change.
+#ifndef HPSF_EMULATED_DEFECT_INJECTION_H
+#define HPSF_EMULATED_DEFECT_INJECTION_H
+
+#include <string>
+
+#include "emulated/emulated_filter.h"
+
+namespace hpsf {
+
+enum class Defect {
+  kNone,
+  kD2AddsAgain,            // adds on a match and keeps probing, adding again (Meijer Algorithm 4)
+  kD3ZeroFingerprint,      // the reduced fingerprint without its 0 -> 1 fix: equal to the empty tag
+  kD8ClampedProbe,         // the probe index clamped to the last slot instead of wrapped
+  kD9NonAtomicAdd,         // read-modify-write of sums and counts without atomics
+  kD13LoadThenStoreClaim,  // a slot claimed by load-then-store instead of compare-and-swap
+};
+
+// "none", "D2", "D3", "D8", "D9", "D13"; a ConfigError naming --inject-defect otherwise.
+Defect ParseDefect(const std::string& text);
+std::string ToString(Defect defect);
+AccumulateKernelFn KernelWithDefect(Defect defect);
+
+}  // namespace hpsf
+
+#endif  // HPSF_EMULATED_DEFECT_INJECTION_H

@@ -1,0 +1,27 @@
+# `hpsf crosscheck --inject-defect D9` must fail with exit code 2 and write a repro bundle whose reproduce.sh
+# fails again with the same report.
+set(dir ${OUT}/defect)
+file(REMOVE_RECURSE ${dir})
+file(MAKE_DIRECTORY ${dir})
+execute_process(COMMAND ${HPSF} crosscheck cornell --size 24 --capacity 256 --mode faithful --warp-size 8 --inject-defect D9
+                        --repro-dir ${dir}/bundle
+                WORKING_DIRECTORY ${dir} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT code EQUAL 2)
+  message(FATAL_ERROR "crosscheck with an injected defect exited ${code}, expected 2")
+endif()
+foreach(file records.hpsfv report.json reproduce.sh)
+  if(NOT EXISTS ${dir}/bundle/${file})
+    message(FATAL_ERROR "the repro bundle lacks ${file}")
+  endif()
+endforeach()
+execute_process(COMMAND sh ${dir}/bundle/reproduce.sh RESULT_VARIABLE again)
+if(NOT again EQUAL 2)
+  message(FATAL_ERROR "reproduce.sh exited ${again}, expected 2")
+endif()
+file(READ ${dir}/bundle/report.json first)
+file(READ ${dir}/bundle/reproduced.json second)
+string(JSON same EQUAL "${first}" "${second}")
+if(NOT same)
+  message(FATAL_ERROR "the reproduced report differs from the original")
+endif()
