@@ -25,10 +25,10 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     for (int c = 0; c < 3; ++c) {
       if (args.accumulation == Accumulation::kFixed64) {
         const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
-        const std::uint64_t old = co_await ctx.AtomicAdd(b.sums[c], slot, add);
+        const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
         if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
       } else {
-        co_await ctx.AtomicAddFloat(b.sums[c], slot, std::bit_cast<std::uint32_t>(r.contribution[c]));
+        co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c, std::bit_cast<std::uint32_t>(r.contribution[c]));
       }
     }
     co_await ctx.AtomicAdd(b.counts, slot, 1);

@@ -17,7 +17,8 @@ namespace hpsf {
 
 struct TableBuffers {
   std::uint32_t tags;         // 32-bit
-  std::uint32_t sums[3];      // 64-bit (fixed64) or 32-bit float bits (float32)
+  std::uint32_t sums;         // three channels per slot, interleaved (slot * 3 + channel), so one slot's sums
+                              // share a cache line: 64-bit (fixed64) or 32-bit float bits (float32)
   std::uint32_t counts;       // 64-bit
   std::uint32_t placements;   // 32-bit, one per record
   std::uint32_t wraps;        // 64-bit, one word: fixed64 adds that wrapped

@@ -39,10 +39,10 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     for (int c = 0; c < 3; ++c) {
       const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
       if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
-        const std::uint64_t old = co_await ctx.Load(b.sums[c], slot);
-        co_await ctx.Store(b.sums[c], slot, old + add);
+        const std::uint64_t old = co_await ctx.Load(b.sums, std::uint64_t(slot) * 3 + c);
+        co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c, old + add);
       } else {
-        co_await ctx.AtomicAdd(b.sums[c], slot, add);
+        co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
       }
     }
     if (defect == Defect::kD9NonAtomicAdd) {

@@ -3,6 +3,8 @@
 #include <bit>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
@@ -26,9 +28,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
 
   EmulatedRun run;
-  run.keys = ComputeKeys(batch.records, params);
+  // Keys on all cores: each is a function of its record alone.
+  run.keys.resize(n);
   std::vector<std::uint8_t> accepted(n);
-  for (std::uint32_t i = 0; i < n; ++i) accepted[i] = CheckRecordInputs(batch.records[i]) == InputVerdict::kAccepted;
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 4096), [&](const tbb::blocked_range<std::uint32_t>& range) {
+    for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
+      run.keys[i] = shared::ComputeKey(params, batch.records[i]);
+      accepted[i] = CheckRecordInputs(batch.records[i]) == InputVerdict::kAccepted;
+    }
+  });
 
   HashTableDump& table = run.table;
   table.capacity = config.capacity;
@@ -49,9 +57,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
   TableBuffers& b = args.buffers;
   b.tags = memory.Allocate32("tags", config.capacity);
-  for (int c = 0; c < 3; ++c) {
-    b.sums[c] = fixed ? memory.Allocate64("sums", config.capacity) : memory.Allocate32("sums", config.capacity);
-  }
+  b.sums = fixed ? memory.Allocate64("sums", std::size_t(config.capacity) * 3) : memory.Allocate32("sums", std::size_t(config.capacity) * 3);
   b.counts = memory.Allocate64("counts", config.capacity);
   b.placements = memory.Allocate32("placements", n);
   b.wraps = memory.Allocate64("wraps", 1);
@@ -71,13 +77,13 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.counts.assign(memory.Words64(b.counts).begin(), memory.Words64(b.counts).end());
   if (fixed) {
     table.fixed_sums.resize(config.capacity);
-    for (int c = 0; c < 3; ++c) {
-      for (std::uint32_t s = 0; s < config.capacity; ++s) table.fixed_sums[s][c] = memory.Words64(b.sums[c])[s];
-    }
+    const auto sums = memory.Words64(b.sums);
+    for (std::uint32_t s = 0; s < config.capacity; ++s) table.fixed_sums[s] = {sums[3 * s], sums[3 * s + 1], sums[3 * s + 2]};
   } else {
     table.float_sums.resize(config.capacity);
-    for (int c = 0; c < 3; ++c) {
-      for (std::uint32_t s = 0; s < config.capacity; ++s) table.float_sums[s][c] = std::bit_cast<float>(memory.Words32(b.sums[c])[s]);
+    const auto sums = memory.Words32(b.sums);
+    for (std::uint32_t s = 0; s < config.capacity; ++s) {
+      for (int c = 0; c < 3; ++c) table.float_sums[s][c] = std::bit_cast<float>(sums[3 * s + c]);
     }
   }
   run.placements.assign(memory.Words32(b.placements).begin(), memory.Words32(b.placements).end());

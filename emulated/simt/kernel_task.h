@@ -17,6 +17,11 @@ namespace hpsf::simt {
 class KernelTask {
  public:
   struct promise_type {
+    // Fast mode creates one coroutine frame per thread, millions per launch: each worker thread keeps its last
+    // freed frame and reuses it, instead of a trip through malloc for every emulated thread.
+    static void* operator new(std::size_t size);
+    static void operator delete(void* frame, std::size_t size) noexcept;
+
     KernelTask get_return_object() { return KernelTask(std::coroutine_handle<promise_type>::from_promise(*this)); }
     std::suspend_always initial_suspend() noexcept { return {}; }
     std::suspend_always final_suspend() noexcept { return {}; }

@@ -4,6 +4,7 @@
 #include <deque>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -22,7 +23,28 @@ class TraceHash {
   std::uint64_t hash_ = 0xcbf29ce484222325ull;
 };
 
+struct FrameCache {
+  void* frame = nullptr;
+  std::size_t size = 0;
+  ~FrameCache() { ::operator delete(frame); }
+};
+thread_local FrameCache frame_cache;
+
 }  // namespace
+
+void* KernelTask::promise_type::operator new(std::size_t size) {
+  if (frame_cache.frame && frame_cache.size == size) return std::exchange(frame_cache.frame, nullptr);
+  return ::operator new(size);
+}
+
+void KernelTask::promise_type::operator delete(void* frame, std::size_t size) noexcept {
+  if (!frame_cache.frame) {
+    frame_cache.frame = frame;
+    frame_cache.size = size;
+    return;
+  }
+  ::operator delete(frame);
+}
 
 LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
                             Schedule& schedule) {

@@ -1,0 +1,91 @@
+// The emulator's throughput on a 2-million-record batch (the Cornell box at 1080p, 1 spp) into a 2^21-slot table:
+// fast mode beside the machine's own limit, a raw loop of four random 64-bit atomic adds per record over a
+// table of the same size on all cores; and faithful mode on a smaller batch for its slowdown. Run:
+//   build/default/bin/emulator_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include <atomic>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
+
+#include "core/shared/hash.h"
+#include "emulated/emulated_filter.h"
+#include "tracer/path_tracer.h"
+#include "tracer/scene_file.h"
+
+namespace hpsf {
+namespace {
+
+constexpr std::uint32_t kRecords = 1920 * 1080;
+constexpr std::uint32_t kSlots = 1u << 21;
+
+// The Cornell box traced at 1920x1080, 1 spp: about ten records per cell, as a real frame gives.
+const RecordBatch& Frame() {
+  static const RecordBatch batch = [] {
+    TraceOptions options;
+    options.width = 1920;
+    options.height = 1080;
+    options.samples_per_pixel = 1;
+    return TraceRecords(LoadScene("cornell"), options).batch;
+  }();
+  return batch;
+}
+
+FilterConfig TableConfig() {
+  FilterConfig config;
+  config.capacity = kSlots;
+  config.probe_limit = 16;
+  return config;
+}
+
+void BM_RawRandomAtomicAdds(benchmark::State& state) {
+  std::vector<std::uint64_t> table(std::size_t(kSlots) * 4, 0);
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, kRecords, 4096), [&](const auto& range) {
+      for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
+        const std::uint32_t slot = shared::Pcg(i) & (kSlots - 1);
+        for (int c = 0; c < 4; ++c) std::atomic_ref<std::uint64_t>(table[std::size_t(c) * kSlots + slot]).fetch_add(1, std::memory_order_relaxed);
+      }
+    });
+  }
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kRecords);
+}
+BENCHMARK(BM_RawRandomAtomicAdds)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_EmulatedFast(benchmark::State& state) {
+  const RecordBatch& batch = Frame();
+  EmulatorOptions options;
+  for (auto _ : state) {
+    EmulatedRun run = EmulatedFilter(batch, TableConfig(), options);
+    benchmark::DoNotOptimize(run.image.pixels.data());
+    state.counters["probe_failures"] = double(run.probe_failures);
+  }
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kRecords);
+}
+BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_EmulatedFaithful(benchmark::State& state) {
+  // The first rows of the same frame.
+  static const RecordBatch batch = [&] {
+    RecordBatch b = Frame();
+    b.height = std::uint32_t(state.range(0)) / b.width;
+    b.records.resize(std::size_t(b.width) * b.height);
+    return b;
+  }();
+  EmulatorOptions options;
+  options.mode = simt::Mode::kFaithful;
+  options.warp_size = 32;
+  options.schedule = "random:1";
+  FilterConfig config = TableConfig();
+  for (auto _ : state) {
+    EmulatedRun run = EmulatedFilter(batch, config, options);
+    benchmark::DoNotOptimize(run.image.pixels.data());
+  }
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * state.range(0));
+}
+BENCHMARK(BM_EmulatedFaithful)->Arg(1920 * 64)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace hpsf
+
+BENCHMARK_MAIN();
