@@ -43,6 +43,9 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel);
 
+// Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).
+std::vector<bool> AliasedSlots(const EmulatedRun& run);
+
 }  // namespace hpsf
 
 #endif  // HPSF_EMULATED_EMULATED_FILTER_H

@@ -37,18 +37,9 @@ std::vector<TableViolation> Check(const EmulatedRun& run, const RecordBatch& bat
   return CheckTable({run.table, batch.records, run.keys, run.placements});
 }
 
-// Two different full keys in one slot: the fingerprint aliased them.
 bool Aliased(const EmulatedRun& run) {
-  std::vector<std::optional<std::array<std::uint32_t, 6>>> key_of(run.table.capacity);
-  for (std::size_t i = 0; i < run.placements.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
-    if (slot >= run.table.capacity) continue;
-    const shared::KeyWords& w = run.keys[i].words;
-    const std::array<std::uint32_t, 6> key = {w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
-    if (key_of[slot] && *key_of[slot] != key) return true;
-    key_of[slot] = key;
-  }
-  return false;
+  const std::vector<bool> aliased = AliasedSlots(run);
+  return std::find(aliased.begin(), aliased.end(), true) != aliased.end();
 }
 
 RC_GTEST_PROP(TableChecker, AcceptsEveryTableOfTheCorrectKernels, ()) {

@@ -15,12 +15,6 @@ namespace {
 
 constexpr std::size_t kFailuresShown = 20;
 
-using FullKey = std::array<std::uint32_t, 6>;
-
-FullKey KeyOf(const KeyResult& k) {
-  return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal, k.words.extra};
-}
-
 void Fail(LevelVerdict& verdict, std::string failure) {
   verdict.passed = false;
   if (verdict.failures.size() < kFailuresShown) verdict.failures.push_back(std::move(failure));
@@ -30,17 +24,9 @@ bool SameBits(const Image& a, const Image& b) {
   return a.pixels.size() == b.pixels.size() && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)) == 0;
 }
 
-// Slots whose placed records carry more than one full key: the fingerprint aliased them.
-std::vector<bool> AliasedSlots(const EmulatedRun& run, QualityFigures& quality) {
-  std::vector<std::optional<FullKey>> key_of(run.table.capacity);
-  std::vector<bool> aliased(run.table.capacity, false);
-  for (std::size_t i = 0; i < run.placements.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
-    if (slot >= run.table.capacity) continue;
-    const FullKey key = KeyOf(run.keys[i]);
-    if (key_of[slot] && *key_of[slot] != key) aliased[slot] = true;
-    key_of[slot] = key;
-  }
+// The quality figures of an emulated run: its probe failures and aliases.
+std::vector<bool> Classify(const EmulatedRun& run, QualityFigures& quality) {
+  const std::vector<bool> aliased = AliasedSlots(run);
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     if (run.placements[i] < run.table.capacity && aliased[run.placements[i]]) ++quality.aliased_records;
   }
@@ -90,7 +76,7 @@ CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config
 
     QualityFigures quality;
     quality.backend = "emulated";
-    const std::vector<bool> aliased = AliasedSlots(run, quality);
+    const std::vector<bool> aliased = Classify(run, quality);
     report.quality.push_back(quality);
 
     // Level 3: every record outside the classified ones sits in a slot equal to its reference cell.
