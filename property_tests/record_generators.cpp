@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/format.h"
 #include "core/shared/key.h"
 
 namespace hpsf::testing {
@@ -48,8 +49,7 @@ shared::KeyParams KeyCase::Params(std::uint32_t record_count) const {
 }
 
 std::string KeyCase::ToString() const {
-  return "[ KeyCase footprint_scale: " + std::to_string(footprint_scale) + " (" +
-         std::to_string(std::bit_cast<std::uint32_t>(footprint_scale)) + ") config: " + config.ToString() + " ]";
+  return "[ KeyCase footprint_scale: " + FormatFloatBits(footprint_scale) + " config: " + config.ToString() + " ]";
 }
 
 std::uint32_t RecordGenerator::Bits() {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <map>
-#include <optional>
 
 #include "core/error.h"
 #include "reference/reference_filter.h"
