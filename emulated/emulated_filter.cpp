@@ -69,7 +69,14 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   } else {
     const std::uint32_t warps = (n + options.warp_size - 1) / options.warp_size;
     auto schedule = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
-    run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule);
+    simt::OperationObserver observer;
+    if (!fixed) {
+      run.float_add_order.resize(std::size_t(config.capacity) * 3);
+      observer = [&](std::uint32_t thread, const simt::MemoryOp& op) {
+        if (op.kind == simt::OpKind::kAtomicAddFloat && op.address.buffer == b.sums) run.float_add_order[op.address.index].push_back(thread);
+      };
+    }
+    run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule, observer);
   }
 
   // The dump: the final state of the device buffers.

@@ -35,6 +35,8 @@ struct EmulatedRun {
   std::uint64_t wraps = 0;                       // fixed64 adds whose sum wrapped
   std::vector<std::uint64_t> probe_lengths;      // [k]: records placed after probing k + 1 slots
   simt::LaunchReport launch;                     // faithful mode: trace hash and step statistics
+  // Faithful float32: for slot s and channel c, [3 s + c] lists the records in the order their adds applied.
+  std::vector<std::vector<std::uint32_t>> float_add_order;
 };
 
 // The accumulate kernel to run; tests pass broken variants of it (DESIGN.md, "Known defects").

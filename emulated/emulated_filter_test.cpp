@@ -1,11 +1,14 @@
 // Probe failures (a tiny table) and fingerprint aliases (8-bit fingerprints) happen, are counted, pass the
 // table checker, and lose no light in the furnace.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 
 #include "emulated/emulated_filter.h"
+#include "reference/float_replay.h"
 #include "reference/reference_filter.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
@@ -79,6 +82,69 @@ TEST(EmulatedFilter, WithNothingFailedOrAliasedFixed64EqualsTheReferenceInBothMo
       for (std::size_t i = 0; i < reference.pixels.size(); ++i) ASSERT_EQ(run.image.pixels[i], reference.pixels[i]) << i;
     }
   }
+}
+
+}  // namespace
+}  // namespace hpsf
+
+namespace hpsf {
+namespace {
+
+// 64 records of one cell whose contributions span six orders of magnitude, so the order of float adds shows.
+RecordBatch ContendedCell() {
+  RecordBatch batch;
+  batch.width = 64;
+  batch.height = 1;
+  batch.samples_per_pixel = 1;
+  batch.fov_y_radians = 0.5;
+  for (std::uint32_t i = 0; i < 64; ++i) {
+    VertexSample v;
+    v.pixel = i;
+    v.position = glm::vec3(0.25f + 0.01f * float(i % 8), 0.5f, 0.5f);
+    v.previous = v.position - glm::vec3(0.0f, 0.0f, 10.0f);
+    const float scale = std::ldexp(1.0f, int(i % 20) - 10);
+    v.contribution = glm::vec3(scale * (1.0f + 0.1f * float(i)), 0.3f * scale, 1.0f / float(i + 1));
+    v.throughput = glm::vec3(0.5f);
+    batch.records.push_back(MakeVertexRecord(v));
+  }
+  return batch;
+}
+
+FilterConfig OneCellConfig() {
+  FilterConfig c;
+  c.lod = false;
+  c.cell_size = 1.0f;
+  c.jitter_scale = 0.0f;
+  c.normal = {NormalMode::kNone, 0};
+  c.capacity = 64;
+  c.accumulation = Accumulation::kFloat32;
+  return c;
+}
+
+TEST(EmulatedFilter, Float32OrderReplaysToTheSameBitsAndDiffersBetweenSeeds) {
+  const RecordBatch batch = ContendedCell();
+  std::set<std::uint32_t> sums;
+  for (std::uint32_t seed = 0; seed < 16; ++seed) {
+    EmulatorOptions options;
+    options.mode = simt::Mode::kFaithful;
+    options.warp_size = 8;
+    options.schedule = "random:" + std::to_string(seed);
+    const EmulatedRun run = EmulatedFilter(batch, OneCellConfig(), options);
+    ASSERT_EQ(run.float_add_order.size(), 64u * 3u);
+    std::uint32_t used = 0;
+    for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
+      const float table = run.table.float_sums[entry / 3][entry % 3];
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(ReplayFloatSum(batch.records, run.float_add_order[entry], int(entry % 3))),
+                std::bit_cast<std::uint32_t>(table));
+      if (run.float_add_order[entry].size() == 64) {
+        used = std::uint32_t(entry / 3);
+        EXPECT_EQ(run.table.counts[used], 64u);
+      }
+    }
+    sums.insert(std::bit_cast<std::uint32_t>(run.table.float_sums[used][0]));
+  }
+  // The emulator reproduces a GPU's order dependence: seeds that order the adds differently give other bits.
+  EXPECT_GT(sums.size(), 1u);
 }
 
 }  // namespace

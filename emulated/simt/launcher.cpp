@@ -47,7 +47,7 @@ void KernelTask::promise_type::operator delete(void* frame, std::size_t size) no
 }
 
 LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
-                            Schedule& schedule) {
+                            Schedule& schedule, const OperationObserver& observer) {
   if (warp_size == 0) throw std::invalid_argument("warp size must be at least 1");
   std::deque<ThreadContext> contexts;  // stable addresses: kernels keep a reference
   std::vector<KernelTask> tasks;
@@ -100,6 +100,7 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
     for (std::uint32_t lane : order) {
       MemoryOp& op = *contexts[lane].Pending();
       memory.Apply(op);
+      if (observer) observer(lane, op);
       if (op.kind == OpKind::kAtomicCas && op.result != op.compare) ++report.stats.cas_failures;
       for (std::uint64_t word : {std::uint64_t(warp), std::uint64_t(lane), std::uint64_t(op.kind), std::uint64_t(op.address.buffer),
                                  op.address.index, op.value, op.compare, op.result}) {

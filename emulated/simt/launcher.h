@@ -32,8 +32,11 @@ struct LaunchReport {
   LaunchStats stats;
 };
 
+// Sees every operation of a faithful launch as it is applied, in order (a hook, as in Oclgrind's plugins).
+using OperationObserver = std::function<void(std::uint32_t thread, const MemoryOp& op)>;
+
 LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
-                            Schedule& schedule);
+                            Schedule& schedule, const OperationObserver& observer = {});
 // worker_threads: 0 for all cores.
 void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads = 0);
 

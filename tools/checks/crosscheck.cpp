@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstring>
 
 #include "core/error.h"
+#include "reference/float_replay.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/table_checker.h"
 
@@ -80,7 +82,18 @@ CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config
     // Level 3: every record outside the classified ones sits in a slot equal to its reference cell.
     const bool fixed = config.accumulation == Accumulation::kFixed64;
     ideal.note = fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
-                       : "float32: counts exact outside the classified records (sums are bounded at level 2)";
+                       : !run.float_add_order.empty()
+                           ? "float32: counts exact outside the classified records; each slot's recorded order of adds, replayed by the reference, gives its bits"
+                           : "float32: counts exact outside the classified records (fast mode records no order; sums are bounded at level 2)";
+    for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
+      const std::uint32_t slot = std::uint32_t(entry / 3);
+      const int channel = int(entry % 3);
+      const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
+      if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
+        Fail(ideal, "slot " + std::to_string(slot) + " channel " + std::to_string(channel) + ": the replayed order of " +
+                        std::to_string(run.float_add_order[entry].size()) + " adds gives other bits");
+      }
+    }
     std::uint64_t compared = 0;
     for (std::size_t i = 0; i < batch.records.size(); ++i) {
       const std::uint32_t slot = run.placements[i], cell = reference.placement[i];
