@@ -2,6 +2,7 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -100,6 +101,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   // Probe lengths follow from the placements; resolve uses each placed record's slot average.
   run.probe_lengths.assign(config.probe_limit, 0);
   std::vector<std::optional<glm::dvec3>> averages(n);
+  const double unscale = std::ldexp(1.0, -table.fixed_point_bits);  // exact, as FromFixedPoint, without a call per sum
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t slot = run.placements[i];
     if (slot == kProbeFailure) ++run.probe_failures;
@@ -107,7 +109,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     ++run.probe_lengths[(slot - run.keys[i].slot0) & (config.capacity - 1u)];
     glm::dvec3 average;
     for (int c = 0; c < 3; ++c) {
-      const double sum = fixed ? FromFixedPoint(table.fixed_sums[slot][c], table.fixed_point_bits) : double(table.float_sums[slot][c]);
+      const double sum = fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);
       average[c] = sum / double(table.counts[slot]);
     }
     averages[i] = average;
