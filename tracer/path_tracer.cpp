@@ -66,6 +66,11 @@ class Tracer {
  public:
   Tracer(const Scene& scene, const TraceOptions& options)
       : scene_(scene), options_(options), embree_(scene), emitters_(scene), extent_(scene.Extent()) {
+    // Unit geometric normals once per triangle, not once per hit.
+    normals_.reserve(scene.triangles.size());
+    for (const Triangle& t : scene.triangles) {
+      normals_.push_back(glm::normalize(glm::cross(glm::dvec3(t.p1) - glm::dvec3(t.p0), glm::dvec3(t.p2) - glm::dvec3(t.p0))));
+    }
     const Camera& c = scene.camera;
     forward_ = glm::normalize(c.look_at - c.position);
     right_ = glm::normalize(glm::cross(forward_, c.up));
@@ -99,7 +104,7 @@ class Tracer {
     const glm::dvec3 p0(t.p0), p1(t.p1), p2(t.p2);
     SurfacePoint s;
     s.position = p0 * (1.0 - double(hit->u) - double(hit->v)) + p1 * double(hit->u) + p2 * double(hit->v);
-    s.normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    s.normal = normals_[hit->triangle];
     if (glm::dot(s.normal, direction) > 0.0) s.normal = -s.normal;
     s.material = &scene_.materials[t.material];
     return s;
@@ -108,7 +113,8 @@ class Tracer {
   // Incident radiance from the emitters at p, times cos / pi (the diffuse lobe without albedo): one sample.
   glm::dvec3 DirectLight(const SurfacePoint& p, const VertexRandom& random, TraceStats& stats) const {
     if (emitters_.Empty()) return glm::dvec3(0.0);
-    const Triangle& light = scene_.triangles[emitters_.Pick(random(kLightPick))];
+    const std::uint32_t light_index = emitters_.Pick(random(kLightPick));
+    const Triangle& light = scene_.triangles[light_index];
     const double su = random(kLightU), sv = random(kLightV);
     const double root = std::sqrt(su);
     const glm::dvec3 y = glm::dvec3(light.p0) * (1.0 - root) + glm::dvec3(light.p1) * (root * (1.0 - sv)) +
@@ -119,8 +125,7 @@ class Tracer {
     if (!(distance > 0.0)) return glm::dvec3(0.0);
     const glm::dvec3 wi = to_light / distance;
     const double cos_surface = glm::dot(p.normal, wi);
-    const glm::dvec3 light_normal =
-        glm::normalize(glm::cross(glm::dvec3(light.p1) - glm::dvec3(light.p0), glm::dvec3(light.p2) - glm::dvec3(light.p0)));
+    const glm::dvec3& light_normal = normals_[light_index];
     const double cos_light = std::abs(glm::dot(light_normal, wi));  // emission is two-sided
     if (cos_surface <= 0.0 || cos_light <= 0.0) return glm::dvec3(0.0);
     ++stats.shadow_rays;
@@ -155,6 +160,7 @@ class Tracer {
   const TraceOptions& options_;
   EmbreeScene embree_;
   EmitterSampler emitters_;
+  std::vector<glm::dvec3> normals_;
   double extent_;
   glm::dvec3 forward_, right_, up_;
   double tan_half_fov_;
