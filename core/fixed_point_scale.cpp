@@ -35,12 +35,15 @@ unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int chan
 int ChooseFixedPointBits(std::span<const Record> records) {
   std::vector<glm::vec3> contributions;
   contributions.reserve(records.size());
-  glm::dvec3 total(0.0);
   for (const Record& r : records) {
-    if (!EntersTable(r)) continue;
-    contributions.push_back(glm::vec3(r.contribution));
-    total += glm::dvec3(contributions.back());
+    if (EntersTable(r)) contributions.push_back(glm::vec3(r.contribution));
   }
+  return ChooseFixedPointBitsOf(contributions);
+}
+
+int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions) {
+  glm::dvec3 total(0.0);
+  for (const glm::vec3& c : contributions) total += glm::dvec3(c);
   // Exact test of one F: every c * 2^F is exact in double; each ceiling below 2^63 fits a uint64.
   auto fits = [&](int f) {
     const double scale = std::ldexp(1.0, f);

@@ -7,11 +7,16 @@
 #include <cstdint>
 #include <span>
 
+#include <glm/vec3.hpp>
+
 #include "core/record.h"
 
 namespace hpsf {
 
 int ChooseFixedPointBits(std::span<const Record> records);
+// The same choice from the contributions of the records that enter the table; a backend that has already
+// checked its records passes those, with zero in place of a record that does not enter (zero adds nothing).
+int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions);
 
 // The channel total bound of the choice above, exact: sum of ceil(c * 2^F) over accepted vertex records.
 // Saturates at 2^127 instead of wrapping.

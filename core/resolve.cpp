@@ -17,6 +17,12 @@ void CheckBatchShape(const RecordBatch& batch) {
   }
 }
 
+glm::dvec3 AcceptedRecordValue(const Record& r, const glm::dvec3* average) {
+  glm::dvec3 value = D(r.radiance_before);
+  if (shared::RecordHasVertex(r)) value += D(r.throughput) * (average ? *average : D(r.contribution));
+  return value;
+}
+
 Image ResolvePixels(const RecordBatch& batch, std::span<const std::optional<glm::dvec3>> averages) {
   CheckBatchShape(batch);
   Image image(batch.width, batch.height);
@@ -27,11 +33,9 @@ Image ResolvePixels(const RecordBatch& batch, std::span<const std::optional<glm:
       const std::size_t i = pixel * spp + s;
       const Record& r = batch.records[i];
       if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
-      glm::dvec3 value = D(r.radiance_before);
-      if (shared::RecordHasVertex(r)) value += D(r.throughput) * (averages[i] ? *averages[i] : D(r.contribution));
-      sum += value;
+      sum += AcceptedRecordValue(r, averages[i] ? &*averages[i] : nullptr);
     }
-    image.pixels[pixel] = glm::vec3(sum / double(spp));
+    image.pixels[pixel] = PixelMean(sum, batch.samples_per_pixel);
   }
   return image;
 }

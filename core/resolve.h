@@ -17,6 +17,14 @@
 
 namespace hpsf {
 
+// An accepted record's value: radiance_before, plus throughput times its cell's average (or, without a cell,
+// its own contribution) when it has a vertex. Backends that resolve in parallel sum these in sample order.
+glm::dvec3 AcceptedRecordValue(const Record& r, const glm::dvec3* average);
+// A pixel from the sum of its accepted records' values.
+inline glm::vec3 PixelMean(const glm::dvec3& sum, std::uint32_t samples_per_pixel) {
+  return glm::vec3(sum / double(samples_per_pixel));
+}
+
 // averages[i]: the average of record i's cell, or nullopt when the record has none.
 Image ResolvePixels(const RecordBatch& batch, std::span<const std::optional<glm::dvec3>> averages);
 

@@ -2,18 +2,36 @@
 
 #include <array>
 #include <bit>
+#include <chrono>
 #include <cmath>
-#include <optional>
+#include <utility>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
 #include "core/input_check.h"
 #include "core/resolve.h"
+#include "emulated/simt/huge_pages.h"
 
 namespace hpsf {
+namespace {
+
+class PhaseClock {
+ public:
+  // Seconds since the previous lap.
+  double Lap() {
+    const auto now = std::chrono::steady_clock::now();
+    return std::chrono::duration<double>(now - std::exchange(last_, now)).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
 
 void EmulatorOptions::Validate() const {
   if (warp_size == 0 || warp_size > 1024) throw ConfigError("--warp-size", "must lie in [1, 1024]; got " + std::to_string(warp_size));
@@ -30,24 +48,34 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
 
   EmulatedRun run;
+  PhaseClock clock;
   // Keys on all cores: each is a function of its record alone.
-  run.keys.resize(n);
-  std::vector<std::uint8_t> accepted(n);
+  // The same pass notes which records pass the input checks and gathers, for F, the contributions of those
+  // that enter the table.
+  simt::ResizeOnHugePages(run.keys, n);
+  std::vector<std::uint8_t> accepted;
+  simt::ResizeOnHugePages(accepted, n);
+  std::vector<glm::vec3> entering;
+  simt::ResizeOnHugePages(entering, n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 4096), [&](const tbb::blocked_range<std::uint32_t>& range) {
     for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
-      run.keys[i] = shared::ComputeKey(params, batch.records[i]);
-      accepted[i] = CheckRecordInputs(batch.records[i]) == InputVerdict::kAccepted;
+      const Record& r = batch.records[i];
+      run.keys[i] = shared::ComputeKey(params, r);
+      accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
+      entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
     }
   });
 
+  run.timings.keys = clock.Lap();
   HashTableDump& table = run.table;
   table.capacity = config.capacity;
   table.probe_limit = config.probe_limit;
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
-  table.fixed_point_bits = ChooseFixedPointBits(batch.records);
+  table.fixed_point_bits = ChooseFixedPointBitsOf(entering);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
 
+  run.timings.fixed_point = clock.Lap();
   simt::DeviceMemory memory;
   AccumulateArgs args;
   args.records = batch.records;
@@ -64,6 +92,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   b.placements = memory.Allocate32("placements", n);
   b.wraps = memory.Allocate64("wraps", 1);
 
+  run.timings.clear = clock.Lap();
   const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
   if (options.mode == simt::Mode::kFast) {
     simt::LaunchFast(memory, n, kernel, options.threads);
@@ -80,41 +109,73 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule, observer);
   }
 
-  // The dump: the final state of the device buffers.
-  const auto tags = memory.Words32(b.tags);
-  table.tags.assign(tags.begin(), tags.end());
-  table.counts.assign(memory.Words64(b.counts).begin(), memory.Words64(b.counts).end());
-  if (fixed) {
-    table.fixed_sums.resize(config.capacity);
-    const auto sums = memory.Words64(b.sums);
-    for (std::uint32_t s = 0; s < config.capacity; ++s) table.fixed_sums[s] = {sums[3 * s], sums[3 * s + 1], sums[3 * s + 2]};
-  } else {
-    table.float_sums.resize(config.capacity);
-    const auto sums = memory.Words32(b.sums);
-    for (std::uint32_t s = 0; s < config.capacity; ++s) {
-      for (int c = 0; c < 3; ++c) table.float_sums[s][c] = std::bit_cast<float>(sums[3 * s + c]);
-    }
-  }
-  run.placements.assign(memory.Words32(b.placements).begin(), memory.Words32(b.placements).end());
+  run.timings.accumulate = clock.Lap();
+  // The dump: the final state of the device buffers, moved out where the layouts agree.
+  table.tags = memory.TakeWords32(b.tags);
+  table.counts = memory.TakeWords64(b.counts);
+  run.placements = memory.TakeWords32(b.placements);
   run.wraps = memory.Words64(b.wraps)[0];
-
-  // Probe lengths follow from the placements; resolve uses each placed record's slot average.
-  run.probe_lengths.assign(config.probe_limit, 0);
-  std::vector<std::optional<glm::dvec3>> averages(n);
-  const double unscale = std::ldexp(1.0, -table.fixed_point_bits);  // exact, as FromFixedPoint, without a call per sum
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t slot = run.placements[i];
-    if (slot == kProbeFailure) ++run.probe_failures;
-    if (slot >= config.capacity) continue;
-    ++run.probe_lengths[(slot - run.keys[i].slot0) & (config.capacity - 1u)];
-    glm::dvec3 average;
-    for (int c = 0; c < 3; ++c) {
-      const double sum = fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);
-      average[c] = sum / double(table.counts[slot]);
-    }
-    averages[i] = average;
+  if (fixed) {
+    simt::ResizeOnHugePages(table.fixed_sums, config.capacity);
+  } else {
+    simt::ResizeOnHugePages(table.float_sums, config.capacity);
   }
-  run.image = ResolvePixels(batch, averages);
+  const std::span<const std::uint64_t> fixed_words = std::as_const(memory).Words64(b.sums);
+  const std::span<const std::uint32_t> float_words = std::as_const(memory).Words32(b.sums);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, config.capacity, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
+    for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
+      for (int c = 0; c < 3; ++c) {
+        if (fixed) {
+          table.fixed_sums[s][c] = fixed_words[std::size_t(s) * 3 + c];
+        } else {
+          table.float_sums[s][c] = std::bit_cast<float>(float_words[std::size_t(s) * 3 + c]);
+        }
+      }
+    }
+  });
+
+  run.timings.read_back = clock.Lap();
+  // Resolve, one pixel per task as on a GPU, each record reading its slot's average; the probe-length
+  // histogram and the failures follow from the placements in the same pass. Integer tallies: the totals do not
+  // depend on how the pixels are split.
+  struct Tally {
+    std::uint64_t probe_failures = 0;
+    std::vector<std::uint64_t> probe_lengths;
+  };
+  run.image = Image(batch.width, batch.height);
+  const double unscale = std::ldexp(1.0, -table.fixed_point_bits);  // exact, as FromFixedPoint, without a call per sum
+  const std::uint32_t spp = batch.samples_per_pixel;
+  const Tally tally = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, run.image.pixels.size(), 2048), Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0)},
+      [&](const tbb::blocked_range<std::size_t>& range, Tally tally) {
+        for (std::size_t pixel = range.begin(); pixel < range.end(); ++pixel) {
+          glm::dvec3 sum(0.0);
+          for (std::uint32_t sample = 0; sample < spp; ++sample) {
+            const std::size_t i = pixel * spp + sample;
+            const std::uint32_t slot = run.placements[i];
+            if (slot == kProbeFailure) ++tally.probe_failures;
+            glm::dvec3 average;
+            if (slot < config.capacity) {
+              ++tally.probe_lengths[(slot - run.keys[i].slot0) & (config.capacity - 1u)];
+              for (int c = 0; c < 3; ++c) {
+                const double channel_sum = fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);
+                average[c] = channel_sum / double(table.counts[slot]);
+              }
+            }
+            if (accepted[i]) sum += AcceptedRecordValue(batch.records[i], slot < config.capacity ? &average : nullptr);
+          }
+          run.image.pixels[pixel] = PixelMean(sum, spp);
+        }
+        return tally;
+      },
+      [](Tally a, const Tally& b) {
+        a.probe_failures += b.probe_failures;
+        for (std::size_t k = 0; k < a.probe_lengths.size(); ++k) a.probe_lengths[k] += b.probe_lengths[k];
+        return a;
+      });
+  run.probe_failures = tally.probe_failures;
+  run.probe_lengths = tally.probe_lengths;
+  run.timings.resolve = clock.Lap();
   return run;
 }
 

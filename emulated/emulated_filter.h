@@ -26,6 +26,17 @@ struct EmulatorOptions {
   void Validate() const;                 // ConfigError naming the option
 };
 
+// Wall time of each phase of a run, in seconds, for benchmarks and reports; no output bit depends on them.
+struct EmulatedTimings {
+  double keys = 0;         // keys, input checks and the contributions for F, all cores
+  double fixed_point = 0;  // the choice of F
+  double clear = 0;        // allocating and zeroing the table
+  double accumulate = 0;   // the accumulate launch
+  double read_back = 0;    // the dump of the table
+  double resolve = 0;      // averages, pixels and the probe statistics, all cores
+  double Total() const { return keys + fixed_point + clear + accumulate + read_back + resolve; }
+};
+
 struct EmulatedRun {
   Image image;
   HashTableDump table;
@@ -37,6 +48,7 @@ struct EmulatedRun {
   simt::LaunchReport launch;                     // faithful mode: trace hash and step statistics
   // Faithful float32: for slot s and channel c, [3 s + c] lists the records in the order their adds applied.
   std::vector<std::vector<std::uint32_t>> float_add_order;
+  EmulatedTimings timings;
 };
 
 // The accumulate kernel to run; tests pass broken variants of it (DESIGN.md, "Known defects").

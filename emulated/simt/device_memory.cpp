@@ -3,6 +3,9 @@
 #include <atomic>
 #include <bit>
 #include <stdexcept>
+#include <utility>
+
+#include "emulated/simt/huge_pages.h"
 
 namespace hpsf::simt {
 namespace {
@@ -80,12 +83,14 @@ std::string MemoryOp::ToString() const {
 }
 
 std::uint32_t DeviceMemory::Allocate32(std::string name, std::size_t count) {
-  buffers_.push_back({std::move(name), false, std::vector<std::uint32_t>(count, 0u), {}});
+  buffers_.push_back({std::move(name), false, {}, {}});
+  ResizeOnHugePages(buffers_.back().narrow_words, count);
   return static_cast<std::uint32_t>(buffers_.size() - 1);
 }
 
 std::uint32_t DeviceMemory::Allocate64(std::string name, std::size_t count) {
-  buffers_.push_back({std::move(name), true, {}, std::vector<std::uint64_t>(count, 0u)});
+  buffers_.push_back({std::move(name), true, {}, {}});
+  ResizeOnHugePages(buffers_.back().wide_words, count);
   return static_cast<std::uint32_t>(buffers_.size() - 1);
 }
 
@@ -93,6 +98,9 @@ std::span<std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) { return bu
 std::span<std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) { return buffers_.at(buffer).wide_words; }
 std::span<const std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) const { return buffers_.at(buffer).narrow_words; }
 std::span<const std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) const { return buffers_.at(buffer).wide_words; }
+
+std::vector<std::uint32_t> DeviceMemory::TakeWords32(std::uint32_t buffer) { return std::move(buffers_.at(buffer).narrow_words); }
+std::vector<std::uint64_t> DeviceMemory::TakeWords64(std::uint32_t buffer) { return std::move(buffers_.at(buffer).wide_words); }
 
 DeviceMemory::Buffer& DeviceMemory::Checked(const Address& address) {
   Buffer& b = buffers_.at(address.buffer);

@@ -23,6 +23,9 @@ class DeviceMemory {
   std::span<std::uint64_t> Words64(std::uint32_t buffer);
   std::span<const std::uint32_t> Words32(std::uint32_t buffer) const;
   std::span<const std::uint64_t> Words64(std::uint32_t buffer) const;
+  // Moves a buffer's words out (read-back without a copy); the buffer is left empty.
+  std::vector<std::uint32_t> TakeWords32(std::uint32_t buffer);
+  std::vector<std::uint64_t> TakeWords64(std::uint32_t buffer);
   const std::string& Name(std::uint32_t buffer) const { return buffers_.at(buffer).name; }
 
   // Applies op, fills op.result. Sequential: the caller serialises.
