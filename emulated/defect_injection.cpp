@@ -24,9 +24,10 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
   const Record& r = args.records[i];
   bool placed = false;
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
-    // D8: the probe index clamped to the last slot instead of wrapped.
-    const std::uint32_t slot = defect == Defect::kD8ClampedProbe ? std::min(key.slot0 + probe, args.capacity - 1u)
-                                                                 : (key.slot0 + probe) & (args.capacity - 1u);
+    // D8: the probe index clamped to the last slot, or not wrapped at all, instead of wrapped.
+    const std::uint32_t slot = defect == Defect::kD8ClampedProbe    ? std::min(key.slot0 + probe, args.capacity - 1u)
+                               : defect == Defect::kD8UnwrappedProbe ? key.slot0 + probe
+                                                                     : (key.slot0 + probe) & (args.capacity - 1u);
     std::uint64_t tag = co_await ctx.Load(b.tags, slot);
     if (tag == kEmptyTag) {
       if (defect == Defect::kD13LoadThenStoreClaim) {  // D13: claim by a plain store after the load
@@ -61,6 +62,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
 simt::KernelTask D2(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD2AddsAgain); }
 simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD3ZeroFingerprint); }
 simt::KernelTask D8(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8ClampedProbe); }
+simt::KernelTask D8Unwrapped(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8UnwrappedProbe); }
 simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD9NonAtomicAdd); }
 simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
 
@@ -71,9 +73,10 @@ Defect ParseDefect(const std::string& text) {
   if (text == "D2") return Defect::kD2AddsAgain;
   if (text == "D3") return Defect::kD3ZeroFingerprint;
   if (text == "D8") return Defect::kD8ClampedProbe;
+  if (text == "D8-unwrapped") return Defect::kD8UnwrappedProbe;
   if (text == "D9") return Defect::kD9NonAtomicAdd;
   if (text == "D13") return Defect::kD13LoadThenStoreClaim;
-  throw ConfigError("--inject-defect", "expected none, D2, D3, D8, D9 or D13; got '" + text + "'");
+  throw ConfigError("--inject-defect", "expected none, D2, D3, D8, D8-unwrapped, D9 or D13; got '" + text + "'");
 }
 
 std::string ToString(Defect defect) {
@@ -82,6 +85,7 @@ std::string ToString(Defect defect) {
     case Defect::kD2AddsAgain: return "D2";
     case Defect::kD3ZeroFingerprint: return "D3";
     case Defect::kD8ClampedProbe: return "D8";
+    case Defect::kD8UnwrappedProbe: return "D8-unwrapped";
     case Defect::kD9NonAtomicAdd: return "D9";
     case Defect::kD13LoadThenStoreClaim: return "D13";
   }
@@ -94,6 +98,7 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
     case Defect::kD2AddsAgain: return D2;
     case Defect::kD3ZeroFingerprint: return D3;
     case Defect::kD8ClampedProbe: return D8;
+    case Defect::kD8UnwrappedProbe: return D8Unwrapped;
     case Defect::kD9NonAtomicAdd: return D9;
     case Defect::kD13LoadThenStoreClaim: return D13;
   }

@@ -15,11 +15,12 @@ enum class Defect {
   kD2AddsAgain,            // adds on a match and keeps probing, adding again (Meijer Algorithm 4)
   kD3ZeroFingerprint,      // the reduced fingerprint without its 0 -> 1 fix: equal to the empty tag
   kD8ClampedProbe,         // the probe index clamped to the last slot instead of wrapped
+  kD8UnwrappedProbe,       // the probe index not wrapped at all: writes past the end of the table
   kD9NonAtomicAdd,         // read-modify-write of sums and counts without atomics
   kD13LoadThenStoreClaim,  // a slot claimed by load-then-store instead of compare-and-swap
 };
 
-// "none", "D2", "D3", "D8", "D9", "D13"; a ConfigError naming --inject-defect otherwise.
+// "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);

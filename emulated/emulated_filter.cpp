@@ -4,6 +4,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include <tbb/parallel_for.h>
@@ -98,7 +99,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     simt::LaunchFast(memory, n, kernel, options.threads);
   } else {
     const std::uint32_t warps = (n + options.warp_size - 1) / options.warp_size;
-    auto schedule = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
+    std::unique_ptr<simt::Schedule> parsed;
+    if (!options.schedule_instance) parsed = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
+    simt::Schedule* schedule = options.schedule_instance ? options.schedule_instance : parsed.get();
     simt::OperationObserver observer;
     if (!fixed) {
       run.float_add_order.resize(std::size_t(config.capacity) * 3);

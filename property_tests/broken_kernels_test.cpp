@@ -4,14 +4,18 @@
 // which schedule policies found them and after how many schedules.
 #include <bit>
 #include <cstdio>
+#include <functional>
 #include <optional>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "core/hash_table.h"
 #include "core/input_check.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
+#include "emulated/simt/kernel_fault.h"
+#include "emulated/simt/schedule.h"
 #include "tools/checks/table_checker.h"
 
 namespace hpsf {
@@ -115,6 +119,27 @@ TEST(BrokenKernels, D8AClampedProbeIsCaught) {
   std::printf("D8 caught: %s\n", violations.front().ToString().c_str());
 }
 
+TEST(BrokenKernels, D8AnUnwrappedProbeFaultsOutOfBoundsInBothModes) {
+  // The second key at slot0 = 63 probes slot 64 of a 64-slot table: the emulator stops the kernel there.
+  const FilterConfig config = ConstructedConfig(64, 4);
+  const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
+  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
+  const RecordBatch batch = BatchOfCells({a, b});
+  const AccumulateKernelFn kernel = KernelWithDefect(Defect::kD8UnwrappedProbe);
+  EmulatorOptions fast;
+  for (const auto& run : std::vector<std::function<void()>>{[&] { RunFaithful(batch, config, kernel); },
+                                                            [&] { EmulatedFilter(batch, config, fast, kernel); }}) {
+    try {
+      run();
+      ADD_FAILURE() << "the unwrapped probe did not fault";
+    } catch (const simt::KernelFault& fault) {
+      EXPECT_THAT(fault.what(), testing::HasSubstr("out-of-bounds access to buffer 'tags' at index 64 of 64"));
+      std::printf("D8 unwrapped caught: %s\n", fault.what());
+    }
+  }
+  EXPECT_TRUE(CheckRun(batch, RunFaithful(batch, config, AccumulateKernel)).empty());  // the input is fine
+}
+
 // D9 and D13 depend on the interleaving: try each policy over seeds and report after how many schedules it
 // first produced a table the checker rejects.
 struct Hunt {
@@ -138,6 +163,41 @@ std::vector<Hunt> HuntDefect(const RecordBatch& batch, const FilterConfig& confi
   return hunts;
 }
 
+// Exhaustive search on a launch small enough to enumerate (two threads of the accumulate kernel, warp size 1):
+// the schedule at which the checker first rejects the table, and how many schedules were explored (all of
+// them, unless asked to stop at the first rejection).
+struct ExhaustiveHunt {
+  std::uint64_t caught_at = 0;  // 0: never
+  std::uint64_t schedules = 0;
+  bool complete = false;        // every schedule of the launch explored
+};
+
+enum class Stop { kAtFirstCatch, kNever };
+
+ExhaustiveHunt HuntExhaustively(const RecordBatch& batch, const FilterConfig& config, AccumulateKernelFn kernel, Stop stop) {
+  simt::ExhaustiveSchedule schedule;
+  EmulatorOptions options;
+  options.mode = simt::Mode::kFaithful;
+  options.warp_size = 1;
+  options.schedule_instance = &schedule;
+  ExhaustiveHunt hunt;
+  do {
+    ++hunt.schedules;  // every schedule must run: the search learns the next one from this run's decisions
+    if (!CheckRun(batch, EmulatedFilter(batch, config, options, kernel)).empty() && hunt.caught_at == 0) {
+      hunt.caught_at = hunt.schedules;
+      if (stop == Stop::kAtFirstCatch) return hunt;
+    }
+  } while (schedule.Advance());
+  hunt.complete = true;
+  return hunt;
+}
+
+void ReportExhaustive(const char* defect, const ExhaustiveHunt& hunt) {
+  std::printf("%s with exhaustive (2 threads): caught at schedule %llu%s\n", defect, (unsigned long long)hunt.caught_at,
+              hunt.complete ? (" of " + std::to_string(hunt.schedules) + " in all").c_str() : "");
+  EXPECT_GT(hunt.caught_at, 0u) << defect << " escaped exhaustive search";
+}
+
 void Report(const char* defect, const std::vector<Hunt>& hunts) {
   bool any = false;
   for (const Hunt& h : hunts) {
@@ -153,6 +213,13 @@ TEST(BrokenKernels, D9LostUpdatesAreCaughtAndReportedPerPolicy) {
   const FilterConfig config = ConstructedConfig(64, 4);
   const RecordBatch batch = BatchOfCells(std::vector<glm::ivec3>(8, glm::ivec3(5, 5, 5)));
   Report("D9", HuntDefect(batch, config, KernelWithDefect(Defect::kD9NonAtomicAdd), 1));
+  const RecordBatch two = BatchOfCells(std::vector<glm::ivec3>(2, glm::ivec3(5, 5, 5)));
+  // This launch has about half a million schedules: stop at the first rejection.
+  ReportExhaustive("D9", HuntExhaustively(two, config, KernelWithDefect(Defect::kD9NonAtomicAdd), Stop::kAtFirstCatch));
+  // The correct kernel passes every one of its schedules on the same launch.
+  const ExhaustiveHunt correct = HuntExhaustively(two, config, AccumulateKernel, Stop::kNever);
+  EXPECT_EQ(correct.caught_at, 0u);
+  std::printf("correct kernel, one cell, exhaustive (2 threads): %llu schedules, all pass\n", (unsigned long long)correct.schedules);
   // Within one warp the lanes load together and store in turn: every schedule loses updates.
   EXPECT_FALSE(CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD9NonAtomicAdd), "round-robin", 8)).empty());
 }
@@ -163,6 +230,11 @@ TEST(BrokenKernels, D13TwoKeysRacingForOneEmptySlotAreCaughtAndReportedPerPolicy
   const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; }, a.x + 1);
   const RecordBatch batch = BatchOfCells({a, b, a, b});
   Report("D13", HuntDefect(batch, config, KernelWithDefect(Defect::kD13LoadThenStoreClaim), 1));
+  const RecordBatch two = BatchOfCells({a, b});
+  ReportExhaustive("D13", HuntExhaustively(two, config, KernelWithDefect(Defect::kD13LoadThenStoreClaim), Stop::kNever));
+  const ExhaustiveHunt correct = HuntExhaustively(two, config, AccumulateKernel, Stop::kNever);
+  EXPECT_EQ(correct.caught_at, 0u);
+  std::printf("correct kernel, two keys racing, exhaustive (2 threads): %llu schedules, all pass\n", (unsigned long long)correct.schedules);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "emulated/simt/huge_pages.h"
+#include "emulated/simt/kernel_fault.h"
 
 namespace hpsf::simt {
 namespace {
@@ -107,7 +108,7 @@ DeviceMemory::Buffer& DeviceMemory::Checked(const Address& address) {
   const std::size_t size = b.wide ? b.wide_words.size() : b.narrow_words.size();
   // An out-of-bounds access is a kernel defect (DESIGN.md D8); the emulator reports it instead of corrupting memory.
   if (address.index >= size) {
-    throw std::out_of_range("out-of-bounds access to buffer '" + b.name + "' at index " + std::to_string(address.index) +
+    throw KernelFault("out-of-bounds access to buffer '" + b.name + "' at index " + std::to_string(address.index) +
                             " of " + std::to_string(size));
   }
   return b;

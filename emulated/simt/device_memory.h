@@ -28,7 +28,8 @@ class DeviceMemory {
   std::vector<std::uint64_t> TakeWords64(std::uint32_t buffer);
   const std::string& Name(std::uint32_t buffer) const { return buffers_.at(buffer).name; }
 
-  // Applies op, fills op.result. Sequential: the caller serialises.
+  // Applies op, fills op.result. Sequential: the caller serialises. An access outside the buffer throws
+  // KernelFault.
   void Apply(MemoryOp& op);
   // The same, safe to call from many threads at once.
   void ApplyConcurrently(MemoryOp& op);

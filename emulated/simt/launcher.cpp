@@ -4,10 +4,13 @@
 #include <deque>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+
+#include "emulated/simt/kernel_fault.h"
 
 namespace hpsf::simt {
 namespace {
@@ -99,7 +102,11 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
     }
     for (std::uint32_t lane : order) {
       MemoryOp& op = *contexts[lane].Pending();
-      memory.Apply(op);
+      try {
+        memory.Apply(op);
+      } catch (const KernelFault& fault) {
+        throw KernelFault("thread " + std::to_string(lane) + ": " + fault.what());
+      }
       if (observer) observer(lane, op);
       if (op.kind == OpKind::kAtomicCas && op.result != op.compare) ++report.stats.cas_failures;
       for (std::uint64_t word : {std::uint64_t(warp), std::uint64_t(lane), std::uint64_t(op.kind), std::uint64_t(op.address.buffer),
@@ -128,7 +135,11 @@ void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kerne
     for (std::uint32_t t = range.begin(); t < range.end(); ++t) {
       ThreadContext context(t, memory, Mode::kFast);
       KernelTask task = kernel(context);
-      task.Resume();  // never suspends in fast mode: runs to the end
+      try {
+        task.Resume();  // never suspends in fast mode: runs to the end
+      } catch (const KernelFault& fault) {
+        throw KernelFault("thread " + std::to_string(t) + ": " + fault.what());
+      }
       if (!task.Done()) throw std::logic_error("a kernel suspended in fast mode");
     }
   });

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "emulated/simt/kernel_fault.h"
 #include "reference/float_replay.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/table_checker.h"
@@ -71,7 +72,19 @@ CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config
   const FilterResult reference = ReferenceFilter(batch, config);
   if (emulated) {
     const AccumulateKernelFn kernel = KernelWithDefect(defect);
-    const EmulatedRun run = EmulatedFilter(batch, config, emulator, kernel);
+    EmulatedRun run;
+    try {
+      run = EmulatedFilter(batch, config, emulator, kernel);
+    } catch (const simt::KernelFault& fault) {
+      // No table to judge: the kernel wrote outside its buffers, which is itself the defect.
+      Fail(tables, std::string("the emulated kernel faulted: ") + fault.what());
+      for (LevelVerdict* later : {&ideal, &determinism}) {
+        later->applicable = false;
+        later->note = "the emulated kernel faulted";
+      }
+      report.levels = {keys, tables, ideal, determinism};
+      return report;
+    }
     for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, v.ToString());
 
     QualityFigures quality;

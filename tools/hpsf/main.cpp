@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "emulated/simt/kernel_fault.h"
 #include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
 #include "tools/hpsf/render_command.h"
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   } catch (const hpsf::VulkanUnavailable& e) {
     std::cerr << "hpsf: " << e.what() << "\n";
     return hpsf::kExitBadInput;
+  } catch (const hpsf::simt::KernelFault& e) {  // a broken kernel (--inject-defect): a failed check, no output
+    std::cerr << "hpsf: kernel fault: " << e.what() << "\n";
+    return hpsf::kExitCheckFailed;
   }
   return exit_code;
 }
