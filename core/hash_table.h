@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/filter_config.h"
+#include "core/shared/table_params.h"
 
 namespace hpsf {
 
@@ -17,8 +18,8 @@ using SlotTag = std::uint32_t;
 inline constexpr SlotTag kEmptyTag = 0;
 
 // Placement of a record: the slot it was added to, or one of these.
-inline constexpr std::uint32_t kNotPlaced = 0xFFFFFFFFu;    // no vertex, unkeyable or rejected: never probed
-inline constexpr std::uint32_t kProbeFailure = 0xFFFFFFFEu;  // probed its whole window without finding a slot
+inline constexpr std::uint32_t kNotPlaced = shared::kPlacementNotPlaced;        // no vertex, unkeyable or rejected
+inline constexpr std::uint32_t kProbeFailure = shared::kPlacementProbeFailure;  // probed its whole window in vain
 
 struct HashTableDump {
   std::uint32_t capacity = 0;

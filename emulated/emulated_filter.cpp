@@ -182,18 +182,5 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   return run;
 }
 
-std::vector<bool> AliasedSlots(const EmulatedRun& run) {
-  std::vector<std::optional<std::array<std::uint32_t, 6>>> key_of(run.table.capacity);
-  std::vector<bool> aliased(run.table.capacity, false);
-  for (std::size_t i = 0; i < run.placements.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
-    if (slot >= run.table.capacity) continue;
-    const shared::KeyWords& w = run.keys[i].words;
-    const std::array<std::uint32_t, 6> key = {w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
-    if (key_of[slot] && *key_of[slot] != key) aliased[slot] = true;
-    key_of[slot] = key;
-  }
-  return aliased;
-}
 
 }  // namespace hpsf

@@ -10,6 +10,7 @@
 
 #include "core/filter_config.h"
 #include "core/hash_table.h"
+#include "core/hashed_run.h"
 #include "core/image.h"
 #include "core/key_batch.h"
 #include "core/record.h"
@@ -40,15 +41,8 @@ struct EmulatedTimings {
   double Total() const { return keys + fixed_point + clear + accumulate + read_back + resolve; }
 };
 
-struct EmulatedRun {
-  Image image;
-  HashTableDump table;
-  std::vector<KeyResult> keys;            // per record, from core
-  std::vector<std::uint32_t> placements;  // per record: a slot, kProbeFailure or kNotPlaced
-  std::uint64_t probe_failures = 0;
-  std::uint64_t wraps = 0;                       // fixed64 adds whose sum wrapped
-  std::vector<std::uint64_t> probe_lengths;      // [k]: records placed after probing k + 1 slots
-  simt::LaunchReport launch;                     // faithful mode: trace hash and step statistics
+struct EmulatedRun : HashedRun {
+  simt::LaunchReport launch;  // faithful mode: trace hash and step statistics
   // Faithful float32: for slot s and channel c, [3 s + c] lists the records in the order their adds applied.
   std::vector<std::vector<std::uint32_t>> float_add_order;
   EmulatedTimings timings;
@@ -60,8 +54,6 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel);
 
-// Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).
-std::vector<bool> AliasedSlots(const EmulatedRun& run);
 
 }  // namespace hpsf
 

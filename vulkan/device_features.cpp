@@ -17,6 +17,9 @@ std::vector<std::string> MissingRequiredFeatures(const DeviceFeatures& f) {
   if (!f.shader_int64) missing.push_back("shaderInt64 (fixed64 accumulation)");
   if (!f.buffer_int64_atomics) missing.push_back("shaderBufferInt64Atomics (fixed64 accumulation)");
   if (!f.buffer_float32_atomic_add) missing.push_back("shaderBufferFloat32AtomicAdd (float32 accumulation)");
+  if (!f.shader_float64) missing.push_back("shaderFloat64 (the resolve pass in double, as the reference)");
+  if (!f.rounding_mode_rte_float64) missing.push_back("shaderRoundingModeRTEFloat64 (resolve rounds as the reference)");
+  if (!f.signed_zero_inf_nan_preserve_float64) missing.push_back("shaderSignedZeroInfNanPreserveFloat64 (resolve keeps signed zeros)");
   if (!f.timestamp_compute) missing.push_back("timestampComputeAndGraphics (timings)");
   return missing;
 }

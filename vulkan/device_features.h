@@ -16,6 +16,9 @@ struct DeviceFeatures {
   bool buffer_float32_atomic_add = false;
   bool rounding_mode_rte_float32 = false;
   bool signed_zero_inf_nan_preserve_float32 = false;
+  bool shader_float64 = false;  // the resolve pass works in double, as core/resolve
+  bool rounding_mode_rte_float64 = false;
+  bool signed_zero_inf_nan_preserve_float64 = false;
   bool timestamp_compute = false;
 };
 

@@ -10,6 +10,7 @@ DeviceFeatures Complete() {
   f.api_version = (1u << 22) | (3u << 12);
   f.shader_int64 = f.buffer_int64_atomics = f.buffer_float32_atomic_add = true;
   f.rounding_mode_rte_float32 = f.signed_zero_inf_nan_preserve_float32 = f.timestamp_compute = true;
+  f.shader_float64 = f.rounding_mode_rte_float64 = f.signed_zero_inf_nan_preserve_float64 = true;
   return f;
 }
 
@@ -22,6 +23,9 @@ TEST(DeviceFeatures, EachMissingFeatureIsNamed) {
       {&DeviceFeatures::buffer_float32_atomic_add, "shaderBufferFloat32AtomicAdd"},
       {&DeviceFeatures::rounding_mode_rte_float32, "shaderRoundingModeRTEFloat32"},
       {&DeviceFeatures::signed_zero_inf_nan_preserve_float32, "shaderSignedZeroInfNanPreserveFloat32"},
+      {&DeviceFeatures::shader_float64, "shaderFloat64"},
+      {&DeviceFeatures::rounding_mode_rte_float64, "shaderRoundingModeRTEFloat64"},
+      {&DeviceFeatures::signed_zero_inf_nan_preserve_float64, "shaderSignedZeroInfNanPreserveFloat64"},
       {&DeviceFeatures::timestamp_compute, "timestampComputeAndGraphics"},
   };
   for (const auto& [member, name] : cases) {

@@ -64,9 +64,12 @@ VulkanDeviceInfo Describe(const vk::raii::PhysicalDevice& physical) {
   info.subgroup_size = properties.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
   f.rounding_mode_rte_float32 = v12.shaderRoundingModeRTEFloat32;
   f.signed_zero_inf_nan_preserve_float32 = v12.shaderSignedZeroInfNanPreserveFloat32;
+  f.rounding_mode_rte_float64 = v12.shaderRoundingModeRTEFloat64;
+  f.signed_zero_inf_nan_preserve_float64 = v12.shaderSignedZeroInfNanPreserveFloat64;
 
   auto features = physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features>();
   f.shader_int64 = features.get<vk::PhysicalDeviceFeatures2>().features.shaderInt64;
+  f.shader_float64 = features.get<vk::PhysicalDeviceFeatures2>().features.shaderFloat64;
   f.buffer_int64_atomics = features.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics;
   if (HasExtension(physical, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) {
     auto atomics = physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT>();
@@ -148,6 +151,7 @@ VulkanDevice::VulkanDevice(const std::string& name_filter) {
         chain;
     chain.get<vk::DeviceCreateInfo>().setQueueCreateInfos(queue_info).setPEnabledExtensionNames(extensions);
     chain.get<vk::PhysicalDeviceFeatures2>().features.shaderInt64 = true;
+    chain.get<vk::PhysicalDeviceFeatures2>().features.shaderFloat64 = true;
     chain.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics = true;
     chain.get<vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT>().shaderBufferFloat32AtomicAdd = true;
     d.device = vk::raii::Device(d.physical, chain.get<vk::DeviceCreateInfo>());

@@ -6,10 +6,13 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/footprint.h"
+#include "core/input_check.h"
 #include "emulated/simt/kernel_fault.h"
 #include "reference/float_replay.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/table_checker.h"
+#include "vulkan/vulkan_filter.h"
 
 namespace hpsf {
 namespace {
@@ -25,8 +28,8 @@ bool SameBits(const Image& a, const Image& b) {
   return a.pixels.size() == b.pixels.size() && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)) == 0;
 }
 
-// The quality figures of an emulated run: its probe failures and aliases.
-std::vector<bool> Classify(const EmulatedRun& run, QualityFigures& quality) {
+// The quality figures of a hashed run: its probe failures and aliases.
+std::vector<bool> Classify(const HashedRun& run, QualityFigures& quality) {
   const std::vector<bool> aliased = AliasedSlots(run);
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     if (run.placements[i] < run.table.capacity && aliased[run.placements[i]]) ++quality.aliased_records;
@@ -36,6 +39,38 @@ std::vector<bool> Classify(const EmulatedRun& run, QualityFigures& quality) {
   return aliased;
 }
 
+// Level 3 for one hashed run: every record outside the classified ones (probe failures, aliased slots) sits
+// in a slot whose count, and in fixed64 whose sums, equal its reference cell's; with nothing classified in
+// fixed64, the image is the reference's, bit for bit.
+void CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const HashedRun& run,
+                          const std::vector<bool>& aliased, const std::string& prefix, LevelVerdict& ideal) {
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  std::uint64_t compared = 0, failures = 0;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    const std::uint32_t slot = run.placements[i], cell = reference.placement[i];
+    failures += slot == kProbeFailure;
+    const bool classified = slot == kProbeFailure || (slot < run.table.capacity && aliased[slot]);
+    if (classified) continue;
+    if ((slot < run.table.capacity) != (cell != kNoCell)) {
+      Fail(ideal, prefix + "record " + std::to_string(i) + ": placed in the table but not in the reference, or the other way round");
+      continue;
+    }
+    if (cell == kNoCell) continue;
+    ++compared;
+    const TableCell& c = reference.cells[cell];
+    if (run.table.counts[slot] != c.count) {
+      Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": count " + std::to_string(run.table.counts[slot]) +
+                      ", reference " + std::to_string(c.count));
+    } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
+      Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": sums differ from the reference cell's");
+    }
+  }
+  ideal.note += "; " + prefix + std::to_string(compared) + " records compared";
+  if (fixed && failures == 0 && std::count(aliased.begin(), aliased.end(), true) == 0 && !SameBits(run.image, reference.image)) {
+    Fail(ideal, prefix + "nothing failed or aliased, yet the image differs from the reference");
+  }
+}
+
 }  // namespace
 
 bool CrosscheckReport::Passed() const {
@@ -43,7 +78,8 @@ bool CrosscheckReport::Passed() const {
 }
 
 nlohmann::json CrosscheckReport::ToJson() const {
-  nlohmann::json j = {{"version", 1}, {"passed", Passed()}};
+  nlohmann::json j = {{"version", 2}, {"passed", Passed()}};
+  if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
   for (const LevelVerdict& v : levels) {
     j["levels"].push_back({{"level", v.level}, {"name", v.name}, {"applicable", v.applicable}, {"passed", v.passed},
                            {"note", v.note}, {"failures", v.failures}});
@@ -55,96 +91,145 @@ nlohmann::json CrosscheckReport::ToJson() const {
   return j;
 }
 
-CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator, Defect defect) {
-  for (const std::string& b : backends) {
-    if (b != "reference" && b != "emulated") {
-      throw ConfigError("--backends", "'" + b + "' is not available; this build has: reference, emulated");
+namespace {
+
+// A verdict's note gathers what each backend contributed to it.
+void Note(LevelVerdict& verdict, const std::string& backend, const std::string& text) {
+  verdict.note += (verdict.note.empty() ? "" : " | ") + backend + ": " + text;
+}
+
+void JudgeEmulated(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const EmulatorOptions& emulator,
+                   Defect defect, CrosscheckReport& report, LevelVerdict& tables, LevelVerdict& ideal, LevelVerdict& determinism) {
+  const AccumulateKernelFn kernel = KernelWithDefect(defect);
+  EmulatedRun run;
+  try {
+    run = EmulatedFilter(batch, config, emulator, kernel);
+  } catch (const simt::KernelFault& fault) {
+    // No table to judge: the kernel wrote outside its buffers, which is itself the defect.
+    Fail(tables, std::string("emulated: the kernel faulted: ") + fault.what());
+    Note(ideal, "emulated", "not judged, the kernel faulted");
+    Note(determinism, "emulated", "not judged, the kernel faulted");
+    return;
+  }
+  for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, "emulated: " + v.ToString());
+
+  QualityFigures quality;
+  quality.backend = "emulated";
+  const std::vector<bool> aliased = Classify(run, quality);
+  report.quality.push_back(quality);
+
+  // Level 3: every record outside the classified ones sits in a slot equal to its reference cell.
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  std::string note = fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
+                     : !run.float_add_order.empty()
+                         ? "float32: counts exact outside the classified records; each slot's recorded order of adds, replayed by the reference, gives its bits"
+                         : "float32: counts exact outside the classified records (fast mode records no order; sums are bounded at level 2)";
+  for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
+    const std::uint32_t slot = std::uint32_t(entry / 3);
+    const int channel = int(entry % 3);
+    const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
+    if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
+      Fail(ideal, "emulated: slot " + std::to_string(slot) + " channel " + std::to_string(channel) + ": the replayed order of " +
+                      std::to_string(run.float_add_order[entry].size()) + " adds gives other bits");
     }
   }
-  const bool emulated = std::find(backends.begin(), backends.end(), "emulated") != backends.end();
+  LevelVerdict compared = ideal;
+  compared.note.clear();
+  CompareWithReference(batch, config, reference, run, aliased, "emulated: ", compared);
+  ideal.passed = compared.passed;
+  ideal.failures = compared.failures;
+  Note(ideal, "emulated", note + compared.note);
+
+  // Level 4: the same inputs again give the same bits (and, faithfully, the same trace).
+  const EmulatedRun again = EmulatedFilter(batch, config, emulator, kernel);
+  if (emulator.mode == simt::Mode::kFaithful) {
+    Note(determinism, "emulated", "faithful rerun: same trace hash and image");
+    if (again.launch.trace_hash != run.launch.trace_hash) Fail(determinism, "emulated: the trace hash changed between two identical runs");
+    if (!SameBits(again.image, run.image)) Fail(determinism, "emulated: the image changed between two identical runs");
+  } else if (quality.probe_failures == 0 && quality.aliased_slots == 0) {
+    Note(determinism, "emulated", "fast rerun with nothing failed or aliased: same image");
+    if (!SameBits(again.image, run.image)) Fail(determinism, "emulated: the image changed between two identical fast runs");
+  } else {
+    Note(determinism, "emulated", "not judged: fast mode with probe failures or aliases, which records fail depends on thread timing");
+  }
+}
+
+// Level 1: the Vulkan accumulate pass's key words, slot0 and fingerprint for every accepted record equal core's.
+void CompareKeys(const RecordBatch& batch, const FilterConfig& config, const HashedRun& run, LevelVerdict& keys) {
+  const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height),
+                                         std::uint32_t(batch.records.size()));
+  std::uint64_t compared = 0;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    if (CheckRecordInputs(batch.records[i]) != InputVerdict::kAccepted) continue;
+    const KeyResult expected = shared::ComputeKey(params, batch.records[i]);
+    const auto want = KeyResultWords(expected), got = KeyResultWords(run.keys[i]);
+    ++compared;
+    for (int w = 0; w < int(want.size()); ++w) {
+      if (want[w] != got[w]) {
+        Fail(keys, "record " + std::to_string(i) + ": " + KeyResultWordName(w) + " differs (core " + std::to_string(want[w]) +
+                       ", vulkan " + std::to_string(got[w]) + ")");
+        break;
+      }
+    }
+  }
+  keys.note = "vulkan accumulate pass against core, word for word: " + std::to_string(compared) + " accepted records compared";
+}
+
+void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const VulkanBackendOptions& options,
+                 CrosscheckReport& report, LevelVerdict& keys, LevelVerdict& tables, LevelVerdict& ideal, LevelVerdict& determinism) {
+  VulkanDevice device(options.device_filter);
+  report.vulkan_device = device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info + ")";
+  std::vector<std::uint32_t> spirv;
+  if (!options.accumulate_spv.empty()) spirv = ReadSpirvFile(options.accumulate_spv);
+  VulkanFilter filter(device, spirv, options.accumulate_spv.empty() ? "built-in" : options.accumulate_spv);
+  const VulkanRun run = filter.Run(batch, config);
+  keys.applicable = true;
+  CompareKeys(batch, config, run, keys);
+  for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, "vulkan: " + v.ToString());
+
+  QualityFigures quality;
+  quality.backend = "vulkan";
+  const std::vector<bool> aliased = Classify(run, quality);
+  report.quality.push_back(quality);
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  LevelVerdict compared = ideal;
+  compared.note.clear();
+  CompareWithReference(batch, config, reference, run, aliased, "vulkan: ", compared);
+  ideal.passed = compared.passed;
+  ideal.failures = compared.failures;
+  Note(ideal, "vulkan", std::string(fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
+                                          : "float32: counts exact outside the classified records; sums inside the bound at level 2") +
+                            compared.note);
+
+  if (fixed && quality.probe_failures == 0 && quality.aliased_slots == 0) {
+    const VulkanRun again = filter.Run(batch, config);
+    Note(determinism, "vulkan", "fixed64 rerun with nothing failed or aliased: same image");
+    if (!SameBits(again.image, run.image)) Fail(determinism, "vulkan: the image changed between two identical runs");
+  } else {
+    Note(determinism, "vulkan", "not judged: float32 sums or failed and aliased records depend on the device's order");
+  }
+}
+
+}  // namespace
+
+CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
+                            const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {
+  for (const std::string& b : backends) {
+    if (b != "reference" && b != "emulated" && b != "vulkan") {
+      throw ConfigError("--backends", "'" + b + "' is not a backend; expected reference, emulated or vulkan");
+    }
+  }
+  auto has = [&](const char* name) { return std::find(backends.begin(), backends.end(), name) != backends.end(); };
+  const bool hashed = has("emulated") || has("vulkan");
   CrosscheckReport report;
   LevelVerdict keys{1, "keys", false, true, "joins with the Vulkan backend; the emulator calls the same core code as the reference", {}};
-  LevelVerdict tables{2, "tables", emulated, true, emulated ? "table checker on every hashed backend" : "no hashed backend", {}};
-  LevelVerdict ideal{3, "agreement with the reference", emulated, true, "", {}};
-  LevelVerdict determinism{4, "determinism", emulated, true, "", {}};
+  LevelVerdict tables{2, "tables", hashed, true, hashed ? "table checker on every hashed backend" : "no hashed backend", {}};
+  LevelVerdict ideal{3, "agreement with the reference", hashed, true, "", {}};
+  LevelVerdict determinism{4, "determinism", hashed, true, "", {}};
 
   const FilterResult reference = ReferenceFilter(batch, config);
-  if (emulated) {
-    const AccumulateKernelFn kernel = KernelWithDefect(defect);
-    EmulatedRun run;
-    try {
-      run = EmulatedFilter(batch, config, emulator, kernel);
-    } catch (const simt::KernelFault& fault) {
-      // No table to judge: the kernel wrote outside its buffers, which is itself the defect.
-      Fail(tables, std::string("the emulated kernel faulted: ") + fault.what());
-      for (LevelVerdict* later : {&ideal, &determinism}) {
-        later->applicable = false;
-        later->note = "the emulated kernel faulted";
-      }
-      report.levels = {keys, tables, ideal, determinism};
-      return report;
-    }
-    for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, v.ToString());
-
-    QualityFigures quality;
-    quality.backend = "emulated";
-    const std::vector<bool> aliased = Classify(run, quality);
-    report.quality.push_back(quality);
-
-    // Level 3: every record outside the classified ones sits in a slot equal to its reference cell.
-    const bool fixed = config.accumulation == Accumulation::kFixed64;
-    ideal.note = fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
-                       : !run.float_add_order.empty()
-                           ? "float32: counts exact outside the classified records; each slot's recorded order of adds, replayed by the reference, gives its bits"
-                           : "float32: counts exact outside the classified records (fast mode records no order; sums are bounded at level 2)";
-    for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
-      const std::uint32_t slot = std::uint32_t(entry / 3);
-      const int channel = int(entry % 3);
-      const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
-      if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
-        Fail(ideal, "slot " + std::to_string(slot) + " channel " + std::to_string(channel) + ": the replayed order of " +
-                        std::to_string(run.float_add_order[entry].size()) + " adds gives other bits");
-      }
-    }
-    std::uint64_t compared = 0;
-    for (std::size_t i = 0; i < batch.records.size(); ++i) {
-      const std::uint32_t slot = run.placements[i], cell = reference.placement[i];
-      const bool classified = slot == kProbeFailure || (slot < run.table.capacity && aliased[slot]);
-      if (classified) continue;
-      if ((slot < run.table.capacity) != (cell != kNoCell)) {
-        Fail(ideal, "record " + std::to_string(i) + ": placed in the table but not in the reference, or the other way round");
-        continue;
-      }
-      if (cell == kNoCell) continue;
-      ++compared;
-      const TableCell& c = reference.cells[cell];
-      if (run.table.counts[slot] != c.count) {
-        Fail(ideal, "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": count " + std::to_string(run.table.counts[slot]) +
-                        ", reference " + std::to_string(c.count));
-      } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
-        Fail(ideal, "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": sums differ from the reference cell's");
-      }
-    }
-    ideal.note += "; " + std::to_string(compared) + " records compared";
-    if (fixed && quality.probe_failures == 0 && quality.aliased_slots == 0 && !SameBits(run.image, reference.image)) {
-      Fail(ideal, "nothing failed or aliased, yet the image differs from the reference");
-    }
-
-    // Level 4: the same inputs again give the same bits (and, faithfully, the same trace).
-    const EmulatedRun again = EmulatedFilter(batch, config, emulator, kernel);
-    if (emulator.mode == simt::Mode::kFaithful) {
-      determinism.note = "faithful rerun: same trace hash and image";
-      if (again.launch.trace_hash != run.launch.trace_hash) Fail(determinism, "the trace hash changed between two identical runs");
-      if (!SameBits(again.image, run.image)) Fail(determinism, "the image changed between two identical runs");
-    } else if (quality.probe_failures == 0 && quality.aliased_slots == 0) {
-      determinism.note = "fast rerun with nothing failed or aliased: same image";
-      if (!SameBits(again.image, run.image)) Fail(determinism, "the image changed between two identical fast runs");
-    } else {
-      determinism.applicable = false;
-      determinism.note = "fast mode with probe failures or aliases: which records fail depends on thread timing";
-    }
-  }
+  if (has("emulated")) JudgeEmulated(batch, config, reference, emulator, defect, report, tables, ideal, determinism);
+  if (has("vulkan")) JudgeVulkan(batch, config, reference, vulkan, report, keys, tables, ideal, determinism);
   report.levels = {keys, tables, ideal, determinism};
   return report;
 }

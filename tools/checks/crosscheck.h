@@ -37,14 +37,20 @@ struct QualityFigures {
 struct CrosscheckReport {
   std::vector<LevelVerdict> levels;
   std::vector<QualityFigures> quality;
+  std::string vulkan_device;  // name and driver, when the Vulkan backend ran
   bool Passed() const;
   nlohmann::json ToJson() const;  // versioned
 };
 
-// backends: "reference" and "emulated" (the reference is always run: it is the ideal).
+struct VulkanBackendOptions {
+  std::string device_filter;   // --vk-device: a substring of the device name; empty picks the best
+  std::string accumulate_spv;  // --accumulate-spv: a user's accumulate shader; empty for the built-in one
+};
+
+// backends: "reference", "emulated", "vulkan" (the reference is always run: it is the ideal).
 // defect: a known broken kernel for the emulated backend, to show the gate fails.
 CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator, Defect defect = Defect::kNone);
+                            const EmulatorOptions& emulator, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
 
 }  // namespace hpsf
 

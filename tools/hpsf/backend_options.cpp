@@ -12,6 +12,9 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--warp-size", flags.options.warp_size, "Emulated warp size: 8 (lavapipe), 32, 64")->capture_default_str();
   command.add_option("--schedule", flags.options.schedule, "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH (exhaustive: tests only, up to 2 threads)")
       ->capture_default_str();
+  command.add_option("--vk-device", flags.vulkan.device_filter, "Vulkan backend: the device whose name contains this text");
+  command.add_option("--accumulate-spv", flags.vulkan.accumulate_spv,
+                     "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface (README)");
   command.add_option("--inject-defect", flags.defect, "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D13)")
       ->capture_default_str();
 }
@@ -32,8 +35,8 @@ EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags) {
 }
 
 void CheckBackend(const std::string& backend) {
-  if (backend != "reference" && backend != "emulated") {
-    throw ConfigError("--backend", "'" + backend + "' is not available; this build has: reference, emulated");
+  if (backend != "reference" && backend != "emulated" && backend != "vulkan") {
+    throw ConfigError("--backend", "'" + backend + "' is not available; this build has: reference, emulated, vulkan");
   }
 }
 
@@ -63,18 +66,39 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
   return j;
 }
 
+nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
+  std::uint64_t slots_used = 0;
+  for (SlotTag tag : run.table.tags) slots_used += tag != kEmptyTag;
+  return {{"device", device.name},
+          {"driver", device.driver_name + " (" + device.driver_info + ")"},
+          {"accumulate_shader", run.accumulate_shader},
+          {"probe_failures", run.probe_failures},
+          {"fixed64_wraps", run.wraps},
+          {"slots_used", slots_used},
+          {"probe_lengths", run.probe_lengths},
+          {"fixed_point_bits", run.table.fixed_point_bits}};
+}
+
 BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
-                         const EmulatorOptions& emulator, Defect defect) {
+                         const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {
   CheckBackend(backend);
   BackendOutput out;
   if (backend == "reference") {
     out.reference = ReferenceFilter(batch, config);
     out.image = out.reference->image;
     out.stats = ToJson(out.reference->stats);
-  } else {
+  } else if (backend == "emulated") {
     out.emulated = EmulatedFilter(batch, config, emulator, KernelWithDefect(defect));
     out.image = out.emulated->image;
     out.stats = ToJson(*out.emulated, emulator);
+  } else {
+    VulkanDevice device(vulkan.device_filter);
+    std::vector<std::uint32_t> spirv;
+    if (!vulkan.accumulate_spv.empty()) spirv = ReadSpirvFile(vulkan.accumulate_spv);
+    VulkanFilter filter(device, spirv, vulkan.accumulate_spv.empty() ? "built-in" : vulkan.accumulate_spv);
+    out.vulkan = filter.Run(batch, config);
+    out.image = out.vulkan->image;
+    out.stats = ToJson(*out.vulkan, device.info());
   }
   return out;
 }

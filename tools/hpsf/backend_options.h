@@ -13,6 +13,8 @@
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
+#include "tools/checks/crosscheck.h"
+#include "vulkan/vulkan_filter.h"
 
 namespace hpsf {
 
@@ -20,12 +22,14 @@ struct EmulatorFlags {
   std::string mode = "fast";
   std::string defect = "none";
   EmulatorOptions options;
+  VulkanBackendOptions vulkan;  // --vk-device, --accumulate-spv
 };
 
 void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags);
 EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags);  // ConfigError naming the option
 
-// Backends this build has: reference, emulated.
+// Backends this build has: reference, emulated, vulkan.
+// The emulator's options and the Vulkan backend's (--vk-device, --accumulate-spv).
 void CheckBackend(const std::string& backend);
 
 struct BackendOutput {
@@ -33,10 +37,11 @@ struct BackendOutput {
   nlohmann::json stats;
   std::optional<FilterResult> reference;
   std::optional<EmulatedRun> emulated;
+  std::optional<VulkanRun> vulkan;
 };
 
 BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
-                         const EmulatorOptions& emulator, Defect defect = Defect::kNone);
+                         const EmulatorOptions& emulator, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
 

@@ -19,7 +19,7 @@ namespace {
 
 struct CrosscheckOptions {
   std::string input;
-  std::string backends = "reference,emulated";
+  std::string backends = "reference,emulated,vulkan";
   std::string repro_dir = "hpsf-repro";
   std::uint32_t size = 128;
   TraceOptions trace;
@@ -73,7 +73,7 @@ int Run(CrosscheckOptions& o) {
     o.trace.Validate();
     batch = TraceRecords(LoadScene(o.input), o.trace).batch;
   }
-  const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator, ParseDefect(o.emulator.defect));
+  const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan);
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {
@@ -82,6 +82,7 @@ int Run(CrosscheckOptions& o) {
                 << v.note << ")\n";
       for (const std::string& f : v.failures) std::cout << "  " << f << "\n";
     }
+    if (!report.vulkan_device.empty()) std::cout << "vulkan device: " << report.vulkan_device << "\n";
     for (const QualityFigures& q : report.quality) {
       std::cout << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
                 << ", records in aliased slots " << q.aliased_records << "\n";
@@ -98,7 +99,7 @@ void AddCrosscheckCommand(CLI::App& app, int* exit_code) {
   auto o = std::make_shared<CrosscheckOptions>();
   CLI::App* c = app.add_subcommand("crosscheck", "Run the backends on one batch and judge them by the cross-check contract");
   c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
-  c->add_option("--backends", o->backends, "Comma-separated: reference, emulated")->capture_default_str();
+  c->add_option("--backends", o->backends, "Comma-separated: reference, emulated, vulkan")->capture_default_str();
   c->add_option("--size", o->size, "Traced image width and height")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded")->capture_default_str();

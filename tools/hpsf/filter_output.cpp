@@ -22,7 +22,7 @@ nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& opt
   const FilterConfig config = ResolveFilterConfig(options);
   nlohmann::json report;
   const auto filter_start = std::chrono::steady_clock::now();
-  const BackendOutput result = RunBackend(request.backend, batch, config, request.emulator, request.defect);
+  const BackendOutput result = RunBackend(request.backend, batch, config, request.emulator, request.defect, request.vulkan);
   const double filter_seconds = SecondsSince(filter_start);
   const Image image = options.no_filter ? UnfilteredImage(batch) : result.image;
   const int fixed_point_bits = result.reference ? result.reference->stats.fixed_point_bits : result.emulated->table.fixed_point_bits;

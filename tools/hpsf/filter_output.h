@@ -19,6 +19,7 @@ struct OutputRequest {
   std::string output;   // OUT.exr
   EmulatorOptions emulator;
   Defect defect = Defect::kNone;
+  VulkanBackendOptions vulkan;
 };
 
 nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request);

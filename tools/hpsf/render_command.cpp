@@ -59,7 +59,7 @@ void RunRender(RenderOptions& o) {
   const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
 
-  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output, emulator, ParseDefect(o.emulator.defect)});
+  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output, emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan});
   report["version"] = 1;
   report["command"] = "render";
   report["scene"] = scene.name;
@@ -87,7 +87,7 @@ void RunReplay(const ReplayOptions& o) {
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ResolveFilterConfig(o.filter);
   const RecordBatch batch = ReadRecordFile(o.records);
-  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output, emulator, ParseDefect(o.emulator.defect)});
+  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output, emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan});
   report["version"] = 1;
   report["command"] = "replay";
   report["records_file"] = o.records;

@@ -1,0 +1,33 @@
+// What every hashed backend (emulated, Vulkan) returns from one frame: the image, the table's final state, and
+// per record its key and placement, which is all the table checker and the cross-check need to judge it.
+#ifndef HPSF_CORE_HASHED_RUN_H
+#define HPSF_CORE_HASHED_RUN_H
+
+#include <cstdint>
+#include <vector>
+
+#include "core/hash_table.h"
+#include "core/image.h"
+#include "core/key_batch.h"
+
+namespace hpsf {
+
+struct HashedRun {
+  Image image;
+  HashTableDump table;
+  std::vector<KeyResult> keys;            // per record
+  std::vector<std::uint32_t> placements;  // per record: a slot, kProbeFailure or kNotPlaced
+  std::uint64_t probe_failures = 0;
+  std::uint64_t wraps = 0;                   // fixed64 adds whose sum wrapped
+  std::vector<std::uint64_t> probe_lengths;  // [k]: records placed after probing k + 1 slots
+};
+
+// Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).
+std::vector<bool> AliasedSlots(const HashedRun& run);
+
+// Probe failures and the probe-length histogram, from the placements and slot0 of each record.
+void CountProbes(HashedRun& run);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_HASHED_RUN_H

@@ -1,0 +1,27 @@
+// The part of a filter run that the accumulate pass reads besides the key parameters: the table's shape and
+// the fixed-point scale, one block of 32-bit scalars shared by C++ and GLSL (after KeyParams in the
+// accumulate shader's push constants).
+#ifndef HPSF_CORE_SHARED_TABLE_PARAMS_H
+#define HPSF_CORE_SHARED_TABLE_PARAMS_H
+
+#include "prelude.h"
+
+HPSF_SHARED_BEGIN
+
+const uint kAccumulateFixed64 = 0u;
+const uint kAccumulateFloat32 = 1u;
+
+// Placement of a record that holds no slot (core/hash_table.h names them for the host).
+const uint kPlacementNotPlaced = 0xFFFFFFFFu;    // no vertex, unkeyable or rejected: never probed
+const uint kPlacementProbeFailure = 0xFFFFFFFEu;  // probed its whole window without finding a slot
+
+struct TableParams {
+  uint capacity;            // a power of two
+  uint probe_limit;         // slots probed from slot0, wrapping at capacity
+  float fixed_point_scale;  // 2^F, fixed64 only
+  uint accumulation;        // kAccumulateFixed64 or kAccumulateFloat32
+};
+
+HPSF_SHARED_END
+
+#endif  // HPSF_CORE_SHARED_TABLE_PARAMS_H

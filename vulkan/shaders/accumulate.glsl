@@ -1,0 +1,56 @@
+// The accumulate pass of DESIGN.md, "The algorithm", one invocation per record: the key from core/shared, then
+// bounded linear probing from slot0; a slot whose tag is the fingerprint is joined, an empty one claimed with
+// atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
+// reports wrap from the add's return value. accumulate_fixed64.comp and accumulate_float32.comp define the
+// sums type and include this.
+#extension GL_GOOGLE_include_directive : require
+#include "../../core/shared/prelude.h"
+#include "float_controls.glsl"
+#include "../../core/shared/key.h"
+#include "../../core/shared/fixed_point.h"
+#include "../../core/shared/table_params.h"
+#include "table_interface.glsl"
+
+layout(local_size_x = 128) in;
+
+void AddToSlot(uint slot, Record r) {
+  for (uint c = 0u; c < 3u; ++c) {
+#ifdef HPSF_FIXED64
+    uint64_t add = ToFixedPoint(r.contribution[c], table.fixed_point_scale);
+    uint64_t old = atomicAdd(sums[slot * 3u + c], add);
+    if (old + add < old) atomicAdd(wraps, uint64_t(1));
+#else
+    atomicAdd(sums[slot * 3u + c], r.contribution[c]);
+#endif
+  }
+  atomicAdd(counts[slot], uint64_t(1));
+}
+
+void main() {
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  for (uint i = gl_GlobalInvocationID.x; i < params.record_count; i += stride) {
+    if (accepted[i] == 0u) {  // rejected on the host: its bits may be NaN, so no key is computed
+      StoreKeyResult(i, EmptyKeyResult(kKeyNoVertex));
+      placements[i] = kPlacementNotPlaced;
+      continue;
+    }
+    Record r = LoadRecord(i);
+    KeyResult k = ComputeKey(params, r);
+    StoreKeyResult(i, k);
+    uint placement = kPlacementNotPlaced;
+    if (k.status == kKeyed) {
+      placement = kPlacementProbeFailure;
+      for (uint probe = 0u; probe < table.probe_limit; ++probe) {
+        uint slot = (k.slot0 + probe) & (table.capacity - 1u);
+        uint tag = tags[slot];
+        if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, k.fingerprint);
+        // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
+        if (tag != 0u && tag != k.fingerprint) continue;
+        AddToSlot(slot, r);
+        placement = slot;
+        break;
+      }
+    }
+    placements[i] = placement;
+  }
+}

@@ -1,0 +1,35 @@
+// The stable buffer interface of the Vulkan hash table (README, "The Vulkan backend"): every accumulate shader,
+// ours or a user's (--accumulate-spv), sees these bindings in descriptor set 0 and these push constants, and
+// the host reads the table back from them and judges it with the table checker.
+//   0 records     uniform texel buffer, RGBA32UI, 9 texels per record (record_texels.glsl)   read
+//   1 keys        uvec4[3 n]: KeyResult per record (key words, slot0, fingerprint, level, status) write
+//   2 tags        uint[capacity], zeroed                                                      atomics
+//   3 sums        uint64_t[3 capacity] (fixed64) or float[3 capacity] (float32), slot * 3 + c, zeroed
+//   4 counts      uint64_t[capacity], zeroed                                                  atomics
+//   5 placements  uint[n]: slot, kPlacementProbeFailure or kPlacementNotPlaced                write
+//   6 stats       uint64_t wraps: fixed64 adds whose sum wrapped, zeroed                      atomics
+//   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
+// Push constants: KeyParams (64 bytes), then TableParams (16 bytes).
+// The includer defines HPSF_SUMS_TYPE (uint64_t or float).
+#define HPSF_RECORDS_BINDING 0
+#include "record_texels.glsl"
+
+layout(std430, binding = 1) writeonly buffer Keys { uvec4 key_vectors[]; };
+layout(std430, binding = 2) buffer Tags { uint tags[]; };
+layout(std430, binding = 3) buffer Sums { HPSF_SUMS_TYPE sums[]; };
+layout(std430, binding = 4) buffer Counts { uint64_t counts[]; };
+layout(std430, binding = 5) writeonly buffer Placements { uint placements[]; };
+layout(std430, binding = 6) buffer Stats { uint64_t wraps; };
+layout(std430, binding = 7) readonly buffer Accepted { uint accepted[]; };
+layout(push_constant) uniform Params {
+  KeyParams params;
+  TableParams table;
+};
+
+// KeyResult as three uvec4: one store per vector instead of one per word.
+void StoreKeyResult(uint i, KeyResult k) {
+  uint first = i * 3u;
+  key_vectors[first] = uvec4(k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level);
+  key_vectors[first + 1u] = uvec4(k.words.normal, k.words.extra, k.slot0, k.fingerprint);
+  key_vectors[first + 2u] = uvec4(uint(k.level), k.status, k.padding0, k.padding1);
+}

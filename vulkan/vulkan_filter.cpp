@@ -1,0 +1,214 @@
+#include "vulkan/vulkan_filter.h"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <optional>
+
+#include "accumulate_fixed64_spv.h"
+#include "accumulate_float32_spv.h"
+#include "core/error.h"
+#include "core/fixed_point_scale.h"
+#include "core/footprint.h"
+#include "core/input_check.h"
+#include "core/resolve.h"
+#include "core/shared/fixed_point.h"
+#include "core/shared/table_params.h"
+#include "resolve_fixed64_spv.h"
+#include "resolve_float32_spv.h"
+#include "vulkan/vulkan_internal.h"
+
+namespace hpsf {
+
+using vulkan_internal::BindingKind;
+using vulkan_internal::ComputeProgram;
+using vulkan_internal::HostBuffer;
+
+namespace {
+
+constexpr std::uint32_t kAccumulateWorkgroup = 128;  // accumulate.glsl's local_size_x
+constexpr std::uint32_t kResolveWorkgroup = 64;      // resolve.glsl's local_size_x
+constexpr std::uint32_t kMaxWorkgroups = 65535;      // the guaranteed minimum of maxComputeWorkGroupCount[0]
+
+struct AccumulatePush {
+  KeyParams key;
+  shared::TableParams table;
+};
+static_assert(sizeof(AccumulatePush) == 80, "push constants of table_interface.glsl");
+
+struct ResolvePush {
+  double unscale;
+  std::uint32_t capacity;
+  std::uint32_t pixel_count;
+  std::uint32_t samples_per_pixel;
+  std::uint32_t reserved;
+};
+static_assert(sizeof(ResolvePush) == 24, "push constants of resolve.glsl");
+
+// The stable interface: binding i of table_interface.glsl.
+constexpr BindingKind kAccumulateBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                               BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                               BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
+constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+
+std::uint32_t Groups(std::uint32_t items, std::uint32_t workgroup) {
+  return std::clamp<std::uint32_t>((items + workgroup - 1) / workgroup, 1, kMaxWorkgroups);
+}
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+struct VulkanFilter::Impl {
+  VulkanDevice::Impl& device;
+  std::vector<std::uint32_t> custom_accumulate;
+  std::string accumulate_name;
+  std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
+  std::optional<ComputeProgram> resolve[2];
+  HostBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels;
+
+  ComputeProgram& Accumulate(Accumulation mode) {
+    const int m = mode == Accumulation::kFixed64 ? 0 : 1;
+    if (!accumulate[m]) {
+      std::span<const std::uint32_t> spirv = custom_accumulate;
+      if (spirv.empty()) spirv = m == 0 ? std::span<const std::uint32_t>(accumulate_fixed64_spv) : std::span<const std::uint32_t>(accumulate_float32_spv);
+      accumulate[m] = vulkan_internal::CreateComputeProgram(device, spirv, kAccumulateBindings, sizeof(AccumulatePush));
+    }
+    return *accumulate[m];
+  }
+  ComputeProgram& Resolve(Accumulation mode) {
+    const int m = mode == Accumulation::kFixed64 ? 0 : 1;
+    if (!resolve[m]) {
+      const std::span<const std::uint32_t> spirv =
+          m == 0 ? std::span<const std::uint32_t>(resolve_fixed64_spv) : std::span<const std::uint32_t>(resolve_float32_spv);
+      resolve[m] = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
+    }
+    return *resolve[m];
+  }
+  void Ensure(HostBuffer& buffer, vk::DeviceSize bytes) {
+    if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateHostBuffer(device, bytes);
+  }
+};
+
+VulkanFilter::VulkanFilter(VulkanDevice& device, std::vector<std::uint32_t> accumulate_spirv, std::string accumulate_name)
+    : impl_(new Impl{device.impl(), std::move(accumulate_spirv), std::move(accumulate_name), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {}
+
+VulkanFilter::~VulkanFilter() = default;
+
+VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config) {
+  CheckBatchShape(batch);
+  config.Validate();
+  Impl& p = *impl_;
+  const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  const vk::DeviceSize storage_range = p.device.physical.getProperties().limits.maxStorageBufferRange;
+  if (vk::DeviceSize(config.capacity) * 3 * 8 > storage_range) {
+    throw ConfigError("--capacity", std::to_string(config.capacity) + " slots need " + std::to_string(std::uint64_t(config.capacity) * 24) +
+                                        " bytes of sums, more than the " + std::to_string(storage_range) + " bytes '" + p.device.info.name +
+                                        "' can bind");
+  }
+  if (vk::DeviceSize(n) * sizeof(KeyResult) > storage_range) {
+    throw InputError("record batch: " + std::to_string(n) + " records need " + std::to_string(std::uint64_t(n) * sizeof(KeyResult)) +
+                     " bytes of keys, more than the " + std::to_string(storage_range) + " bytes '" + p.device.info.name + "' can bind");
+  }
+
+  VulkanRun run;
+  run.accumulate_shader = p.accumulate_name;
+  HashTableDump& table = run.table;
+  table.capacity = config.capacity;
+  table.probe_limit = config.probe_limit;
+  table.fingerprint_bits = config.fingerprint_bits;
+  table.accumulation = config.accumulation;
+  table.fixed_point_bits = ChooseFixedPointBits(batch.records);
+
+  // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record).
+  auto start = std::chrono::steady_clock::now();
+  p.Ensure(p.records, batch.records.size() * sizeof(Record));
+  p.Ensure(p.keys, vk::DeviceSize(n) * sizeof(KeyResult));
+  p.Ensure(p.tags, vk::DeviceSize(config.capacity) * 4);
+  p.Ensure(p.sums, vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4));
+  p.Ensure(p.counts, vk::DeviceSize(config.capacity) * 8);
+  p.Ensure(p.placements, vk::DeviceSize(n) * 4);
+  p.Ensure(p.stats, 8);
+  p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
+  p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
+  if (n > 0) std::memcpy(p.records.mapped, batch.records.data(), batch.records.size() * sizeof(Record));
+  auto* accepted = static_cast<std::uint32_t*>(p.accepted.mapped);
+  for (std::uint32_t i = 0; i < n; ++i) accepted[i] = CheckRecordInputs(batch.records[i]) == InputVerdict::kAccepted;
+  run.timings.upload_ms = MillisecondsSince(start);
+
+  // Accumulate: clear the table, then one invocation per record.
+  ComputeProgram& accumulate = p.Accumulate(config.accumulation);
+  HostBuffer* const accumulate_buffers[] = {&p.records, &p.keys, &p.tags, &p.sums, &p.counts, &p.placements, &p.stats, &p.accepted};
+  vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
+  AccumulatePush push{MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
+                      {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
+                       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32}};
+  run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+    for (HostBuffer* cleared : {&p.tags, &p.sums, &p.counts, &p.stats}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
+    const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared, nullptr, nullptr);
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *accumulate.pipeline);
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *accumulate.layout, 0, *accumulate.set, nullptr);
+    cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
+    cb.dispatch(Groups(n, kAccumulateWorkgroup), 1, 1);
+  });
+
+  // Resolve: a separate pass, one invocation per pixel.
+  ComputeProgram& resolve = p.Resolve(config.accumulation);
+  HostBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
+  vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
+  const std::uint32_t pixel_count = batch.width * batch.height;
+  const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits), config.capacity, pixel_count, batch.samples_per_pixel, 0};
+  run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
+    cb.pushConstants<ResolvePush>(*resolve.layout, vk::ShaderStageFlagBits::eCompute, 0, resolve_push);
+    cb.dispatch(Groups(pixel_count, kResolveWorkgroup), 1, 1);
+  });
+
+  // Read-back.
+  start = std::chrono::steady_clock::now();
+  run.image = Image(batch.width, batch.height);
+  std::memcpy(run.image.pixels.data(), p.pixels.mapped, std::size_t(pixel_count) * 3 * sizeof(float));
+  run.keys.resize(n);
+  if (n > 0) std::memcpy(run.keys.data(), p.keys.mapped, std::size_t(n) * sizeof(KeyResult));
+  run.placements.resize(n);
+  if (n > 0) std::memcpy(run.placements.data(), p.placements.mapped, std::size_t(n) * 4);
+  table.tags.resize(config.capacity);
+  std::memcpy(table.tags.data(), p.tags.mapped, std::size_t(config.capacity) * 4);
+  table.counts.resize(config.capacity);
+  std::memcpy(table.counts.data(), p.counts.mapped, std::size_t(config.capacity) * 8);
+  if (fixed) {
+    table.fixed_sums.resize(config.capacity);
+    std::memcpy(table.fixed_sums.data(), p.sums.mapped, std::size_t(config.capacity) * 24);
+  } else {
+    table.float_sums.resize(config.capacity);
+    std::memcpy(table.float_sums.data(), p.sums.mapped, std::size_t(config.capacity) * 12);
+  }
+  std::memcpy(&run.wraps, p.stats.mapped, 8);
+  run.timings.read_back_ms = MillisecondsSince(start);
+  CountProbes(run);
+  return run;
+}
+
+std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the SPIR-V file");
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty() || bytes.size() % 4 != 0) {
+    throw InputError(path + ": " + std::to_string(bytes.size()) + " bytes is not a whole number of 32-bit SPIR-V words");
+  }
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  if (words[0] != 0x07230203u) throw InputError(path + ": byte 0: not SPIR-V (magic number 0x07230203 expected)");
+  return words;
+}
+
+}  // namespace hpsf

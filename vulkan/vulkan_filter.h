@@ -1,0 +1,57 @@
+// The Vulkan backend: the GPU hash table as GLSL compute shaders (vulkan/shaders/accumulate_*.comp, then
+// resolve_*.comp) on a VulkanDevice, through the stable buffer interface of table_interface.glsl. Returns the
+// image, the table, and per record its key and placement, read back for the table checker and the
+// cross-check; device times from timestamp queries.
+#ifndef HPSF_VULKAN_VULKAN_FILTER_H
+#define HPSF_VULKAN_VULKAN_FILTER_H
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/filter_config.h"
+#include "core/hashed_run.h"
+#include "core/record.h"
+#include "vulkan/vulkan_device.h"
+
+namespace hpsf {
+
+struct VulkanTimings {
+  double upload_ms = 0;      // host: records and input verdicts into mapped device memory
+  double accumulate_ms = 0;  // device timestamps: clearing the table and the accumulate dispatch
+  double resolve_ms = 0;     // device timestamps: the resolve dispatch
+  double read_back_ms = 0;   // host: image, table, keys and placements out of device memory
+  double Total() const { return upload_ms + accumulate_ms + resolve_ms + read_back_ms; }
+};
+
+struct VulkanRun : HashedRun {
+  VulkanTimings timings;
+  std::string accumulate_shader;  // "built-in" or the file given with --accumulate-spv
+};
+
+class VulkanFilter {
+ public:
+  // accumulate_spirv: a user's accumulate shader (SPIR-V words) to run in place of the built-in one, through
+  // the same bindings; empty for the built-in shaders.
+  explicit VulkanFilter(VulkanDevice& device, std::vector<std::uint32_t> accumulate_spirv = {},
+                        std::string accumulate_name = "built-in");
+  ~VulkanFilter();
+  VulkanFilter(const VulkanFilter&) = delete;
+  VulkanFilter& operator=(const VulkanFilter&) = delete;
+
+  // Throws ConfigError when the table or the batch exceeds what the device can bind.
+  VulkanRun Run(const RecordBatch& batch, const FilterConfig& config);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Reads a SPIR-V binary; InputError naming the file when it is missing, empty or not SPIR-V.
+std::vector<std::uint32_t> ReadSpirvFile(const std::string& path);
+
+}  // namespace hpsf
+
+#endif  // HPSF_VULKAN_VULKAN_FILTER_H
