@@ -76,7 +76,10 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
           {"fixed64_wraps", run.wraps},
           {"slots_used", slots_used},
           {"probe_lengths", run.probe_lengths},
-          {"fixed_point_bits", run.table.fixed_point_bits}};
+          {"fixed_point_bits", run.table.fixed_point_bits},
+          {"timings_ms",
+           {{"upload", run.timings.upload_ms}, {"accumulate", run.timings.accumulate_ms}, {"resolve", run.timings.resolve_ms},
+            {"read_back", run.timings.read_back_ms}}}};
 }
 
 BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,

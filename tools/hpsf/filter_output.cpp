@@ -62,6 +62,11 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
     std::cout << "records " << s["records"] << ", without vertex " << s["records_without_vertex"] << ", unkeyable "
               << s["unkeyable"] << ", rejected " << s["rejected_non_finite"].get<std::uint64_t>() + s["rejected_negative"].get<std::uint64_t>()
               << ", cells " << s["cells"] << ", F " << s["fixed_point_bits"] << "\n";
+  } else if (s.contains("device")) {
+    std::cout << "vulkan on " << s["device"].get<std::string>() << ": slots used " << s["slots_used"] << ", probe failures "
+              << s["probe_failures"] << ", F " << s["fixed_point_bits"] << "; ms upload " << s["timings_ms"]["upload"] << ", accumulate "
+              << s["timings_ms"]["accumulate"] << ", resolve " << s["timings_ms"]["resolve"] << ", read-back " << s["timings_ms"]["read_back"]
+              << "\n";
   } else {
     std::cout << "emulated (" << s["mode"].get<std::string>() << "): slots used " << s["slots_used"] << ", probe failures "
               << s["probe_failures"] << ", F " << s["fixed_point_bits"]

@@ -13,9 +13,14 @@
 
 layout(local_size_x = 128) in;
 
+// The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
+// _D13, each exactly one change) and runs the variants through --accumulate-spv: the gate must catch each.
+
 void AddToSlot(uint slot, Record r) {
   for (uint c = 0u; c < 3u; ++c) {
-#ifdef HPSF_FIXED64
+#if defined(HPSF_DEFECT_D9)  // read-modify-write without an atomic: lost updates
+    sums[slot * 3u + c] += ToFixedPoint(r.contribution[c], table.fixed_point_scale);
+#elif defined(HPSF_FIXED64)
     uint64_t add = ToFixedPoint(r.contribution[c], table.fixed_point_scale);
     uint64_t old = atomicAdd(sums[slot * 3u + c], add);
     if (old + add < old) atomicAdd(wraps, uint64_t(1));
@@ -23,7 +28,11 @@ void AddToSlot(uint slot, Record r) {
     atomicAdd(sums[slot * 3u + c], r.contribution[c]);
 #endif
   }
+#if defined(HPSF_DEFECT_D9)
+  counts[slot] += uint64_t(1);
+#else
   atomicAdd(counts[slot], uint64_t(1));
+#endif
 }
 
 void main() {
@@ -40,15 +49,30 @@ void main() {
     uint placement = kPlacementNotPlaced;
     if (k.status == kKeyed) {
       placement = kPlacementProbeFailure;
+#if defined(HPSF_DEFECT_D3)  // the reduced fingerprint without its 0 -> 1 fix: may equal the empty tag
+      uint fingerprint = FullFingerprint(k.words) >> (32u - params.fingerprint_bits);
+#else
+      uint fingerprint = k.fingerprint;
+#endif
       for (uint probe = 0u; probe < table.probe_limit; ++probe) {
+#if defined(HPSF_DEFECT_D8)  // the probe index clamped to the last slot instead of wrapped
+        uint slot = min(k.slot0 + probe, table.capacity - 1u);
+#else
         uint slot = (k.slot0 + probe) & (table.capacity - 1u);
+#endif
         uint tag = tags[slot];
-        if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, k.fingerprint);
+#if defined(HPSF_DEFECT_D13)  // claimed by a plain store after the load: two keys race for one empty slot
+        if (tag == 0u) tags[slot] = fingerprint;
+#else
+        if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, fingerprint);
+#endif
         // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
-        if (tag != 0u && tag != k.fingerprint) continue;
+        if (tag != 0u && tag != fingerprint) continue;
         AddToSlot(slot, r);
         placement = slot;
+#if !defined(HPSF_DEFECT_D2)  // D2 keeps probing after a match and adds again (Meijer Algorithm 4)
         break;
+#endif
       }
     }
     placements[i] = placement;
