@@ -15,7 +15,7 @@
 #include "core/footprint.h"
 #include "core/input_check.h"
 #include "core/resolve.h"
-#include "emulated/simt/huge_pages.h"
+#include "core/huge_pages.h"
 
 namespace hpsf {
 namespace {
@@ -53,11 +53,11 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   // Keys on all cores: each is a function of its record alone.
   // The same pass notes which records pass the input checks and gathers, for F, the contributions of those
   // that enter the table.
-  simt::ResizeOnHugePages(run.keys, n);
+  ResizeOnHugePages(run.keys, n);
   std::vector<std::uint8_t> accepted;
-  simt::ResizeOnHugePages(accepted, n);
+  ResizeOnHugePages(accepted, n);
   std::vector<glm::vec3> entering;
-  simt::ResizeOnHugePages(entering, n);
+  ResizeOnHugePages(entering, n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 4096), [&](const tbb::blocked_range<std::uint32_t>& range) {
     for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
       const Record& r = batch.records[i];
@@ -119,9 +119,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.placements = memory.TakeWords32(b.placements);
   run.wraps = memory.Words64(b.wraps)[0];
   if (fixed) {
-    simt::ResizeOnHugePages(table.fixed_sums, config.capacity);
+    ResizeOnHugePages(table.fixed_sums, config.capacity);
   } else {
-    simt::ResizeOnHugePages(table.float_sums, config.capacity);
+    ResizeOnHugePages(table.float_sums, config.capacity);
   }
   const std::span<const std::uint64_t> fixed_words = std::as_const(memory).Words64(b.sums);
   const std::span<const std::uint32_t> float_words = std::as_const(memory).Words32(b.sums);

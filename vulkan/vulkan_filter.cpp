@@ -8,11 +8,14 @@
 #include <fstream>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "accumulate_fixed64_spv.h"
 #include "accumulate_float32_spv.h"
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
+#include "core/huge_pages.h"
 #include "core/input_check.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
@@ -57,6 +60,20 @@ constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, Bi
 
 std::uint32_t Groups(std::uint32_t items, std::uint32_t workgroup) {
   return std::clamp<std::uint32_t>((items + workgroup - 1) / workgroup, 1, kMaxWorkgroups);
+}
+
+struct CopyOut {
+  void* to;
+  const void* from;
+  std::size_t bytes;
+};
+
+void ParallelCopy(const CopyOut& copy) {
+  constexpr std::size_t kChunk = std::size_t(1) << 22;
+  tbb::parallel_for(std::size_t(0), (copy.bytes + kChunk - 1) / kChunk, [&](std::size_t chunk) {
+    const std::size_t begin = chunk * kChunk;
+    std::memcpy(static_cast<char*>(copy.to) + begin, static_cast<const char*>(copy.from) + begin, std::min(kChunk, copy.bytes - begin));
+  });
 }
 
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
@@ -125,7 +142,6 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   table.probe_limit = config.probe_limit;
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
-  table.fixed_point_bits = ChooseFixedPointBits(batch.records);
 
   // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record).
   auto start = std::chrono::steady_clock::now();
@@ -138,10 +154,20 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.stats, 8);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
-  if (n > 0) std::memcpy(p.records.mapped, batch.records.data(), batch.records.size() * sizeof(Record));
+  auto* records = static_cast<Record*>(p.records.mapped);
   auto* accepted = static_cast<std::uint32_t*>(p.accepted.mapped);
-  for (std::uint32_t i = 0; i < n; ++i) accepted[i] = CheckRecordInputs(batch.records[i]) == InputVerdict::kAccepted;
+  std::vector<glm::vec3> entering;  // for F: the contributions of the records that enter the table, else zero
+  ResizeOnHugePages(entering, n);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
+    std::memcpy(records + range.begin(), batch.records.data() + range.begin(), range.size() * sizeof(Record));
+    for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
+      const Record& r = batch.records[i];
+      accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
+      entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
+    }
+  });
   run.timings.upload_ms = MillisecondsSince(start);
+  table.fixed_point_bits = ChooseFixedPointBitsOf(entering);  // the host's pre-pass
 
   // Accumulate: clear the table, then one invocation per record.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
@@ -173,26 +199,27 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.dispatch(Groups(pixel_count, kResolveWorkgroup), 1, 1);
   });
 
-  // Read-back.
+  // Read-back, in parallel chunks, into arrays on huge pages.
   start = std::chrono::steady_clock::now();
   run.image = Image(batch.width, batch.height);
-  std::memcpy(run.image.pixels.data(), p.pixels.mapped, std::size_t(pixel_count) * 3 * sizeof(float));
-  run.keys.resize(n);
-  if (n > 0) std::memcpy(run.keys.data(), p.keys.mapped, std::size_t(n) * sizeof(KeyResult));
-  run.placements.resize(n);
-  if (n > 0) std::memcpy(run.placements.data(), p.placements.mapped, std::size_t(n) * 4);
-  table.tags.resize(config.capacity);
-  std::memcpy(table.tags.data(), p.tags.mapped, std::size_t(config.capacity) * 4);
-  table.counts.resize(config.capacity);
-  std::memcpy(table.counts.data(), p.counts.mapped, std::size_t(config.capacity) * 8);
+  ResizeOnHugePages(run.keys, n);
+  ResizeOnHugePages(run.placements, n);
+  ResizeOnHugePages(table.tags, config.capacity);
+  ResizeOnHugePages(table.counts, config.capacity);
   if (fixed) {
-    table.fixed_sums.resize(config.capacity);
-    std::memcpy(table.fixed_sums.data(), p.sums.mapped, std::size_t(config.capacity) * 24);
+    ResizeOnHugePages(table.fixed_sums, config.capacity);
   } else {
-    table.float_sums.resize(config.capacity);
-    std::memcpy(table.float_sums.data(), p.sums.mapped, std::size_t(config.capacity) * 12);
+    ResizeOnHugePages(table.float_sums, config.capacity);
   }
-  std::memcpy(&run.wraps, p.stats.mapped, 8);
+  const auto copies = {CopyOut{run.image.pixels.data(), p.pixels.mapped, std::size_t(pixel_count) * 3 * sizeof(float)},
+                       CopyOut{run.keys.data(), p.keys.mapped, std::size_t(n) * sizeof(KeyResult)},
+                       CopyOut{run.placements.data(), p.placements.mapped, std::size_t(n) * 4},
+                       CopyOut{table.tags.data(), p.tags.mapped, std::size_t(config.capacity) * 4},
+                       CopyOut{table.counts.data(), p.counts.mapped, std::size_t(config.capacity) * 8},
+                       CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()), p.sums.mapped,
+                               std::size_t(config.capacity) * (fixed ? 24 : 12)},
+                       CopyOut{&run.wraps, p.stats.mapped, 8}};
+  for (const CopyOut& copy : copies) ParallelCopy(copy);
   run.timings.read_back_ms = MillisecondsSince(start);
   CountProbes(run);
   return run;

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "emulated/simt/huge_pages.h"
+#include "core/huge_pages.h"
 #include "emulated/simt/kernel_fault.h"
 
 namespace hpsf::simt {

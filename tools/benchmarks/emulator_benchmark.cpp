@@ -10,7 +10,7 @@
 
 #include "core/shared/hash.h"
 #include "emulated/emulated_filter.h"
-#include "emulated/simt/huge_pages.h"
+#include "core/huge_pages.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
@@ -42,7 +42,7 @@ FilterConfig TableConfig() {
 void BM_RawRandomAtomicAdds(benchmark::State& state) {
   // On huge pages, as the emulator's own table: the limit is the machine's best case.
   std::vector<std::uint64_t> table;
-  simt::ResizeOnHugePages(table, std::size_t(kSlots) * 4);
+  ResizeOnHugePages(table, std::size_t(kSlots) * 4);
   for (auto _ : state) {
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, kRecords, 4096), [&](const auto& range) {
       for (std::uint32_t i = range.begin(); i < range.end(); ++i) {

@@ -18,3 +18,15 @@ Record LoadRecord(uint index) {
   r.path = texelFetch(record_texels, first + 8);
   return r;
 }
+
+// Only what resolve reads (contribution, throughput, radiance_before, path): four texels of the nine; the
+// geometric fields are left unset.
+Record LoadShadingFields(uint index) {
+  int first = int(index) * kTexelsPerRecord;
+  Record r;
+  r.contribution = uintBitsToFloat(texelFetch(record_texels, first + 5));
+  r.throughput = uintBitsToFloat(texelFetch(record_texels, first + 6));
+  r.radiance_before = uintBitsToFloat(texelFetch(record_texels, first + 7));
+  r.path = texelFetch(record_texels, first + 8);
+  return r;
+}

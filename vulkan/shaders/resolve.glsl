@@ -37,7 +37,7 @@ void main() {
     for (uint s = 0u; s < samples_per_pixel; ++s) {
       uint i = pixel * samples_per_pixel + s;
       if (accepted[i] == 0u) continue;
-      Record r = LoadRecord(i);
+      Record r = LoadShadingFields(i);
       precise dvec3 value = D(r.radiance_before);
       if (RecordHasVertex(r)) {
         uint slot = placements[i];

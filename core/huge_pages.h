@@ -1,14 +1,14 @@
-// Large emulator arrays (the table, per-record keys and placements) are touched at random, a few words per
-// record: on 4 KiB pages that costs a page fault per 4 KiB when they are first written and a TLB miss on
-// almost every access. Sizing them through this asks Linux for transparent huge pages first, where its
+// A backend's large host arrays (the table, per-record keys and placements) are touched at random, a few
+// words per record: on 4 KiB pages that costs a page fault per 4 KiB when they are first written and a TLB
+// miss on almost every access. Sizing them through this asks Linux for transparent huge pages first, where its
 // setting is `madvise`; elsewhere it is a plain resize. Contents and results do not change.
-#ifndef HPSF_EMULATED_SIMT_HUGE_PAGES_H
-#define HPSF_EMULATED_SIMT_HUGE_PAGES_H
+#ifndef HPSF_CORE_HUGE_PAGES_H
+#define HPSF_CORE_HUGE_PAGES_H
 
 #include <cstddef>
 #include <vector>
 
-namespace hpsf::simt {
+namespace hpsf {
 
 // Advises huge pages for the whole 2 MiB pages inside [data, data + bytes); a no-op for small ranges.
 void AdviseHugePages(void* data, std::size_t bytes);
@@ -26,6 +26,6 @@ void ResizeOnHugePages(std::vector<T>& v, std::size_t n) {
   v.resize(n);
 }
 
-}  // namespace hpsf::simt
+}  // namespace hpsf
 
-#endif  // HPSF_EMULATED_SIMT_HUGE_PAGES_H
+#endif  // HPSF_CORE_HUGE_PAGES_H

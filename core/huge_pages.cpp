@@ -1,10 +1,10 @@
-#include "emulated/simt/huge_pages.h"
+#include "core/huge_pages.h"
 
 #include <cstdint>
 
 #include <sys/mman.h>
 
-namespace hpsf::simt {
+namespace hpsf {
 
 void AdviseHugePages(void* data, std::size_t bytes) {
   constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;
@@ -14,4 +14,4 @@ void AdviseHugePages(void* data, std::size_t bytes) {
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
-}  // namespace hpsf::simt
+}  // namespace hpsf
