@@ -13,9 +13,9 @@
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
+#include "core/huge_pages.h"
 #include "core/input_check.h"
 #include "core/resolve.h"
-#include "core/huge_pages.h"
 
 namespace hpsf {
 namespace {

@@ -8,29 +8,15 @@
 #include <benchmark/benchmark.h>
 #include <tbb/parallel_for.h>
 
+#include "core/huge_pages.h"
 #include "core/shared/hash.h"
 #include "emulated/emulated_filter.h"
-#include "core/huge_pages.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
+#include "tools/benchmarks/cornell_frame.h"
 
 namespace hpsf {
 namespace {
 
-constexpr std::uint32_t kRecords = 1920 * 1080;
 constexpr std::uint32_t kSlots = 1u << 21;
-
-// The Cornell box traced at 1920x1080, 1 spp: about ten records per cell, as a real frame gives.
-const RecordBatch& Frame() {
-  static const RecordBatch batch = [] {
-    TraceOptions options;
-    options.width = 1920;
-    options.height = 1080;
-    options.samples_per_pixel = 1;
-    return TraceRecords(LoadScene("cornell"), options).batch;
-  }();
-  return batch;
-}
 
 FilterConfig TableConfig() {
   FilterConfig config;
@@ -44,19 +30,19 @@ void BM_RawRandomAtomicAdds(benchmark::State& state) {
   std::vector<std::uint64_t> table;
   ResizeOnHugePages(table, std::size_t(kSlots) * 4);
   for (auto _ : state) {
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, kRecords, 4096), [&](const auto& range) {
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, kFrameRecords, 4096), [&](const auto& range) {
       for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
         const std::uint32_t slot = shared::Pcg(i) & (kSlots - 1);
         for (int c = 0; c < 4; ++c) std::atomic_ref<std::uint64_t>(table[std::size_t(c) * kSlots + slot]).fetch_add(1, std::memory_order_relaxed);
       }
     });
   }
-  state.SetItemsProcessed(std::int64_t(state.iterations()) * kRecords);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
 BENCHMARK(BM_RawRandomAtomicAdds)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_EmulatedFast(benchmark::State& state) {
-  const RecordBatch& batch = Frame();
+  const RecordBatch& batch = CornellFrame();
   EmulatorOptions options;
   for (auto _ : state) {
     EmulatedRun run = EmulatedFilter(batch, TableConfig(), options);
@@ -68,14 +54,14 @@ void BM_EmulatedFast(benchmark::State& state) {
       state.counters[name] = 1e3 * seconds;
     }
   }
-  state.SetItemsProcessed(std::int64_t(state.iterations()) * kRecords);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
 BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_EmulatedFaithful(benchmark::State& state) {
   // The first rows of the same frame.
   static const RecordBatch batch = [&] {
-    RecordBatch b = Frame();
+    RecordBatch b = CornellFrame();
     b.height = std::uint32_t(state.range(0)) / b.width;
     b.records.resize(std::size_t(b.width) * b.height);
     return b;

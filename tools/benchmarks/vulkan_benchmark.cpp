@@ -5,25 +5,11 @@
 #include <benchmark/benchmark.h>
 
 #include "emulated/emulated_filter.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
+#include "tools/benchmarks/cornell_frame.h"
 #include "vulkan/vulkan_filter.h"
 
 namespace hpsf {
 namespace {
-
-constexpr std::uint32_t kRecords = 1920 * 1080;
-
-const RecordBatch& Frame() {
-  static const RecordBatch batch = [] {
-    TraceOptions options;
-    options.width = 1920;
-    options.height = 1080;
-    options.samples_per_pixel = 1;
-    return TraceRecords(LoadScene("cornell"), options).batch;
-  }();
-  return batch;
-}
 
 FilterConfig TableConfig(Accumulation accumulation) {
   FilterConfig config;
@@ -35,10 +21,10 @@ FilterConfig TableConfig(Accumulation accumulation) {
 
 void BM_EmulatedFast(benchmark::State& state) {
   for (auto _ : state) {
-    EmulatedRun run = EmulatedFilter(Frame(), TableConfig(Accumulation::kFixed64), EmulatorOptions{});
+    EmulatedRun run = EmulatedFilter(CornellFrame(), TableConfig(Accumulation::kFixed64), EmulatorOptions{});
     benchmark::DoNotOptimize(run.image.pixels.data());
   }
-  state.SetItemsProcessed(std::int64_t(state.iterations()) * kRecords);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
 BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -48,14 +34,14 @@ void BM_Vulkan(benchmark::State& state) {
   const Accumulation accumulation = state.range(0) == 0 ? Accumulation::kFixed64 : Accumulation::kFloat32;
   state.SetLabel(std::string(accumulation == Accumulation::kFixed64 ? "fixed64 on " : "float32 on ") + device.info().name);
   for (auto _ : state) {
-    VulkanRun run = filter.Run(Frame(), TableConfig(accumulation));
+    VulkanRun run = filter.Run(CornellFrame(), TableConfig(accumulation));
     benchmark::DoNotOptimize(run.image.pixels.data());
     state.counters["upload_ms"] = run.timings.upload_ms;
     state.counters["accumulate_ms"] = run.timings.accumulate_ms;
     state.counters["resolve_ms"] = run.timings.resolve_ms;
     state.counters["read_back_ms"] = run.timings.read_back_ms;
   }
-  state.SetItemsProcessed(std::int64_t(state.iterations()) * kRecords);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
 BENCHMARK(BM_Vulkan)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 

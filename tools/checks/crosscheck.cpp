@@ -42,8 +42,9 @@ std::vector<bool> Classify(const HashedRun& run, QualityFigures& quality) {
 // Level 3 for one hashed run: every record outside the classified ones (probe failures, aliased slots) sits
 // in a slot whose count, and in fixed64 whose sums, equal its reference cell's; with nothing classified in
 // fixed64, the image is the reference's, bit for bit.
-void CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const HashedRun& run,
-                          const std::vector<bool>& aliased, const std::string& prefix, LevelVerdict& ideal) {
+// Returns what was compared, for the verdict's note.
+std::string CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const HashedRun& run,
+                                 const std::vector<bool>& aliased, const std::string& prefix, LevelVerdict& ideal) {
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   std::uint64_t compared = 0, failures = 0;
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
@@ -65,10 +66,10 @@ void CompareWithReference(const RecordBatch& batch, const FilterConfig& config, 
       Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": sums differ from the reference cell's");
     }
   }
-  ideal.note += "; " + prefix + std::to_string(compared) + " records compared";
   if (fixed && failures == 0 && std::count(aliased.begin(), aliased.end(), true) == 0 && !SameBits(run.image, reference.image)) {
     Fail(ideal, prefix + "nothing failed or aliased, yet the image differs from the reference");
   }
+  return "; " + std::to_string(compared) + " records compared";
 }
 
 }  // namespace
@@ -98,6 +99,17 @@ void Note(LevelVerdict& verdict, const std::string& backend, const std::string& 
   verdict.note += (verdict.note.empty() ? "" : " | ") + backend + ": " + text;
 }
 
+// Level 2 for one hashed run, and its quality figures; returns which slots aliased.
+std::vector<bool> JudgeTable(const std::string& backend, const RecordBatch& batch, const HashedRun& run, CrosscheckReport& report,
+                             LevelVerdict& tables) {
+  for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, backend + ": " + v.ToString());
+  QualityFigures quality;
+  quality.backend = backend;
+  const std::vector<bool> aliased = Classify(run, quality);
+  report.quality.push_back(quality);
+  return aliased;
+}
+
 void JudgeEmulated(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const EmulatorOptions& emulator,
                    Defect defect, CrosscheckReport& report, LevelVerdict& tables, LevelVerdict& ideal, LevelVerdict& determinism) {
   const AccumulateKernelFn kernel = KernelWithDefect(defect);
@@ -111,12 +123,8 @@ void JudgeEmulated(const RecordBatch& batch, const FilterConfig& config, const F
     Note(determinism, "emulated", "not judged, the kernel faulted");
     return;
   }
-  for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, "emulated: " + v.ToString());
-
-  QualityFigures quality;
-  quality.backend = "emulated";
-  const std::vector<bool> aliased = Classify(run, quality);
-  report.quality.push_back(quality);
+  const std::vector<bool> aliased = JudgeTable("emulated", batch, run, report, tables);
+  const QualityFigures& quality = report.quality.back();
 
   // Level 3: every record outside the classified ones sits in a slot equal to its reference cell.
   const bool fixed = config.accumulation == Accumulation::kFixed64;
@@ -133,12 +141,7 @@ void JudgeEmulated(const RecordBatch& batch, const FilterConfig& config, const F
                       std::to_string(run.float_add_order[entry].size()) + " adds gives other bits");
     }
   }
-  LevelVerdict compared = ideal;
-  compared.note.clear();
-  CompareWithReference(batch, config, reference, run, aliased, "emulated: ", compared);
-  ideal.passed = compared.passed;
-  ideal.failures = compared.failures;
-  Note(ideal, "emulated", note + compared.note);
+  Note(ideal, "emulated", note + CompareWithReference(batch, config, reference, run, aliased, "emulated: ", ideal));
 
   // Level 4: the same inputs again give the same bits (and, faithfully, the same trace).
   const EmulatedRun again = EmulatedFilter(batch, config, emulator, kernel);
@@ -185,21 +188,12 @@ void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const Fil
   const VulkanRun run = filter.Run(batch, config);
   keys.applicable = true;
   CompareKeys(batch, config, run, keys);
-  for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements})) Fail(tables, "vulkan: " + v.ToString());
-
-  QualityFigures quality;
-  quality.backend = "vulkan";
-  const std::vector<bool> aliased = Classify(run, quality);
-  report.quality.push_back(quality);
+  const std::vector<bool> aliased = JudgeTable("vulkan", batch, run, report, tables);
+  const QualityFigures& quality = report.quality.back();
   const bool fixed = config.accumulation == Accumulation::kFixed64;
-  LevelVerdict compared = ideal;
-  compared.note.clear();
-  CompareWithReference(batch, config, reference, run, aliased, "vulkan: ", compared);
-  ideal.passed = compared.passed;
-  ideal.failures = compared.failures;
   Note(ideal, "vulkan", std::string(fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
                                           : "float32: counts exact outside the classified records; sums inside the bound at level 2") +
-                            compared.note);
+                            CompareWithReference(batch, config, reference, run, aliased, "vulkan: ", ideal));
 
   if (fixed && quality.probe_failures == 0 && quality.aliased_slots == 0) {
     const VulkanRun again = filter.Run(batch, config);
