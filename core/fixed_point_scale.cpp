@@ -45,16 +45,18 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions) {
   glm::dvec3 total(0.0);
   for (const glm::vec3& c : contributions) total += glm::dvec3(c);
   // Exact test of one F: every c * 2^F is exact in double; each ceiling below 2^63 fits a uint64.
+  // All three channels in one pass over the contributions, the running sums in registers.
   auto fits = [&](int f) {
     const double scale = std::ldexp(1.0, f);
-    for (int channel = 0; channel < 3; ++channel) {
-      std::uint64_t sum = 0;
-      for (const glm::vec3& c : contributions) {
-        const double ceiling = std::ceil(double(c[channel]) * scale);
-        if (ceiling >= 0x1p63) return false;
-        sum += static_cast<std::uint64_t>(ceiling);  // both terms below 2^63: no wrap
-        if (sum >= (std::uint64_t(1) << 63)) return false;
-      }
+    constexpr std::uint64_t kLimit = std::uint64_t(1) << 63;
+    std::uint64_t x = 0, y = 0, z = 0;
+    for (const glm::vec3& c : contributions) {
+      const double cx = std::ceil(double(c.x) * scale), cy = std::ceil(double(c.y) * scale), cz = std::ceil(double(c.z) * scale);
+      if (cx >= 0x1p63 || cy >= 0x1p63 || cz >= 0x1p63) return false;
+      x += static_cast<std::uint64_t>(cx);  // both terms below 2^63: no wrap
+      y += static_cast<std::uint64_t>(cy);
+      z += static_cast<std::uint64_t>(cz);
+      if ((x | y | z) >= kLimit) return false;
     }
     return true;
   };
