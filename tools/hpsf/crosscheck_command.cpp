@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/record_file.h"
 #include "tools/checks/crosscheck.h"
+#include "tools/hpsf/image_size.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tracer/path_tracer.h"
@@ -21,7 +22,7 @@ struct CrosscheckOptions {
   std::string input;
   std::string backends = "reference,emulated,vulkan";
   std::string repro_dir = "hpsf-repro";
-  std::uint32_t size = 128;
+  std::string size = "128x128";
   TraceOptions trace;
   FilterOptions filter;
   EmulatorFlags emulator;
@@ -68,7 +69,7 @@ int Run(CrosscheckOptions& o) {
   if (std::filesystem::path(o.input).extension() == ".hpsfv") {
     batch = ReadRecordFile(o.input);
   } else {
-    o.trace.width = o.trace.height = o.size;
+    ParseSize(o.size, o.trace);
     o.trace.seed = config.seed;
     o.trace.Validate();
     batch = TraceRecords(LoadScene(o.input), o.trace).batch;
@@ -100,7 +101,7 @@ void AddCrosscheckCommand(CLI::App& app, int* exit_code) {
   CLI::App* c = app.add_subcommand("crosscheck", "Run the backends on one batch and judge them by the cross-check contract");
   c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
   c->add_option("--backends", o->backends, "Comma-separated: reference, emulated, vulkan")->capture_default_str();
-  c->add_option("--size", o->size, "Traced image width and height")->capture_default_str();
+  c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded")->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();

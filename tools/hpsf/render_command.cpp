@@ -5,11 +5,11 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
-#include <regex>
 
 #include "core/error.h"
 #include "core/record_file.h"
 #include "tools/hpsf/filter_output.h"
+#include "tools/hpsf/image_size.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
@@ -27,15 +27,6 @@ struct RenderOptions {
   EmulatorFlags emulator;
   bool json = false;
 };
-
-void ParseSize(const std::string& text, TraceOptions& trace) {
-  std::smatch m;
-  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})x(\d{1,5}))"))) {
-    throw ConfigError("--size", "expected WIDTHxHEIGHT, as in 256x256; got '" + text + "'");
-  }
-  trace.width = std::stoul(m[1]);
-  trace.height = std::stoul(m[2]);
-}
 
 // Progress on a terminal only, so logs and pipes stay clean.
 std::function<void(std::uint32_t, std::uint32_t)> TerminalProgress() {

@@ -3,7 +3,7 @@
 set(dir ${OUT}/defect)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
-execute_process(COMMAND ${HPSF} crosscheck cornell --size 24 --capacity 256 --mode faithful --warp-size 8 --inject-defect D9 --backends reference,emulated
+execute_process(COMMAND ${HPSF} crosscheck cornell --size 24x24 --capacity 256 --mode faithful --warp-size 8 --inject-defect D9 --backends reference,emulated
                         --repro-dir ${dir}/bundle
                 WORKING_DIRECTORY ${dir} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
