@@ -49,6 +49,9 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"slots_used", slots_used},
                       {"probe_lengths", run.probe_lengths},
                       {"fixed_point_bits", run.table.fixed_point_bits}};
+  const EmulatedTimings& t = run.timings;
+  j["timings_ms"] = {{"keys", 1e3 * t.keys},           {"fixed_point", 1e3 * t.fixed_point}, {"clear", 1e3 * t.clear},
+                     {"accumulate", 1e3 * t.accumulate}, {"read_back", 1e3 * t.read_back},     {"resolve", 1e3 * t.resolve}};
   if (options.mode == simt::Mode::kFaithful) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.launch.trace_hash));
