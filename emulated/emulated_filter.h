@@ -38,7 +38,6 @@ struct EmulatedTimings {
   double accumulate = 0;   // the accumulate launch
   double read_back = 0;    // the dump of the table
   double resolve = 0;      // averages, pixels and the probe statistics, all cores
-  double Total() const { return keys + fixed_point + clear + accumulate + read_back + resolve; }
 };
 
 struct EmulatedRun : HashedRun {
@@ -53,7 +52,6 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel);
-
 
 }  // namespace hpsf
 

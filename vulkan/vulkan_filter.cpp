@@ -76,6 +76,20 @@ void ParallelCopy(const CopyOut& copy) {
   });
 }
 
+// Reads a SPIR-V binary; InputError naming the file when it is missing, empty or not SPIR-V.
+std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the SPIR-V file");
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty() || bytes.size() % 4 != 0) {
+    throw InputError(path + ": " + std::to_string(bytes.size()) + " bytes is not a whole number of 32-bit SPIR-V words");
+  }
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  if (words[0] != 0x07230203u) throw InputError(path + ": byte 0: not SPIR-V (magic number 0x07230203 expected)");
+  return words;
+}
+
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -113,8 +127,9 @@ struct VulkanFilter::Impl {
   }
 };
 
-VulkanFilter::VulkanFilter(VulkanDevice& device, std::vector<std::uint32_t> accumulate_spirv, std::string accumulate_name)
-    : impl_(new Impl{device.impl(), std::move(accumulate_spirv), std::move(accumulate_name), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {}
+VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv)
+    : impl_(new Impl{device.impl(), accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
+                     accumulate_spv.empty() ? "built-in" : accumulate_spv, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {}
 
 VulkanFilter::~VulkanFilter() = default;
 
@@ -223,19 +238,6 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.read_back_ms = MillisecondsSince(start);
   CountProbes(run);
   return run;
-}
-
-std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the SPIR-V file");
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty() || bytes.size() % 4 != 0) {
-    throw InputError(path + ": " + std::to_string(bytes.size()) + " bytes is not a whole number of 32-bit SPIR-V words");
-  }
-  std::vector<std::uint32_t> words(bytes.size() / 4);
-  std::memcpy(words.data(), bytes.data(), bytes.size());
-  if (words[0] != 0x07230203u) throw InputError(path + ": byte 0: not SPIR-V (magic number 0x07230203 expected)");
-  return words;
 }
 
 }  // namespace hpsf

@@ -23,7 +23,6 @@ struct VulkanTimings {
   double accumulate_ms = 0;  // device timestamps: clearing the table and the accumulate dispatch
   double resolve_ms = 0;     // device timestamps: the resolve dispatch
   double read_back_ms = 0;   // host: image, table, keys and placements out of device memory
-  double Total() const { return upload_ms + accumulate_ms + resolve_ms + read_back_ms; }
 };
 
 struct VulkanRun : HashedRun {
@@ -33,10 +32,9 @@ struct VulkanRun : HashedRun {
 
 class VulkanFilter {
  public:
-  // accumulate_spirv: a user's accumulate shader (SPIR-V words) to run in place of the built-in one, through
-  // the same bindings; empty for the built-in shaders.
-  explicit VulkanFilter(VulkanDevice& device, std::vector<std::uint32_t> accumulate_spirv = {},
-                        std::string accumulate_name = "built-in");
+  // accumulate_spv: the path of a user's accumulate shader (SPIR-V) to run in place of the built-in one,
+  // through the same bindings; empty for the built-in shaders. InputError naming the file when it is not SPIR-V.
+  explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "");
   ~VulkanFilter();
   VulkanFilter(const VulkanFilter&) = delete;
   VulkanFilter& operator=(const VulkanFilter&) = delete;
@@ -48,9 +46,6 @@ class VulkanFilter {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// Reads a SPIR-V binary; InputError naming the file when it is missing, empty or not SPIR-V.
-std::vector<std::uint32_t> ReadSpirvFile(const std::string& path);
 
 }  // namespace hpsf
 

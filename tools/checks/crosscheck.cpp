@@ -72,28 +72,6 @@ std::string CompareWithReference(const RecordBatch& batch, const FilterConfig& c
   return "; " + std::to_string(compared) + " records compared";
 }
 
-}  // namespace
-
-bool CrosscheckReport::Passed() const {
-  return std::all_of(levels.begin(), levels.end(), [](const LevelVerdict& v) { return !v.applicable || v.passed; });
-}
-
-nlohmann::json CrosscheckReport::ToJson() const {
-  nlohmann::json j = {{"version", 2}, {"passed", Passed()}};
-  if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
-  for (const LevelVerdict& v : levels) {
-    j["levels"].push_back({{"level", v.level}, {"name", v.name}, {"applicable", v.applicable}, {"passed", v.passed},
-                           {"note", v.note}, {"failures", v.failures}});
-  }
-  for (const QualityFigures& q : quality) {
-    j["quality"].push_back({{"backend", q.backend}, {"probe_failures", q.probe_failures}, {"aliased_slots", q.aliased_slots},
-                            {"aliased_records", q.aliased_records}});
-  }
-  return j;
-}
-
-namespace {
-
 // A verdict's note gathers what each backend contributed to it.
 void Note(LevelVerdict& verdict, const std::string& backend, const std::string& text) {
   verdict.note += (verdict.note.empty() ? "" : " | ") + backend + ": " + text;
@@ -182,9 +160,7 @@ void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const Fil
                  CrosscheckReport& report, LevelVerdict& keys, LevelVerdict& tables, LevelVerdict& ideal, LevelVerdict& determinism) {
   VulkanDevice device(options.device_filter);
   report.vulkan_device = device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info + ")";
-  std::vector<std::uint32_t> spirv;
-  if (!options.accumulate_spv.empty()) spirv = ReadSpirvFile(options.accumulate_spv);
-  VulkanFilter filter(device, spirv, options.accumulate_spv.empty() ? "built-in" : options.accumulate_spv);
+  VulkanFilter filter(device, options.accumulate_spv);
   const VulkanRun run = filter.Run(batch, config);
   keys.applicable = true;
   CompareKeys(batch, config, run, keys);
@@ -205,6 +181,24 @@ void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const Fil
 }
 
 }  // namespace
+
+bool CrosscheckReport::Passed() const {
+  return std::all_of(levels.begin(), levels.end(), [](const LevelVerdict& v) { return !v.applicable || v.passed; });
+}
+
+nlohmann::json CrosscheckReport::ToJson() const {
+  nlohmann::json j = {{"version", 2}, {"passed", Passed()}};
+  if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
+  for (const LevelVerdict& v : levels) {
+    j["levels"].push_back({{"level", v.level}, {"name", v.name}, {"applicable", v.applicable}, {"passed", v.passed},
+                           {"note", v.note}, {"failures", v.failures}});
+  }
+  for (const QualityFigures& q : quality) {
+    j["quality"].push_back({{"backend", q.backend}, {"probe_failures", q.probe_failures}, {"aliased_slots", q.aliased_slots},
+                            {"aliased_records", q.aliased_records}});
+  }
+  return j;
+}
 
 CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
                             const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {

@@ -1,11 +1,20 @@
 #include "tools/hpsf/backend_options.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
 #include "tools/hpsf/filter_options.h"
 
 namespace hpsf {
+
+namespace {
+
+std::uint64_t SlotsUsed(const HashTableDump& table) {
+  return std::uint64_t(std::count_if(table.tags.begin(), table.tags.end(), [](SlotTag tag) { return tag != kEmptyTag; }));
+}
+
+}  // namespace
 
 void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--mode", flags.mode, "Emulator mode: fast (all cores) or faithful (warp steps, scheduled)")->capture_default_str();
@@ -41,12 +50,10 @@ void CheckBackend(const std::string& backend) {
 }
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
-  std::uint64_t slots_used = 0;
-  for (SlotTag tag : run.table.tags) slots_used += tag != kEmptyTag;
   nlohmann::json j = {{"mode", options.mode == simt::Mode::kFast ? "fast" : "faithful"},
                       {"probe_failures", run.probe_failures},
                       {"fixed64_wraps", run.wraps},
-                      {"slots_used", slots_used},
+                      {"slots_used", SlotsUsed(run.table)},
                       {"probe_lengths", run.probe_lengths},
                       {"fixed_point_bits", run.table.fixed_point_bits}};
   const EmulatedTimings& t = run.timings;
@@ -70,14 +77,12 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
 }
 
 nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
-  std::uint64_t slots_used = 0;
-  for (SlotTag tag : run.table.tags) slots_used += tag != kEmptyTag;
   return {{"device", device.name},
           {"driver", device.driver_name + " (" + device.driver_info + ")"},
           {"accumulate_shader", run.accumulate_shader},
           {"probe_failures", run.probe_failures},
           {"fixed64_wraps", run.wraps},
-          {"slots_used", slots_used},
+          {"slots_used", SlotsUsed(run.table)},
           {"probe_lengths", run.probe_lengths},
           {"fixed_point_bits", run.table.fixed_point_bits},
           {"timings_ms",
@@ -99,9 +104,7 @@ BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, c
     out.stats = ToJson(*out.emulated, emulator);
   } else {
     VulkanDevice device(vulkan.device_filter);
-    std::vector<std::uint32_t> spirv;
-    if (!vulkan.accumulate_spv.empty()) spirv = ReadSpirvFile(vulkan.accumulate_spv);
-    VulkanFilter filter(device, spirv, vulkan.accumulate_spv.empty() ? "built-in" : vulkan.accumulate_spv);
+    VulkanFilter filter(device, vulkan.accumulate_spv);
     out.vulkan = filter.Run(batch, config);
     out.image = out.vulkan->image;
     out.stats = ToJson(*out.vulkan, device.info());
