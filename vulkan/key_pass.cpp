@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/shared/packed_key.h"
 #include "keys_spv.h"
 #include "vulkan/vulkan_internal.h"
 
@@ -12,8 +13,11 @@ using vulkan_internal::HostBuffer;
 
 namespace {
 
-constexpr std::uint32_t kWorkgroupSize = 128;   // keys.comp's local_size_x
+constexpr std::uint32_t kWorkgroupSize = 128;         // keys.comp's kWorkgroupSize
+constexpr std::uint32_t kRecordsPerInvocation = 16;   // keys.comp's kRecordsPerInvocation
+constexpr std::uint32_t kRecordsPerWorkgroup = kWorkgroupSize * kRecordsPerInvocation;
 constexpr std::uint32_t kMaxWorkgroups = 65535;  // the guaranteed minimum of maxComputeWorkGroupCount[0]
+constexpr vk::DeviceSize kPackedKeyBytes = 2 * sizeof(glm::uvec4);  // core/shared/packed_key.h
 
 }  // namespace
 
@@ -37,7 +41,7 @@ KeyPass::~KeyPass() = default;
 void KeyPass::Upload(std::span<const Record> records) {
   Impl& p = *impl_;
   if (records.size() > UINT32_MAX) throw std::length_error("KeyPass: more than 2^32 - 1 records");
-  const vk::DeviceSize record_bytes = records.size_bytes(), key_bytes = records.size() * sizeof(KeyResult);
+  const vk::DeviceSize record_bytes = records.size_bytes(), key_bytes = records.size() * kPackedKeyBytes;
   if (p.records.size < record_bytes || !*p.records.buffer) p.records = vulkan_internal::CreateHostBuffer(p.device, record_bytes);
   if (p.keys.size < key_bytes || !*p.keys.buffer) p.keys = vulkan_internal::CreateHostBuffer(p.device, key_bytes);
   if (!records.empty()) std::memcpy(p.records.mapped, records.data(), record_bytes);
@@ -50,7 +54,7 @@ double KeyPass::Dispatch(const KeyParams& params) {
   Impl& p = *impl_;
   KeyParams pushed = params;
   pushed.record_count = p.count;
-  const std::uint32_t groups = std::clamp<std::uint32_t>((p.count + kWorkgroupSize - 1) / kWorkgroupSize, 1, kMaxWorkgroups);
+  const std::uint32_t groups = std::clamp<std::uint32_t>((p.count + kRecordsPerWorkgroup - 1) / kRecordsPerWorkgroup, 1, kMaxWorkgroups);
   return vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *p.program.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *p.program.layout, 0, *p.program.set, nullptr);
@@ -61,7 +65,8 @@ double KeyPass::Dispatch(const KeyParams& params) {
 
 std::vector<KeyResult> KeyPass::Download() const {
   std::vector<KeyResult> keys(impl_->count);
-  if (!keys.empty()) std::memcpy(keys.data(), impl_->keys.mapped, keys.size() * sizeof(KeyResult));
+  const auto* packed = static_cast<const glm::uvec4*>(impl_->keys.mapped);
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = shared::UnpackKey(packed[2 * i], packed[2 * i + 1]);
   return keys;
 }
 
