@@ -23,8 +23,7 @@ HPSF_FN bool IsNegative(float x) { return floatBitsToUint(x) > kSignBit; }
 // key-path result passes through Flush, which turns a denormal into the zero of its sign, so the result is the
 // same whether or not the device flushed it already.
 HPSF_FN float Flush(float x) {
-  uint bits = floatBitsToUint(x);
-  return (bits & kExponentMask) == 0u ? uintBitsToFloat(bits & kSignBit) : x;
+  return (floatBitsToUint(x) & kExponentMask) == 0u ? HPSF_SIGNED_ZERO(x) : x;
 }
 HPSF_FN vec3 Flush(vec3 v) { return vec3(Flush(v.x), Flush(v.y), Flush(v.z)); }
 
