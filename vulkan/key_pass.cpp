@@ -13,9 +13,7 @@ using vulkan_internal::HostBuffer;
 
 namespace {
 
-constexpr std::uint32_t kWorkgroupSize = 128;         // keys.comp's kWorkgroupSize
-constexpr std::uint32_t kRecordsPerInvocation = 16;   // keys.comp's kRecordsPerInvocation
-constexpr std::uint32_t kRecordsPerWorkgroup = kWorkgroupSize * kRecordsPerInvocation;
+constexpr std::uint32_t kRecordsPerWorkgroup = 128 * 16;  // keys.comp's local_size_x * kRecordsPerInvocation
 constexpr std::uint32_t kMaxWorkgroups = 65535;  // the guaranteed minimum of maxComputeWorkGroupCount[0]
 constexpr vk::DeviceSize kPackedKeyBytes = 2 * sizeof(glm::uvec4);  // core/shared/packed_key.h
 

@@ -32,8 +32,8 @@ using vulkan_internal::HostBuffer;
 
 namespace {
 
-constexpr std::uint32_t kAccumulateWorkgroup = 128;  // accumulate.glsl's local_size_x
-constexpr std::uint32_t kResolveWorkgroup = 64;      // resolve.glsl's local_size_x
+constexpr std::uint32_t kAccumulateRecordsPerWorkgroup = 128 * 16;  // accumulate.glsl's local_size_x * kRecordsPerInvocation
+constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;  // resolve.glsl's local_size_x * kPixelsPerInvocation
 constexpr std::uint32_t kMaxWorkgroups = 65535;      // the guaranteed minimum of maxComputeWorkGroupCount[0]
 
 struct AccumulatePush {
@@ -184,7 +184,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.upload_ms = MillisecondsSince(start);
   table.fixed_point_bits = ChooseFixedPointBitsOf(entering);  // the host's pre-pass
 
-  // Accumulate: clear the table, then one invocation per record.
+  // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
   HostBuffer* const accumulate_buffers[] = {&p.records, &p.keys, &p.tags, &p.sums, &p.counts, &p.placements, &p.stats, &p.accepted};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
@@ -198,10 +198,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *accumulate.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *accumulate.layout, 0, *accumulate.set, nullptr);
     cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
-    cb.dispatch(Groups(n, kAccumulateWorkgroup), 1, 1);
+    cb.dispatch(Groups(n, kAccumulateRecordsPerWorkgroup), 1, 1);
   });
 
-  // Resolve: a separate pass, one invocation per pixel.
+  // Resolve: a separate pass, 16 pixels per invocation.
   ComputeProgram& resolve = p.Resolve(config.accumulation);
   HostBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
@@ -211,7 +211,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
     cb.pushConstants<ResolvePush>(*resolve.layout, vk::ShaderStageFlagBits::eCompute, 0, resolve_push);
-    cb.dispatch(Groups(pixel_count, kResolveWorkgroup), 1, 1);
+    cb.dispatch(Groups(pixel_count, kResolvePixelsPerWorkgroup), 1, 1);
   });
 
   // Read-back, in parallel chunks, into arrays on huge pages.

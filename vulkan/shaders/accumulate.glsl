@@ -1,27 +1,31 @@
-// The accumulate pass of DESIGN.md, "The algorithm", one invocation per record: the key from core/shared, then
+// The accumulate pass of DESIGN.md, "The algorithm", record by record: the key from core/shared, then
 // bounded linear probing from slot0; a slot whose tag is the fingerprint is joined, an empty one claimed with
 // atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
 // reports wrap from the add's return value. accumulate_fixed64.comp and accumulate_float32.comp define the
 // sums type and include this.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
 #include "../../core/shared/key.h"
 #include "../../core/shared/fixed_point.h"
 #include "../../core/shared/table_params.h"
+#include "subgroup_runs.glsl"
 #include "table_interface.glsl"
 
+// The host dispatches ceil(n / (128 * 16)) workgroups, at most 65535 (vulkan/vulkan_filter.cpp).
+const uint kRecordsPerInvocation = 16u;
 layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
 // _D13, each exactly one change) and runs the variants through --accumulate-spv: the gate must catch each.
 
-void AddToSlot(uint slot, Record r) {
+void AddToSlot(uint slot, Record r, float fixed_point_scale) {
   for (uint c = 0u; c < 3u; ++c) {
 #if defined(HPSF_DEFECT_D9)  // read-modify-write without an atomic: lost updates
-    sums[slot * 3u + c] += ToFixedPoint(r.contribution[c], table.fixed_point_scale);
+    sums[slot * 3u + c] += ToFixedPoint(r.contribution[c], fixed_point_scale);
 #elif defined(HPSF_FIXED64)
-    uint64_t add = ToFixedPoint(r.contribution[c], table.fixed_point_scale);
+    uint64_t add = ToFixedPoint(r.contribution[c], fixed_point_scale);
     uint64_t old = atomicAdd(sums[slot * 3u + c], add);
     if (old + add < old) atomicAdd(wraps, uint64_t(1));
 #else
@@ -35,46 +39,53 @@ void AddToSlot(uint slot, Record r) {
 #endif
 }
 
-void main() {
-  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  for (uint i = gl_GlobalInvocationID.x; i < params.record_count; i += stride) {
-    if (accepted[i] == 0u) {  // rejected on the host: its bits may be NaN, so no key is computed
-      StoreKeyResult(i, EmptyKeyResult(kKeyNoVertex));
-      placements[i] = kPlacementNotPlaced;
-      continue;
-    }
-    Record r = LoadRecord(i);
-    KeyResult k = ComputeKey(params, r);
-    StoreKeyResult(i, k);
-    uint placement = kPlacementNotPlaced;
-    if (k.status == kKeyed) {
-      placement = kPlacementProbeFailure;
+void AccumulateRecord(uint i, KeyParams p, TableParams t) {
+  if (accepted[i] == 0u) {  // rejected on the host: its bits may be NaN, so no key is computed
+    StoreKeyResult(i, EmptyKeyResult(kKeyNoVertex));
+    placements[i] = kPlacementNotPlaced;
+    return;
+  }
+  Record r = LoadRecord(i);
+  KeyResult k = ComputeKey(p, r);
+  StoreKeyResult(i, k);
+  uint placement = kPlacementNotPlaced;
+  if (k.status == kKeyed) {
+    placement = kPlacementProbeFailure;
 #if defined(HPSF_DEFECT_D3)  // the reduced fingerprint without its 0 -> 1 fix: may equal the empty tag
-      uint fingerprint = FullFingerprint(k.words) >> (32u - params.fingerprint_bits);
+    uint fingerprint = FullFingerprint(k.words) >> (32u - p.fingerprint_bits);
 #else
-      uint fingerprint = k.fingerprint;
+    uint fingerprint = k.fingerprint;
 #endif
-      for (uint probe = 0u; probe < table.probe_limit; ++probe) {
+    for (uint probe = 0u; probe < t.probe_limit; ++probe) {
 #if defined(HPSF_DEFECT_D8)  // the probe index clamped to the last slot instead of wrapped
-        uint slot = min(k.slot0 + probe, table.capacity - 1u);
+      uint slot = min(k.slot0 + probe, t.capacity - 1u);
 #else
-        uint slot = (k.slot0 + probe) & (table.capacity - 1u);
+      uint slot = (k.slot0 + probe) & (t.capacity - 1u);
 #endif
-        uint tag = tags[slot];
+      uint tag = tags[slot];
 #if defined(HPSF_DEFECT_D13)  // claimed by a plain store after the load: two keys race for one empty slot
-        if (tag == 0u) tags[slot] = fingerprint;
+      if (tag == 0u) tags[slot] = fingerprint;
 #else
-        if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, fingerprint);
+      if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, fingerprint);
 #endif
-        // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
-        if (tag != 0u && tag != fingerprint) continue;
-        AddToSlot(slot, r);
-        placement = slot;
+      // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
+      if (tag != 0u && tag != fingerprint) continue;
+      AddToSlot(slot, r, t.fixed_point_scale);
+      placement = slot;
 #if !defined(HPSF_DEFECT_D2)  // D2 keeps probing after a match and adds again (Meijer Algorithm 4)
-        break;
+      break;
 #endif
-      }
     }
-    placements[i] = placement;
+  }
+  placements[i] = placement;
+}
+
+void main() {
+  KeyParams p = params;  // once per run: lavapipe gathers every push-constant read lane by lane
+  TableParams t = table;
+  SubgroupRuns runs = ThisSubgroupsRuns(kRecordsPerInvocation);
+  for (uint first = runs.first; first < p.record_count; first += runs.stride) {
+    uint end = min(first + runs.size, p.record_count);
+    for (uint i = first + gl_SubgroupInvocationID; i < end; i += gl_SubgroupSize) AccumulateRecord(i, p, t);
   }
 }

@@ -7,27 +7,23 @@
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
 #include "../../core/shared/packed_key.h"
+#include "subgroup_runs.glsl"
 
 #define HPSF_RECORDS_BINDING 0
 #include "record_texels.glsl"
 
-// The host dispatches ceil(n / (kWorkgroupSize * kRecordsPerInvocation)) workgroups (vulkan/key_pass.cpp).
-const uint kWorkgroupSize = 128u;
+// The host dispatches ceil(n / (128 * 16)) workgroups, at most 65535 (vulkan/key_pass.cpp).
 const uint kRecordsPerInvocation = 16u;
-layout(local_size_x = kWorkgroupSize) in;
+layout(local_size_x = 128) in;
 
 layout(std430, binding = 1) writeonly buffer Keys { uvec4 packed_keys[]; };  // two vectors per record
 layout(push_constant) uniform Params { KeyParams params; };
 
 void main() {
-  // Read once: lavapipe gathers push constants lane by lane, and not hoisted they cost a tenth of the time.
-  KeyParams p = params;
-  // Each subgroup walks its own contiguous run of records, a subgroup-wide step at a time, so a SIMD CPU
-  // device reads and writes memory in sequence (1.2x faster on lavapipe than a workgroup-wide step).
-  uint subgroup = gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
-  uint run = gl_SubgroupSize * kRecordsPerInvocation;
-  for (uint first = subgroup * run; first < p.record_count; first += gl_NumWorkGroups.x * gl_NumSubgroups * run) {
-    uint end = min(first + run, p.record_count);
+  KeyParams p = params;  // once per run: lavapipe gathers every push-constant read lane by lane
+  SubgroupRuns runs = ThisSubgroupsRuns(kRecordsPerInvocation);
+  for (uint first = runs.first; first < p.record_count; first += runs.stride) {
+    uint end = min(first + runs.size, p.record_count);
     for (uint i = first + gl_SubgroupInvocationID; i < end; i += gl_SubgroupSize) {
       KeyResult k = ComputeKey(p, LoadRecord(i));
       packed_keys[2u * i] = PackedKeyCell(k);
