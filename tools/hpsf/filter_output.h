@@ -15,7 +15,7 @@ namespace hpsf {
 
 struct OutputRequest {
   std::string scene;    // name recorded in the metadata
-  std::string backend;  // reference or emulated
+  std::string backend;  // reference, emulated or vulkan
   std::string output;   // OUT.exr
   EmulatorOptions emulator;
   Defect defect = Defect::kNone;

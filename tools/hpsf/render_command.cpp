@@ -93,7 +93,7 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("scene", o->scene, "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
                                    "cornell-zero-red) or a scene file")->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
-  c->add_option("--backend", o->backend, "Filter backend: reference or emulated")->capture_default_str();
+  c->add_option("--backend", o->backend, "Filter backend: reference, emulated or vulkan")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded (Russian roulette)")->capture_default_str();
@@ -111,7 +111,7 @@ void AddReplayCommand(CLI::App& app) {
   CLI::App* c = app.add_subcommand("replay", "Filter a recorded batch (.hpsfv) and write OUT.exr and OUT.png");
   c->add_option("records", o->records, "The .hpsfv file")->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
-  c->add_option("--backend", o->backend, "Filter backend: reference or emulated")->capture_default_str();
+  c->add_option("--backend", o->backend, "Filter backend: reference, emulated or vulkan")->capture_default_str();
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
