@@ -9,7 +9,9 @@
 namespace hpsf {
 namespace {
 
-KeyResult RoundTrip(const KeyResult& k) { return shared::UnpackKey(shared::PackedKeyCell(k), shared::PackedKeyHashes(k)); }
+KeyResult RoundTrip(const KeyResult& k) {
+  return shared::UnpackKey(shared::PackedKeyCell(k), shared::PackedKeyHashes(k));
+}
 
 TEST(PackedKey, RoundTripsEveryLevelAndStatus) {
   for (shared::uint status : {shared::kKeyed, shared::kKeyNoVertex, shared::kKeyUnkeyable}) {

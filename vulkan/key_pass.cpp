@@ -1,6 +1,5 @@
 #include "vulkan/key_pass.h"
 
-#include <algorithm>
 #include <cstring>
 
 #include "core/shared/packed_key.h"
@@ -14,7 +13,6 @@ using vulkan_internal::HostBuffer;
 namespace {
 
 constexpr std::uint32_t kRecordsPerWorkgroup = 128 * 16;  // keys.comp's local_size_x * kRecordsPerInvocation
-constexpr std::uint32_t kMaxWorkgroups = 65535;  // the guaranteed minimum of maxComputeWorkGroupCount[0]
 constexpr vk::DeviceSize kPackedKeyBytes = 2 * sizeof(glm::uvec4);  // core/shared/packed_key.h
 
 }  // namespace
@@ -52,7 +50,7 @@ double KeyPass::Dispatch(const KeyParams& params) {
   Impl& p = *impl_;
   KeyParams pushed = params;
   pushed.record_count = p.count;
-  const std::uint32_t groups = std::clamp<std::uint32_t>((p.count + kRecordsPerWorkgroup - 1) / kRecordsPerWorkgroup, 1, kMaxWorkgroups);
+  const std::uint32_t groups = vulkan_internal::WorkgroupsFor(p.count, kRecordsPerWorkgroup);
   return vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *p.program.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *p.program.layout, 0, *p.program.set, nullptr);

@@ -261,6 +261,11 @@ void BindBuffers(VulkanDevice::Impl& d, ComputeProgram& program, std::span<HostB
   d.device.updateDescriptorSets(writes, nullptr);
 }
 
+std::uint32_t WorkgroupsFor(std::uint32_t items, std::uint32_t per_workgroup) {
+  constexpr std::uint32_t kMaxWorkgroups = 65535;
+  return std::clamp<std::uint32_t>(items / per_workgroup + (items % per_workgroup != 0), 1, kMaxWorkgroups);
+}
+
 double SubmitAndWait(VulkanDevice::Impl& d, const std::function<void(vk::raii::CommandBuffer&)>& record) {
   vk::raii::CommandBuffers buffers(d.device, vk::CommandBufferAllocateInfo(*d.command_pool, vk::CommandBufferLevel::ePrimary, 1));
   vk::raii::CommandBuffer& cb = buffers.front();

@@ -32,9 +32,9 @@ using vulkan_internal::HostBuffer;
 
 namespace {
 
-constexpr std::uint32_t kAccumulateRecordsPerWorkgroup = 128 * 16;  // accumulate.glsl's local_size_x * kRecordsPerInvocation
-constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;  // resolve.glsl's local_size_x * kPixelsPerInvocation
-constexpr std::uint32_t kMaxWorkgroups = 65535;      // the guaranteed minimum of maxComputeWorkGroupCount[0]
+// Each shader's local_size_x times its kRecordsPerInvocation (kPixelsPerInvocation).
+constexpr std::uint32_t kAccumulateRecordsPerWorkgroup = 128 * 16;
+constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;
 
 struct AccumulatePush {
   KeyParams key;
@@ -57,10 +57,6 @@ constexpr BindingKind kAccumulateBindings[] = {BindingKind::kUniformTexelBuffer,
                                                BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
-
-std::uint32_t Groups(std::uint32_t items, std::uint32_t workgroup) {
-  return std::clamp<std::uint32_t>((items + workgroup - 1) / workgroup, 1, kMaxWorkgroups);
-}
 
 struct CopyOut {
   void* to;
@@ -198,7 +194,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *accumulate.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *accumulate.layout, 0, *accumulate.set, nullptr);
     cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
-    cb.dispatch(Groups(n, kAccumulateRecordsPerWorkgroup), 1, 1);
+    cb.dispatch(vulkan_internal::WorkgroupsFor(n, kAccumulateRecordsPerWorkgroup), 1, 1);
   });
 
   // Resolve: a separate pass, 16 pixels per invocation.
@@ -211,7 +207,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
     cb.pushConstants<ResolvePush>(*resolve.layout, vk::ShaderStageFlagBits::eCompute, 0, resolve_push);
-    cb.dispatch(Groups(pixel_count, kResolvePixelsPerWorkgroup), 1, 1);
+    cb.dispatch(vulkan_internal::WorkgroupsFor(pixel_count, kResolvePixelsPerWorkgroup), 1, 1);
   });
 
   // Read-back, in parallel chunks, into arrays on huge pages.

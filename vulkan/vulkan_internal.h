@@ -65,6 +65,10 @@ ComputeProgram CreateComputeProgram(VulkanDevice::Impl& device, std::span<const 
 // Points binding i of the program at buffers[i]; a texel binding gets the buffer's RGBA32UI view.
 void BindBuffers(VulkanDevice::Impl& device, ComputeProgram& program, std::span<HostBuffer* const> buffers);
 
+// Workgroups for `items` at `per_workgroup` each, at least 1 and at most 65535 (the guaranteed minimum of
+// maxComputeWorkGroupCount[0]); the shaders loop, so a clamped dispatch still covers every item.
+std::uint32_t WorkgroupsFor(std::uint32_t items, std::uint32_t per_workgroup);
+
 // Records work into a fresh command buffer between two timestamps, submits it, waits, and returns the device
 // time between the timestamps in milliseconds.
 double SubmitAndWait(VulkanDevice::Impl& device, const std::function<void(vk::raii::CommandBuffer&)>& record);

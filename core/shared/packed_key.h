@@ -16,11 +16,14 @@ const uint kPackedLevelMask = 0xFFFFu;
 const uint kPackedStatusShift = 16u;
 
 // Key words 0..3: cell x, y, z and the level word.
-HPSF_FN uvec4 PackedKeyCell(KeyResult k) { return uvec4(k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level); }
+HPSF_FN uvec4 PackedKeyCell(KeyResult k) {
+  return uvec4(k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level);
+}
 
 // The normal bucket, slot0, the fingerprint, and the level (low 16 bits) with the status (high 16 bits).
 HPSF_FN uvec4 PackedKeyHashes(KeyResult k) {
-  return uvec4(k.words.normal, k.slot0, k.fingerprint, (uint(k.level) & kPackedLevelMask) | (k.status << kPackedStatusShift));
+  uint level_and_status = (uint(k.level) & kPackedLevelMask) | (k.status << kPackedStatusShift);
+  return uvec4(k.words.normal, k.slot0, k.fingerprint, level_and_status);
 }
 
 HPSF_FN KeyResult UnpackKey(uvec4 cell, uvec4 hashes) {

@@ -2,7 +2,7 @@
 // consecutive items, a subgroup-wide step at a time, then jumps past every other subgroup's run. A SIMD CPU
 // device (lavapipe runs one subgroup as one 8-wide loop) then reads and writes memory in sequence, and push
 // constants read before the loop are gathered once per run instead of once per item (on lavapipe keys.comp is
-// 2x faster this way than with one item per invocation). With one worker thread the items are still visited
+// 1.7x faster this way than with one item per invocation). With one worker thread the items are still visited
 // in index order, a subgroup-wide step at a time, as with one item per invocation. Every item in
 // [0, count) is visited exactly once for any dispatch size: Vulkan 1.2 (SPIR-V 1.5) subgroups are full and
 // their size divides the workgroup size. The includer enables GL_KHR_shader_subgroup_basic.
