@@ -204,6 +204,11 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       gathered += weight * glm::dvec3(p.material->emission) * mis;
     }
     const double segment = MaxAbs(p.position - previous);
+    // With a depth limit, a path is the series truncated after its last vertex's emission: that vertex's
+    // next-event estimate is light from one vertex further, whose bounce-found half is never traced, so it
+    // is not taken at all (taking it under its MIS weight adds a fraction of the next term).
+    const bool last_vertex = bounce + 1 >= max_vertices;
+    const glm::dvec3 direct = last_vertex ? glm::dvec3(0.0) : DirectLight(p, random, stats);
 
     if (bounce == options_.filter_bounce) {
       has_vertex = true;
@@ -215,11 +220,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       vertex.d_prefix = static_cast<float>(d_prefix);
       vertex.bounce = bounce;
       weight = glm::dvec3(1.0);
-      gathered = glm::dvec3(0.0);
-      gathered += DirectLight(p, random, stats);
+      gathered = direct;
     } else {
       weight *= albedo;
-      gathered += weight * DirectLight(p, random, stats);
+      gathered += weight * direct;
     }
     d_prefix += segment;
     previous = p.position;
@@ -230,7 +234,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       if (survive <= 0.0 || random(kRoulette) >= survive) break;
       weight /= survive;
     }
-    if (bounce + 1 >= max_vertices) break;
+    if (last_vertex) break;
 
     // Cosine-weighted bounce: cos / pdf cancels the 1 / pi of the lobe, leaving the albedo (applied above).
     const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));

@@ -20,7 +20,9 @@ struct TraceOptions {
   std::uint32_t samples_per_pixel = 4;
   std::uint32_t seed = 1;
   std::uint32_t frame = 0;
-  int max_depth = 8;              // surface vertices per path; -1: unbounded, ended by Russian roulette
+  // Surface vertices per path, the series truncated after the last one's emission; -1: unbounded, ended by
+  // Russian roulette.
+  int max_depth = 8;
   std::uint32_t filter_bounce = 0;  // which diffuse vertex becomes the filter vertex; 0 is the primary hit
   int threads = 0;                // 0: all cores
 

@@ -103,7 +103,8 @@ void AddCrosscheckCommand(CLI::App& app, int* exit_code) {
   c->add_option("--backends", o->backends, "Comma-separated: reference, emulated, vulkan")->capture_default_str();
   c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
-  c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded")->capture_default_str();
+  c->add_option("--max-depth", o->trace.max_depth,
+                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
   c->add_option("--repro-dir", o->repro_dir, "Where a failing check writes its repro bundle")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");

@@ -96,7 +96,8 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("--backend", o->backend, "Filter backend: reference, emulated or vulkan")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  c->add_option("--max-depth", o->trace.max_depth, "Surface vertices per path; -1: unbounded (Russian roulette)")->capture_default_str();
+  c->add_option("--max-depth", o->trace.max_depth,
+                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")->capture_default_str();
   c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")->capture_default_str();
   c->add_option("--dump-records", o->dump_records, "Also write the traced batch to FILE.hpsfv");
