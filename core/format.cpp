@@ -22,7 +22,10 @@ std::string FormatHex(unsigned int bits) {
 std::string FormatFloatBits(float x) { return FormatFloat(x) + " (" + FormatHex(std::bit_cast<std::uint32_t>(x)) + ")"; }
 
 std::string FormatVec3(glm::vec3 v) {
-  return "(" + FormatFloat(v.x) + ", " + FormatFloat(v.y) + ", " + FormatFloat(v.z) + ")";
+  // Appended in place: GCC 12 at -O3 reports a false -Wrestrict on "literal" + std::string&& (GCC bug 105651).
+  std::string text = "(";
+  text.append(FormatFloat(v.x)).append(", ").append(FormatFloat(v.y)).append(", ").append(FormatFloat(v.z)).append(")");
+  return text;
 }
 
 }  // namespace hpsf

@@ -33,8 +33,11 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image, con
   if (exr.extension() != ".exr") throw InputError(exr_path + ": the output must be an .exr file");
   const std::filesystem::path png = std::filesystem::path(exr).replace_extension(".png");
   // Temporary names keep their extension, which tells OpenImageIO the format.
-  const std::filesystem::path exr_temporary = exr.parent_path() / ("." + exr.stem().string() + ".partial.exr");
-  const std::filesystem::path png_temporary = exr.parent_path() / ("." + exr.stem().string() + ".partial.png");
+  // The names are appended in place: GCC 12 at -O3 reports a false -Wrestrict on "literal" + std::string&&
+  // (GCC bug 105651).
+  const std::string hidden_stem = std::string(".").append(exr.stem().string());
+  const std::filesystem::path exr_temporary = exr.parent_path() / (hidden_stem + ".partial.exr");
+  const std::filesystem::path png_temporary = exr.parent_path() / (hidden_stem + ".partial.png");
 
   // OpenEXR writes chunks in the order its threads finish them; one thread makes the file bytes, not only the
   // pixels, the same on every run, so files can be compared as files.
