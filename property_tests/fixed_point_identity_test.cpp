@@ -3,37 +3,26 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
 #include "core/shared/fixed_point.h"
+#include "property_tests/vulkan_test_devices.h"
 #include "vulkan/fixed_point_pass.h"
-#include "vulkan/vulkan_device.h"
 
 namespace hpsf {
 namespace {
 
-VulkanDevice& SharedDevice() {
-  static std::unique_ptr<VulkanDevice> device;
-  if (!device) {
-    try {
-      device = std::make_unique<VulkanDevice>();
-    } catch (const VulkanUnavailable& e) {
-      throw std::runtime_error(std::string("Vulkan is required for this test: ") + e.what());
-    }
-  }
-  return *device;
-}
-
 void ExpectIdentical(const std::vector<float>& values, int fraction_bits) {
-  const std::vector<std::uint64_t> device = ToFixedPointOnDevice(SharedDevice(), values, fraction_bits);
-  ASSERT_EQ(device.size(), values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const std::uint64_t host = shared::ToFixedPoint(values[i], shared::PowerOfTwo(fraction_bits));
-    ASSERT_EQ(device[i], host) << "value " << values[i] << " F " << fraction_bits;
+  for (const StagingPolicy staging : testing::kStagingPolicies) {
+    const std::vector<std::uint64_t> device = ToFixedPointOnDevice(testing::TestDevice(staging), values, fraction_bits);
+    ASSERT_EQ(device.size(), values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const std::uint64_t host = shared::ToFixedPoint(values[i], shared::PowerOfTwo(fraction_bits));
+      ASSERT_EQ(device[i], host) << "value " << values[i] << " F " << fraction_bits << ", --vk-staging " << ToString(staging);
+    }
   }
 }
 
@@ -41,7 +30,7 @@ TEST(FixedPointIdentity, TiesRoundToEvenOnTheDevice) {
   std::vector<float> ties;
   for (int k = 0; k < 4096; ++k) ties.push_back((k + 0.5f) / 16.0f);  // every one a tie at F = 4
   ExpectIdentical(ties, 4);
-  const std::vector<std::uint64_t> device = ToFixedPointOnDevice(SharedDevice(), ties, 4);
+  const std::vector<std::uint64_t> device = ToFixedPointOnDevice(testing::TestDevice(StagingPolicy::kAuto), ties, 4);
   for (int k = 0; k < 4096; ++k) EXPECT_EQ(device[k] % 2, 0u) << "tie " << k << " did not round to even";
 }
 
@@ -55,9 +44,11 @@ RC_GTEST_PROP(FixedPointIdentity, AnyNonNegativeFloatAtAnyF, ()) {
     if (!std::isfinite(v) || std::ldexp(double(v), fraction_bits) >= 0x1p63) v = std::ldexp(1.5f, std::min(30 - fraction_bits, 127));
     values.push_back(v);
   }
-  const std::vector<std::uint64_t> device = ToFixedPointOnDevice(SharedDevice(), values, fraction_bits);
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    RC_ASSERT(device[i] == shared::ToFixedPoint(values[i], shared::PowerOfTwo(fraction_bits)));
+  for (const StagingPolicy staging : testing::kStagingPolicies) {
+    const std::vector<std::uint64_t> device = ToFixedPointOnDevice(testing::TestDevice(staging), values, fraction_bits);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      RC_ASSERT(device[i] == shared::ToFixedPoint(values[i], shared::PowerOfTwo(fraction_bits)));
+    }
   }
 }
 

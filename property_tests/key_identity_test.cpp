@@ -1,8 +1,7 @@
 // Level 1 of the cross-check, on lavapipe here and on a real GPU where there is one: every output word of
-// keys.comp equals the C++ result of the same shared code, bit for bit, with no exceptions.
-#include <cstdio>
+// keys.comp equals the C++ result of the same shared code, bit for bit, with no exceptions, whether the host
+// maps the device's buffers or moves data through staging buffers.
 #include <fstream>
-#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,27 +10,10 @@
 #include "core/input_check.h"
 #include "core/key_batch.h"
 #include "property_tests/record_generators.h"
-#include "vulkan/key_pass.h"
-#include "vulkan/vulkan_device.h"
+#include "property_tests/vulkan_test_devices.h"
 
 namespace hpsf::testing {
 namespace {
-
-// One device and pass for the whole binary. No device fails every test: in CI Vulkan tests never skip.
-KeyPass& SharedKeyPass() {
-  static std::unique_ptr<VulkanDevice> device;
-  static std::unique_ptr<KeyPass> pass;
-  if (!pass) {
-    try {
-      device = std::make_unique<VulkanDevice>();
-      pass = std::make_unique<KeyPass>(*device);
-      std::printf("key identity on %s\n", device->info().ToString().c_str());
-    } catch (const VulkanUnavailable& e) {
-      throw std::runtime_error(std::string("Vulkan is required for this test: ") + e.what());
-    }
-  }
-  return *pass;
-}
 
 // Writes the failing case where a person can replay it: config and records, floats in round-trip decimal.
 std::string WriteRepro(const KeyCase& key_case, std::uint32_t seed, const Record& record, const KeyResult& cpu,
@@ -48,17 +30,20 @@ void CheckBatchIsBitIdentical(const KeyCase& key_case, std::uint32_t seed, const
   for (const Record& r : records) RC_ASSERT(CheckRecordInputs(r) == InputVerdict::kAccepted);
   const KeyParams params = key_case.Params(static_cast<std::uint32_t>(records.size()));
   const std::vector<KeyResult> cpu = ComputeKeys(records, params);
-  const std::vector<KeyResult> gpu = SharedKeyPass().Run(records, params);
-  RC_ASSERT(gpu.size() == cpu.size());
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const auto c = KeyResultWords(cpu[i]), g = KeyResultWords(gpu[i]);
-    if (c == g) continue;
-    int word = 0;
-    while (c[word] == g[word]) ++word;
-    const std::string repro = WriteRepro(key_case, seed, records[i], cpu[i], gpu[i]);
-    RC_FAIL("record " + std::to_string(i) + ": " + KeyResultWordName(word) + " differs (cpu " + std::to_string(c[word]) +
-            ", gpu " + std::to_string(g[word]) + "); generator seed " + std::to_string(seed) + "; written to " + repro +
-            "\n" + ToString(records[i]) + "\ncpu " + ToString(cpu[i]) + "\ngpu " + ToString(gpu[i]) + "\n" + key_case.ToString());
+  for (const StagingPolicy staging : kStagingPolicies) {
+    const std::vector<KeyResult> gpu = TestKeyPass(staging).Run(records, params);
+    RC_ASSERT(gpu.size() == cpu.size());
+    for (std::size_t i = 0; i < records.size(); ++i) {
+      const auto c = KeyResultWords(cpu[i]), g = KeyResultWords(gpu[i]);
+      if (c == g) continue;
+      int word = 0;
+      while (c[word] == g[word]) ++word;
+      const std::string repro = WriteRepro(key_case, seed, records[i], cpu[i], gpu[i]);
+      RC_FAIL("record " + std::to_string(i) + ": " + KeyResultWordName(word) + " differs (cpu " + std::to_string(c[word]) +
+              ", gpu " + std::to_string(g[word]) + ", --vk-staging " + ToString(staging) + "); generator seed " + std::to_string(seed) +
+              "; written to " + repro + "\n" + ToString(records[i]) + "\ncpu " + ToString(cpu[i]) + "\ngpu " + ToString(gpu[i]) + "\n" +
+              key_case.ToString());
+    }
   }
 }
 
@@ -99,10 +84,12 @@ TEST(KeyIdentity, OneMillionMixedRecordsAcrossTwentyConfigs) {
     const KeyParams params = key_case.Params(static_cast<std::uint32_t>(records.size()));
     for (const Record& r : records) ASSERT_EQ(CheckRecordInputs(r), InputVerdict::kAccepted) << ToString(r);
     const std::vector<KeyResult> cpu = ComputeKeys(records, params);
-    const std::vector<KeyResult> gpu = SharedKeyPass().Run(records, params);
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < records.size(); ++i) differing += KeyResultWords(cpu[i]) != KeyResultWords(gpu[i]);
-    EXPECT_EQ(differing, 0u) << "generator seed " << seed << " " << key_case.ToString();
+    for (const StagingPolicy staging : kStagingPolicies) {
+      const std::vector<KeyResult> gpu = TestKeyPass(staging).Run(records, params);
+      std::size_t differing = 0;
+      for (std::size_t i = 0; i < records.size(); ++i) differing += KeyResultWords(cpu[i]) != KeyResultWords(gpu[i]);
+      EXPECT_EQ(differing, 0u) << "generator seed " << seed << ", --vk-staging " << ToString(staging) << " " << key_case.ToString();
+    }
   }
 }
 

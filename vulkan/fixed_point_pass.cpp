@@ -18,10 +18,13 @@ std::vector<std::uint64_t> ToFixedPointOnDevice(VulkanDevice& device, std::span<
   constexpr BindingKind kBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
   VulkanDevice::Impl& d = device.impl();
   vulkan_internal::ComputeProgram program = vulkan_internal::CreateComputeProgram(d, fixed_point_spv, kBindings, sizeof(Push));
-  vulkan_internal::HostBuffer input = vulkan_internal::CreateHostBuffer(d, values.size_bytes());
-  vulkan_internal::HostBuffer output = vulkan_internal::CreateHostBuffer(d, values.size() * sizeof(std::uint64_t));
-  if (!values.empty()) std::memcpy(input.mapped, values.data(), values.size_bytes());
-  vulkan_internal::HostBuffer* const buffers[] = {&input, &output};
+  vulkan_internal::DeviceBuffer input = vulkan_internal::CreateDeviceBuffer(d, values.size_bytes());
+  vulkan_internal::DeviceBuffer output = vulkan_internal::CreateDeviceBuffer(d, values.size() * sizeof(std::uint64_t));
+  std::vector<vulkan_internal::StagingBuffer> staging;
+  vulkan_internal::Transfer upload(d, staging);
+  if (!values.empty()) std::memcpy(upload.Upload(input, values.size_bytes()), values.data(), values.size_bytes());
+  upload.Submit();
+  vulkan_internal::DeviceBuffer* const buffers[] = {&input, &output};
   vulkan_internal::BindBuffers(d, program, buffers);
 
   const Push push{shared::PowerOfTwo(fraction_bits), static_cast<std::uint32_t>(values.size())};
@@ -33,7 +36,10 @@ std::vector<std::uint64_t> ToFixedPointOnDevice(VulkanDevice& device, std::span<
     cb.dispatch(groups, 1, 1);
   });
   std::vector<std::uint64_t> fixed(values.size());
-  if (!fixed.empty()) std::memcpy(fixed.data(), output.mapped, fixed.size() * sizeof(std::uint64_t));
+  vulkan_internal::Transfer download(d, staging);
+  const void* read = download.Download(output, fixed.size() * sizeof(std::uint64_t));
+  download.Submit();
+  if (!fixed.empty()) std::memcpy(fixed.data(), read, fixed.size() * sizeof(std::uint64_t));
   return fixed;
 }
 

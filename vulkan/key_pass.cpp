@@ -8,7 +8,7 @@
 
 namespace hpsf {
 
-using vulkan_internal::HostBuffer;
+using vulkan_internal::DeviceBuffer;
 
 namespace {
 
@@ -20,8 +20,9 @@ constexpr vk::DeviceSize kPackedKeyBytes = 2 * sizeof(glm::uvec4);  // core/shar
 struct KeyPass::Impl {
   VulkanDevice::Impl& device;
   vulkan_internal::ComputeProgram program;
-  HostBuffer records;
-  HostBuffer keys;
+  DeviceBuffer records;
+  DeviceBuffer keys;
+  std::vector<vulkan_internal::StagingBuffer> staging;
   std::uint32_t count = 0;
 };
 
@@ -30,7 +31,7 @@ constexpr vulkan_internal::BindingKind kKeyBindings[] = {vulkan_internal::Bindin
 
 KeyPass::KeyPass(VulkanDevice& device)
     : impl_(new Impl{device.impl(),
-                     vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, kKeyBindings, sizeof(KeyParams)), {}, {}, 0}) {}
+                     vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, kKeyBindings, sizeof(KeyParams)), {}, {}, {}, 0}) {}
 
 KeyPass::~KeyPass() = default;
 
@@ -38,11 +39,13 @@ void KeyPass::Upload(std::span<const Record> records) {
   Impl& p = *impl_;
   if (records.size() > UINT32_MAX) throw std::length_error("KeyPass: more than 2^32 - 1 records");
   const vk::DeviceSize record_bytes = records.size_bytes(), key_bytes = records.size() * kPackedKeyBytes;
-  if (p.records.size < record_bytes || !*p.records.buffer) p.records = vulkan_internal::CreateHostBuffer(p.device, record_bytes);
-  if (p.keys.size < key_bytes || !*p.keys.buffer) p.keys = vulkan_internal::CreateHostBuffer(p.device, key_bytes);
-  if (!records.empty()) std::memcpy(p.records.mapped, records.data(), record_bytes);
+  if (p.records.size < record_bytes || !*p.records.buffer) p.records = vulkan_internal::CreateDeviceBuffer(p.device, record_bytes);
+  if (p.keys.size < key_bytes || !*p.keys.buffer) p.keys = vulkan_internal::CreateDeviceBuffer(p.device, key_bytes);
+  vulkan_internal::Transfer upload(p.device, p.staging);
+  if (!records.empty()) std::memcpy(upload.Upload(p.records, record_bytes), records.data(), record_bytes);
+  upload.Submit();
   p.count = static_cast<std::uint32_t>(records.size());
-  HostBuffer* const bindings[] = {&p.records, &p.keys};
+  DeviceBuffer* const bindings[] = {&p.records, &p.keys};
   vulkan_internal::BindBuffers(p.device, p.program, bindings);
 }
 
@@ -59,9 +62,12 @@ double KeyPass::Dispatch(const KeyParams& params) {
   });
 }
 
-std::vector<KeyResult> KeyPass::Download() const {
-  std::vector<KeyResult> keys(impl_->count);
-  const auto* packed = static_cast<const glm::uvec4*>(impl_->keys.mapped);
+std::vector<KeyResult> KeyPass::Download() {
+  Impl& p = *impl_;
+  std::vector<KeyResult> keys(p.count);
+  vulkan_internal::Transfer download(p.device, p.staging);
+  const auto* packed = static_cast<const glm::uvec4*>(download.Download(p.keys, keys.size() * kPackedKeyBytes));
+  download.Submit();
   for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = shared::UnpackKey(packed[2 * i], packed[2 * i + 1]);
   return keys;
 }

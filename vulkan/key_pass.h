@@ -23,7 +23,7 @@ class KeyPass {
   void Upload(std::span<const Record> records);
   // Runs keys.comp over the uploaded records and waits; returns the device time from timestamps, in ms.
   double Dispatch(const KeyParams& params);
-  std::vector<KeyResult> Download() const;
+  std::vector<KeyResult> Download();
 
   // Upload, Dispatch, Download.
   std::vector<KeyResult> Run(std::span<const Record> records, const KeyParams& params);

@@ -1,8 +1,11 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <optional>
+#include <utility>
 #include <vector>
 
+#include "core/error.h"
 #include "vulkan/vulkan_internal.h"
 
 namespace hpsf {
@@ -84,14 +87,74 @@ std::string Join(const std::vector<std::string>& items, const char* separator) {
   return s;
 }
 
+using MemoryFlags = vk::MemoryPropertyFlagBits;
+
+struct MemoryPreference {
+  vk::MemoryPropertyFlags required;
+  vk::MemoryPropertyFlags avoided;
+};
+
+// The first memory type among `allowed` that satisfies a preference, trying the preferences in order.
+std::optional<std::uint32_t> PickMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t allowed,
+                                            std::initializer_list<MemoryPreference> preferences) {
+  for (const MemoryPreference& p : preferences) {
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+      const vk::MemoryPropertyFlags flags = memory.memoryTypes[i].propertyFlags;
+      if ((allowed & (1u << i)) && (flags & p.required) == p.required && !(flags & p.avoided)) return i;
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::uint32_t> KernelMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t allowed, bool staged) {
+  if (staged) return PickMemoryType(memory, allowed, {{MemoryFlags::eDeviceLocal, MemoryFlags::eHostVisible}, {MemoryFlags::eDeviceLocal, {}}});
+  const vk::MemoryPropertyFlags mapped = MemoryFlags::eHostVisible | MemoryFlags::eHostCoherent;
+  return PickMemoryType(memory, allowed,
+                        {{mapped | MemoryFlags::eDeviceLocal | MemoryFlags::eHostCached, {}}, {mapped | MemoryFlags::eDeviceLocal, {}}, {mapped, {}}});
+}
+
+std::optional<std::uint32_t> StagingMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t allowed) {
+  const vk::MemoryPropertyFlags mapped = MemoryFlags::eHostVisible | MemoryFlags::eHostCoherent;
+  return PickMemoryType(memory, allowed,
+                        {{mapped | MemoryFlags::eHostCached, MemoryFlags::eDeviceLocal}, {mapped | MemoryFlags::eHostCached, {}}, {mapped, {}}});
+}
+
+// A memory type that kernels reach at full speed and the host reads through its caches: no staging needed.
+bool HasUnifiedMemory(const vk::PhysicalDeviceMemoryProperties& memory) {
+  return PickMemoryType(memory, ~0u, {{MemoryFlags::eDeviceLocal | MemoryFlags::eHostVisible | MemoryFlags::eHostCached, {}}}).has_value();
+}
+
+std::string DescribeMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t type) {
+  return "type " + std::to_string(type) + " " + vk::to_string(memory.memoryTypes[type].propertyFlags) + " of heap " +
+         std::to_string(memory.memoryTypes[type].heapIndex) + " (" +
+         std::to_string(memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size >> 20) + " MiB)";
+}
+
 }  // namespace
+
+StagingPolicy ParseStagingPolicy(const std::string& text) {
+  if (text == "auto") return StagingPolicy::kAuto;
+  if (text == "always") return StagingPolicy::kAlways;
+  if (text == "never") return StagingPolicy::kNever;
+  throw ConfigError("--vk-staging", "'" + text + "' is not a staging policy; expected always, never or auto");
+}
+
+const char* ToString(StagingPolicy policy) {
+  switch (policy) {
+    case StagingPolicy::kAuto: return "auto";
+    case StagingPolicy::kAlways: return "always";
+    case StagingPolicy::kNever: return "never";
+  }
+  return "?";
+}
 
 std::string VulkanDeviceInfo::ToString() const {
   return "[ VulkanDevice name: '" + name + "' type: " + type + " driver: '" + driver_name + "' '" + driver_info +
-         "' api: " + api_version + " subgroup_size: " + std::to_string(subgroup_size) + " ]";
+         "' api: " + api_version + " subgroup_size: " + std::to_string(subgroup_size) +
+         " memory: " + memory + " ]";
 }
 
-VulkanDevice::VulkanDevice(const std::string& name_filter) {
+VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging) {
   try {
     impl_ = std::make_unique<Impl>();  // loads the Vulkan loader library
     Impl& d = *impl_;
@@ -160,6 +223,20 @@ VulkanDevice::VulkanDevice(const std::string& name_filter) {
         d.device, vk::CommandPoolCreateInfo(vk::CommandPoolCreateFlagBits::eResetCommandBuffer, d.queue_family));
     d.timestamps = vk::raii::QueryPool(d.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
     d.timestamp_period_ns = d.physical.getProperties().limits.timestampPeriod;
+
+    const vk::PhysicalDeviceMemoryProperties memory = d.physical.getMemoryProperties();
+    d.info.staged = staging == StagingPolicy::kAlways || (staging == StagingPolicy::kAuto && !HasUnifiedMemory(memory));
+    const std::optional<std::uint32_t> kernel = KernelMemoryType(memory, ~0u, d.info.staged), host = StagingMemoryType(memory, ~0u);
+    if (!kernel || (d.info.staged && !host)) {
+      throw VulkanUnavailable("Vulkan device '" + d.info.name + "' has no memory type for " +
+                              (!kernel ? "the kernels' buffers" : "staging (host-visible, coherent)") + " with --vk-staging " +
+                              ToString(staging));
+    }
+    d.kernel_memory_type = *kernel;
+    d.staging_memory_type = host.value_or(*kernel);
+    d.info.memory = d.info.staged ? "staged: kernels in " + DescribeMemoryType(memory, d.kernel_memory_type) + ", staging in " +
+                                        DescribeMemoryType(memory, d.staging_memory_type)
+                                  : "mapped: kernels and host share " + DescribeMemoryType(memory, d.kernel_memory_type);
   } catch (const VulkanUnavailable&) {
     throw;
   } catch (const std::exception& e) {
@@ -180,30 +257,77 @@ vk::DescriptorType DescriptorType(BindingKind kind) {
 
 }  // namespace
 
-HostBuffer CreateHostBuffer(VulkanDevice::Impl& d, vk::DeviceSize size) {
-  HostBuffer b;
-  b.size = std::max<vk::DeviceSize>(size, 16);
-  b.buffer = vk::raii::Buffer(d.device, vk::BufferCreateInfo({}, b.size,
-                                                              vk::BufferUsageFlagBits::eStorageBuffer |
-                                                                  vk::BufferUsageFlagBits::eUniformTexelBuffer));
+namespace {
+
+// A buffer in the memory type `preferred` names, or the best type the buffer allows when it does not allow that one.
+template <typename Buffer>
+void Allocate(VulkanDevice::Impl& d, Buffer& b, vk::BufferUsageFlags usage, bool staging) {
+  b.buffer = vk::raii::Buffer(d.device, vk::BufferCreateInfo({}, b.size, usage));
   const vk::MemoryRequirements requirements = b.buffer.getMemoryRequirements();
-  const vk::PhysicalDeviceMemoryProperties memory = d.physical.getMemoryProperties();
-  const auto wanted = vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent;
-  std::uint32_t type = memory.memoryTypeCount;
-  for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-    if ((requirements.memoryTypeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted) {
-      type = i;
-      break;
-    }
+  const std::uint32_t preferred = staging ? d.staging_memory_type : d.kernel_memory_type;
+  std::optional<std::uint32_t> type;
+  if (requirements.memoryTypeBits & (1u << preferred)) {
+    type = preferred;
+  } else {
+    const vk::PhysicalDeviceMemoryProperties memory = d.physical.getMemoryProperties();
+    type = staging ? StagingMemoryType(memory, requirements.memoryTypeBits) : KernelMemoryType(memory, requirements.memoryTypeBits, d.info.staged);
   }
-  if (type == memory.memoryTypeCount) throw VulkanUnavailable("Vulkan device '" + d.info.name + "' has no host-visible coherent memory");
-  b.memory = vk::raii::DeviceMemory(d.device, vk::MemoryAllocateInfo(requirements.size, type));
+  if (!type) throw VulkanUnavailable("Vulkan device '" + d.info.name + "' offers no suitable memory type for a buffer of " + std::to_string(b.size) + " bytes");
+  b.memory = vk::raii::DeviceMemory(d.device, vk::MemoryAllocateInfo(requirements.size, *type));
   b.buffer.bindMemory(*b.memory, 0);
-  b.mapped = b.memory.mapMemory(0, b.size);
+}
+
+}  // namespace
+
+DeviceBuffer CreateDeviceBuffer(VulkanDevice::Impl& d, vk::DeviceSize size) {
+  DeviceBuffer b;
+  b.size = std::max<vk::DeviceSize>(size, 16);
+  Allocate(d, b,
+           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eTransferSrc |
+               vk::BufferUsageFlagBits::eTransferDst,
+           false);
+  if (!d.info.staged) b.mapped = b.memory.mapMemory(0, b.size);
   if (b.size % 16 == 0 && b.size / 16 <= d.physical.getProperties().limits.maxTexelBufferElements) {
     b.texels = vk::raii::BufferView(d.device, vk::BufferViewCreateInfo({}, *b.buffer, vk::Format::eR32G32B32A32Uint, 0, b.size));
   }
   return b;
+}
+
+StagingBuffer& Transfer::Staging(vk::DeviceSize bytes) {
+  if (used_ == pool_.size()) pool_.emplace_back();
+  StagingBuffer& s = pool_[used_++];
+  if (!*s.buffer || s.size < bytes) {
+    s = StagingBuffer{};
+    s.size = std::max<vk::DeviceSize>(bytes, 16);
+    Allocate(device_, s, vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst, true);
+    s.mapped = s.memory.mapMemory(0, s.size);
+  }
+  return s;
+}
+
+void* Transfer::Upload(DeviceBuffer& buffer, vk::DeviceSize bytes) {
+  bytes_ += bytes;
+  if (buffer.mapped) return buffer.mapped;
+  StagingBuffer& s = Staging(bytes);
+  if (bytes > 0) copies_.push_back({*s.buffer, *buffer.buffer, bytes});
+  return s.mapped;
+}
+
+const void* Transfer::Download(DeviceBuffer& buffer, vk::DeviceSize bytes) {
+  bytes_ += bytes;
+  if (buffer.mapped) return buffer.mapped;
+  StagingBuffer& s = Staging(bytes);
+  if (bytes > 0) copies_.push_back({*buffer.buffer, *s.buffer, bytes});
+  return s.mapped;
+}
+
+double Transfer::Submit() {
+  if (copies_.empty()) return 0.0;
+  const double ms = SubmitAndWait(device_, [&](vk::raii::CommandBuffer& cb) {
+    for (const Copy& c : copies_) cb.copyBuffer(c.from, c.to, vk::BufferCopy(0, 0, c.bytes));
+  });
+  copies_.clear();
+  return ms;
 }
 
 ComputeProgram CreateComputeProgram(VulkanDevice::Impl& d, std::span<const std::uint32_t> spirv,
@@ -232,13 +356,13 @@ ComputeProgram CreateComputeProgram(VulkanDevice::Impl& d, std::span<const std::
   return p;
 }
 
-void BindBuffers(VulkanDevice::Impl& d, ComputeProgram& program, std::span<HostBuffer* const> buffers) {
+void BindBuffers(VulkanDevice::Impl& d, ComputeProgram& program, std::span<DeviceBuffer* const> buffers) {
   const vk::DeviceSize storage_range = d.physical.getProperties().limits.maxStorageBufferRange;
   std::vector<vk::DescriptorBufferInfo> infos(buffers.size());
   std::vector<vk::BufferView> views(buffers.size());
   std::vector<vk::WriteDescriptorSet> writes;
   for (std::uint32_t i = 0; i < buffers.size(); ++i) {
-    HostBuffer& b = *buffers[i];
+    DeviceBuffer& b = *buffers[i];
     const vk::DescriptorType type = DescriptorType(program.bindings.at(i));
     vk::WriteDescriptorSet write(*program.set, i, 0, 1, type);
     if (program.bindings[i] == BindingKind::kStorageBuffer) {
@@ -271,9 +395,14 @@ double SubmitAndWait(VulkanDevice::Impl& d, const std::function<void(vk::raii::C
   vk::raii::CommandBuffer& cb = buffers.front();
   cb.begin(vk::CommandBufferBeginInfo(vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
   cb.resetQueryPool(*d.timestamps, 0, 2);
+  // Submission order alone does not make one submission's writes visible to the next, nor to the host.
+  const vk::MemoryBarrier earlier(vk::AccessFlagBits::eMemoryWrite, vk::AccessFlagBits::eMemoryRead | vk::AccessFlagBits::eMemoryWrite);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eAllCommands, vk::PipelineStageFlagBits::eAllCommands, {}, earlier, nullptr, nullptr);
   cb.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *d.timestamps, 0);
   record(cb);
   cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *d.timestamps, 1);
+  const vk::MemoryBarrier to_host(vk::AccessFlagBits::eMemoryWrite, vk::AccessFlagBits::eHostRead);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eAllCommands, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr, nullptr);
   cb.end();
   vk::raii::Fence fence(d.device, vk::FenceCreateInfo());
   const vk::CommandBuffer handle = *cb;

@@ -18,6 +18,14 @@ class VulkanUnavailable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Where the kernels' buffers live and how the host reaches them. The kernels always use DEVICE_LOCAL memory;
+// `staged` moves data through host-cached staging buffers with copy commands (a discrete GPU, whose host-visible
+// device memory is uncached), otherwise the host maps the kernels' buffers (lavapipe, integrated GPUs). kAuto
+// stages unless a memory type is DEVICE_LOCAL, HOST_VISIBLE and HOST_CACHED at once.
+enum class StagingPolicy { kAuto, kAlways, kNever };
+StagingPolicy ParseStagingPolicy(const std::string& text);  // ConfigError naming --vk-staging
+const char* ToString(StagingPolicy policy);
+
 struct VulkanDeviceInfo {
   std::string name;         // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
   std::string type;         // discrete, integrated, virtual, cpu, other
@@ -25,6 +33,8 @@ struct VulkanDeviceInfo {
   std::string driver_info;  // e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
   std::string api_version;  // e.g. "1.3.230"
   std::uint32_t subgroup_size = 0;
+  bool staged = false;  // the host reaches the kernels' buffers through staging copies
+  std::string memory;   // the memory types chosen, for reports
   DeviceFeatures features;
   std::string ToString() const;
 };
@@ -32,7 +42,7 @@ struct VulkanDeviceInfo {
 class VulkanDevice {
  public:
   // name_filter: a case-insensitive substring of the device name; empty picks the best device.
-  explicit VulkanDevice(const std::string& name_filter = "");
+  explicit VulkanDevice(const std::string& name_filter = "", StagingPolicy staging = StagingPolicy::kAuto);
   ~VulkanDevice();
   VulkanDevice(const VulkanDevice&) = delete;
   VulkanDevice& operator=(const VulkanDevice&) = delete;

@@ -28,7 +28,7 @@ namespace hpsf {
 
 using vulkan_internal::BindingKind;
 using vulkan_internal::ComputeProgram;
-using vulkan_internal::HostBuffer;
+using vulkan_internal::DeviceBuffer;
 
 namespace {
 
@@ -98,7 +98,8 @@ struct VulkanFilter::Impl {
   std::string accumulate_name;
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
   std::optional<ComputeProgram> resolve[2];
-  HostBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels;
+  DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels;
+  std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
 
   ComputeProgram& Accumulate(Accumulation mode) {
     const int m = mode == Accumulation::kFixed64 ? 0 : 1;
@@ -118,14 +119,14 @@ struct VulkanFilter::Impl {
     }
     return *resolve[m];
   }
-  void Ensure(HostBuffer& buffer, vk::DeviceSize bytes) {
-    if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateHostBuffer(device, bytes);
+  void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
+    if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateDeviceBuffer(device, bytes);
   }
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv)
     : impl_(new Impl{device.impl(), accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
-                     accumulate_spv.empty() ? "built-in" : accumulate_spv, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {}
+                     accumulate_spv.empty() ? "built-in" : accumulate_spv, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {}
 
 VulkanFilter::~VulkanFilter() = default;
 
@@ -154,7 +155,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
 
-  // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record).
+  // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record),
+  // written into the kernels' buffers where the host maps them, else into staging buffers copied over.
   auto start = std::chrono::steady_clock::now();
   p.Ensure(p.records, batch.records.size() * sizeof(Record));
   p.Ensure(p.keys, vk::DeviceSize(n) * sizeof(KeyResult));
@@ -165,8 +167,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.stats, 8);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
-  auto* records = static_cast<Record*>(p.records.mapped);
-  auto* accepted = static_cast<std::uint32_t*>(p.accepted.mapped);
+  vulkan_internal::Transfer upload(p.device, p.staging);
+  auto* records = static_cast<Record*>(upload.Upload(p.records, batch.records.size() * sizeof(Record)));
+  auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
   std::vector<glm::vec3> entering;  // for F: the contributions of the records that enter the table, else zero
   ResizeOnHugePages(entering, n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
@@ -178,17 +181,19 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     }
   });
   run.timings.upload_ms = MillisecondsSince(start);
+  run.timings.upload_copy_ms = upload.Submit();
+  run.timings.upload_bytes = upload.bytes();
   table.fixed_point_bits = ChooseFixedPointBitsOf(entering);  // the host's pre-pass
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
-  HostBuffer* const accumulate_buffers[] = {&p.records, &p.keys, &p.tags, &p.sums, &p.counts, &p.placements, &p.stats, &p.accepted};
+  DeviceBuffer* const accumulate_buffers[] = {&p.records, &p.keys, &p.tags, &p.sums, &p.counts, &p.placements, &p.stats, &p.accepted};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
   AccumulatePush push{MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
                       {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
                        fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32}};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
-    for (HostBuffer* cleared : {&p.tags, &p.sums, &p.counts, &p.stats}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
+    for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts, &p.stats}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
     const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared, nullptr, nullptr);
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *accumulate.pipeline);
@@ -199,7 +204,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
 
   // Resolve: a separate pass, 16 pixels per invocation.
   ComputeProgram& resolve = p.Resolve(config.accumulation);
-  HostBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
+  DeviceBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   const std::uint32_t pixel_count = batch.width * batch.height;
   const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits), config.capacity, pixel_count, batch.samples_per_pixel, 0};
@@ -210,7 +215,20 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.dispatch(vulkan_internal::WorkgroupsFor(pixel_count, kResolvePixelsPerWorkgroup), 1, 1);
   });
 
-  // Read-back, in parallel chunks, into arrays on huge pages.
+  // Read-back, into arrays on huge pages in parallel chunks, from the mapped buffers or from staging buffers
+  // the device copied them into.
+  const std::size_t pixel_bytes = std::size_t(pixel_count) * 3 * sizeof(float);
+  const std::size_t sum_bytes = std::size_t(config.capacity) * (fixed ? 24 : 12);
+  vulkan_internal::Transfer download(p.device, p.staging);
+  const void* from_pixels = download.Download(p.pixels, pixel_bytes);
+  const void* from_keys = download.Download(p.keys, std::size_t(n) * sizeof(KeyResult));
+  const void* from_placements = download.Download(p.placements, std::size_t(n) * 4);
+  const void* from_tags = download.Download(p.tags, std::size_t(config.capacity) * 4);
+  const void* from_counts = download.Download(p.counts, std::size_t(config.capacity) * 8);
+  const void* from_sums = download.Download(p.sums, sum_bytes);
+  const void* from_stats = download.Download(p.stats, 8);
+  run.timings.read_back_copy_ms = download.Submit();
+  run.timings.read_back_bytes = download.bytes();
   start = std::chrono::steady_clock::now();
   run.image = Image(batch.width, batch.height);
   ResizeOnHugePages(run.keys, n);
@@ -222,14 +240,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   } else {
     ResizeOnHugePages(table.float_sums, config.capacity);
   }
-  const auto copies = {CopyOut{run.image.pixels.data(), p.pixels.mapped, std::size_t(pixel_count) * 3 * sizeof(float)},
-                       CopyOut{run.keys.data(), p.keys.mapped, std::size_t(n) * sizeof(KeyResult)},
-                       CopyOut{run.placements.data(), p.placements.mapped, std::size_t(n) * 4},
-                       CopyOut{table.tags.data(), p.tags.mapped, std::size_t(config.capacity) * 4},
-                       CopyOut{table.counts.data(), p.counts.mapped, std::size_t(config.capacity) * 8},
-                       CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()), p.sums.mapped,
-                               std::size_t(config.capacity) * (fixed ? 24 : 12)},
-                       CopyOut{&run.wraps, p.stats.mapped, 8}};
+  const auto copies = {CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
+                       CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
+                       CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
+                       CopyOut{table.tags.data(), from_tags, std::size_t(config.capacity) * 4},
+                       CopyOut{table.counts.data(), from_counts, std::size_t(config.capacity) * 8},
+                       CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()), from_sums,
+                               sum_bytes},
+                       CopyOut{&run.wraps, from_stats, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   run.timings.read_back_ms = MillisecondsSince(start);
   CountProbes(run);

@@ -18,11 +18,20 @@
 
 namespace hpsf {
 
+// Kernel times from device timestamps; transfers split into the host's part and, on a staged device, the
+// device's copies (timestamps), with the bytes moved each way.
 struct VulkanTimings {
-  double upload_ms = 0;      // host: records and input verdicts into mapped device memory
-  double accumulate_ms = 0;  // device timestamps: clearing the table and the accumulate dispatch
-  double resolve_ms = 0;     // device timestamps: the resolve dispatch
-  double read_back_ms = 0;   // host: image, table, keys and placements out of device memory
+  double upload_ms = 0;          // host: records and input verdicts into mapped or staging memory
+  double upload_copy_ms = 0;     // device: staging to device copies (0 when mapped)
+  double accumulate_ms = 0;      // device: clearing the table and the accumulate dispatch (keys included)
+  double resolve_ms = 0;         // device: the resolve dispatch
+  double read_back_copy_ms = 0;  // device: device to staging copies (0 when mapped)
+  double read_back_ms = 0;       // host: image, table, keys and placements out of mapped or staging memory
+  std::uint64_t upload_bytes = 0;
+  std::uint64_t read_back_bytes = 0;
+  double FilterMs() const { return accumulate_ms + resolve_ms; }
+  double UploadMs() const { return upload_ms + upload_copy_ms; }
+  double ReadBackMs() const { return read_back_copy_ms + read_back_ms; }
 };
 
 struct VulkanRun : HashedRun {

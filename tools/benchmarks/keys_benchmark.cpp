@@ -1,15 +1,13 @@
 // Keys per second for 2 million records: the shared key path in C++ on one core, and keys.comp on the Vulkan
 // device (steady-state dispatches: pipeline creation and upload excluded). Run:
 //   build/default/bin/keys_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-#include <memory>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "core/key_batch.h"
 #include "property_tests/record_generators.h"
-#include "vulkan/key_pass.h"
-#include "vulkan/vulkan_device.h"
+#include "tools/benchmarks/benchmark_vulkan.h"
 
 namespace hpsf {
 namespace {
@@ -49,26 +47,19 @@ BENCHMARK(BM_KeysCpp)->Unit(benchmark::kMillisecond);
 
 void BM_KeysVulkan(benchmark::State& state) {
   const KeyWorkload& w = Workload();
-  static std::unique_ptr<VulkanDevice> device;
-  static std::unique_ptr<KeyPass> pass;
-  try {
-    if (!device) device = std::make_unique<VulkanDevice>();
-    if (!pass) pass = std::make_unique<KeyPass>(*device);
-  } catch (const VulkanUnavailable& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  KeyPass* pass = benchmarks::KeyPassOn(state, StagingPolicy::kAuto);
+  if (!pass) return;
   pass->Upload(w.records);
   pass->Dispatch(w.params);  // warm-up: first-touch of the output buffer
   double device_ms = 0.0;
   for (auto _ : state) device_ms += pass->Dispatch(w.params);
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kRecords));
   state.counters["device_ms"] = device_ms / double(state.iterations());
-  state.SetLabel(device->info().name);
+  state.SetLabel(benchmarks::Device(state, StagingPolicy::kAuto)->info().name);
 }
 BENCHMARK(BM_KeysVulkan)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace hpsf
 
-BENCHMARK_MAIN();
+HPSF_BENCHMARK_MAIN();

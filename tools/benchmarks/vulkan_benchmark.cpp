@@ -1,12 +1,13 @@
 // The Vulkan backend on the 2-million-record batch (the Cornell box at 1080p, 1 spp) into a 2^21-slot table,
-// beside the emulator's fast mode in the same run; counters split each Vulkan run into upload, accumulate and
-// resolve (device timestamps) and read-back. Run:
+// beside the emulator's fast mode in the same run, with the staging policy auto, always and never; counters split
+// each Vulkan run into upload, accumulate and resolve (device timestamps), filter (their sum) and read-back, with
+// the transfers' GB/s. Run:
 //   build/default/bin/vulkan_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include "emulated/emulated_filter.h"
+#include "tools/benchmarks/benchmark_vulkan.h"
 #include "tools/benchmarks/cornell_frame.h"
-#include "vulkan/vulkan_filter.h"
 
 namespace hpsf {
 namespace {
@@ -28,24 +29,42 @@ void BM_EmulatedFast(benchmark::State& state) {
 }
 BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Arguments: accumulation (0 fixed64, 1 float32) and staging (0 auto, 1 always, 2 never).
 void BM_Vulkan(benchmark::State& state) {
-  static VulkanDevice device;
-  static VulkanFilter filter(device);
   const Accumulation accumulation = state.range(0) == 0 ? Accumulation::kFixed64 : Accumulation::kFloat32;
-  state.SetLabel(std::string(accumulation == Accumulation::kFixed64 ? "fixed64 on " : "float32 on ") + device.info().name);
+  const StagingPolicy staging = StagingPolicy(state.range(1));
+  VulkanFilter* filter = benchmarks::FilterOn(state, staging);
+  if (!filter) return;
+  const VulkanDeviceInfo& device = benchmarks::Device(state, staging)->info();
+  state.SetLabel(std::string(accumulation == Accumulation::kFixed64 ? "fixed64" : "float32") + (device.staged ? ", staged" : ", mapped") +
+                 " on " + device.name);
+  VulkanTimings sum;
   for (auto _ : state) {
-    VulkanRun run = filter.Run(CornellFrame(), TableConfig(accumulation));
+    VulkanRun run = filter->Run(CornellFrame(), TableConfig(accumulation));
     benchmark::DoNotOptimize(run.image.pixels.data());
-    state.counters["upload_ms"] = run.timings.upload_ms;
-    state.counters["accumulate_ms"] = run.timings.accumulate_ms;
-    state.counters["resolve_ms"] = run.timings.resolve_ms;
-    state.counters["read_back_ms"] = run.timings.read_back_ms;
+    const VulkanTimings& t = run.timings;
+    sum.upload_ms += t.upload_ms;
+    sum.upload_copy_ms += t.upload_copy_ms;
+    sum.accumulate_ms += t.accumulate_ms;
+    sum.resolve_ms += t.resolve_ms;
+    sum.read_back_copy_ms += t.read_back_copy_ms;
+    sum.read_back_ms += t.read_back_ms;
+    sum.upload_bytes = t.upload_bytes;
+    sum.read_back_bytes = t.read_back_bytes;
   }
+  const double n = double(state.iterations());
+  state.counters["upload_ms"] = (sum.upload_ms + sum.upload_copy_ms) / n;
+  state.counters["accumulate_ms"] = sum.accumulate_ms / n;
+  state.counters["resolve_ms"] = sum.resolve_ms / n;
+  state.counters["filter_ms"] = sum.FilterMs() / n;
+  state.counters["read_back_ms"] = (sum.read_back_copy_ms + sum.read_back_ms) / n;
+  state.counters["upload_GBps"] = double(sum.upload_bytes) * n / (sum.UploadMs() * 1e6);
+  state.counters["read_back_GBps"] = double(sum.read_back_bytes) * n / (sum.ReadBackMs() * 1e6);
   state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
-BENCHMARK(BM_Vulkan)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Vulkan)->ArgsProduct({{0, 1}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace hpsf
 
-BENCHMARK_MAIN();
+HPSF_BENCHMARK_MAIN();

@@ -186,8 +186,9 @@ void CompareKeys(const RecordBatch& batch, const FilterConfig& config, const Has
 
 void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const VulkanBackendOptions& options,
                  CrosscheckReport& report, LevelVerdict& keys, LevelVerdict& tables, LevelVerdict& ideal, LevelVerdict& determinism) {
-  VulkanDevice device(options.device_filter);
-  report.vulkan_device = device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info + ")";
+  VulkanDevice device(options.device_filter, options.staging);
+  report.vulkan_device = device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info + "), memory " +
+                         device.info().memory;
   VulkanFilter filter(device, options.accumulate_spv);
   const VulkanRun run = filter.Run(batch, config);
   keys.applicable = true;

@@ -15,6 +15,7 @@
 #include "core/record.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
+#include "vulkan/vulkan_device.h"
 
 namespace hpsf {
 
@@ -45,6 +46,7 @@ struct CrosscheckReport {
 struct VulkanBackendOptions {
   std::string device_filter;   // --vk-device: a substring of the device name; empty picks the best
   std::string accumulate_spv;  // --accumulate-spv: a user's accumulate shader; empty for the built-in one
+  StagingPolicy staging = StagingPolicy::kAuto;  // --vk-staging
 };
 
 // backends: "reference", "emulated", "vulkan" (the reference is always run: it is the ideal).

@@ -14,6 +14,8 @@ std::uint64_t SlotsUsed(const HashTableDump& table) {
   return std::uint64_t(std::count_if(table.tags.begin(), table.tags.end(), [](SlotTag tag) { return tag != kEmptyTag; }));
 }
 
+double GigabytesPerSecond(std::uint64_t bytes, double ms) { return ms > 0.0 ? double(bytes) / (ms * 1e6) : 0.0; }
+
 }  // namespace
 
 void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
@@ -22,6 +24,12 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--schedule", flags.options.schedule, "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH (exhaustive: tests only, up to 2 threads)")
       ->capture_default_str();
   command.add_option("--vk-device", flags.vulkan.device_filter, "Vulkan backend: the device whose name contains this text");
+  command
+      .add_option_function<std::string>(
+          "--vk-staging", [&flags](const std::string& text) { flags.vulkan.staging = ParseStagingPolicy(text); },
+          "Vulkan backend: move data through staging buffers (always), map the kernels' buffers (never), or stage only "
+          "where no device memory is host-cached (auto)")
+      ->default_str("auto");
   command.add_option("--accumulate-spv", flags.vulkan.accumulate_spv,
                      "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface (README)");
   command.add_option("--inject-defect", flags.defect, "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D13)")
@@ -85,9 +93,21 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
           {"slots_used", SlotsUsed(run.table)},
           {"probe_lengths", run.probe_lengths},
           {"fixed_point_bits", run.table.fixed_point_bits},
+          {"memory", device.memory},
+          {"staged", device.staged},
           {"timings_ms",
-           {{"upload", run.timings.upload_ms}, {"accumulate", run.timings.accumulate_ms}, {"resolve", run.timings.resolve_ms},
-            {"read_back", run.timings.read_back_ms}}}};
+           {{"upload", run.timings.upload_ms},
+            {"upload_copy", run.timings.upload_copy_ms},
+            {"accumulate", run.timings.accumulate_ms},
+            {"resolve", run.timings.resolve_ms},
+            {"filter", run.timings.FilterMs()},
+            {"read_back_copy", run.timings.read_back_copy_ms},
+            {"read_back", run.timings.read_back_ms}}},
+          {"transfers",
+           {{"upload_bytes", run.timings.upload_bytes},
+            {"upload_gb_per_s", GigabytesPerSecond(run.timings.upload_bytes, run.timings.UploadMs())},
+            {"read_back_bytes", run.timings.read_back_bytes},
+            {"read_back_gb_per_s", GigabytesPerSecond(run.timings.read_back_bytes, run.timings.ReadBackMs())}}}};
 }
 
 BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
@@ -103,7 +123,7 @@ BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, c
     out.image = out.emulated->image;
     out.stats = ToJson(*out.emulated, emulator);
   } else {
-    VulkanDevice device(vulkan.device_filter);
+    VulkanDevice device(vulkan.device_filter, vulkan.staging);
     VulkanFilter filter(device, vulkan.accumulate_spv);
     out.vulkan = filter.Run(batch, config);
     out.image = out.vulkan->image;

@@ -64,9 +64,11 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
               << ", cells " << s["cells"] << ", F " << s["fixed_point_bits"] << "\n";
   } else if (s.contains("device")) {
     std::cout << "vulkan on " << s["device"].get<std::string>() << ": slots used " << s["slots_used"] << ", probe failures "
-              << s["probe_failures"] << ", F " << s["fixed_point_bits"] << "; ms upload " << s["timings_ms"]["upload"] << ", accumulate "
-              << s["timings_ms"]["accumulate"] << ", resolve " << s["timings_ms"]["resolve"] << ", read-back " << s["timings_ms"]["read_back"]
-              << "\n";
+              << s["probe_failures"] << ", F " << s["fixed_point_bits"] << (s["staged"].get<bool>() ? ", staged" : ", mapped")
+              << "; ms upload " << s["timings_ms"]["upload"] << " + copy " << s["timings_ms"]["upload_copy"] << ", accumulate "
+              << s["timings_ms"]["accumulate"] << ", resolve " << s["timings_ms"]["resolve"] << ", read-back copy "
+              << s["timings_ms"]["read_back_copy"] << " + " << s["timings_ms"]["read_back"] << "; GB/s up "
+              << s["transfers"]["upload_gb_per_s"] << ", down " << s["transfers"]["read_back_gb_per_s"] << "\n";
   } else {
     std::cout << "emulated (" << s["mode"].get<std::string>() << "): slots used " << s["slots_used"] << ", probe failures "
               << s["probe_failures"] << ", F " << s["fixed_point_bits"]
