@@ -1,6 +1,6 @@
-// The Vulkan objects a test binary shares, one set per staging policy, opened on first use and released by a
-// GoogleTest environment when the tests end, before main returns: a device destroyed during static destruction
-// crashed NVIDIA's driver after every test had passed. No device fails the test that asked: Vulkan tests never skip.
+// The Vulkan objects a test binary shares (vulkan/vulkan_objects.h), one set per staging policy, released by a
+// GoogleTest environment when the tests end, before main returns (static destruction of a device crashed
+// NVIDIA's driver). No device fails the test that asked: Vulkan tests never skip.
 #ifndef HPSF_PROPERTY_TESTS_VULKAN_TEST_DEVICES_H
 #define HPSF_PROPERTY_TESTS_VULKAN_TEST_DEVICES_H
 

@@ -1,55 +1,31 @@
 #include "tools/benchmarks/benchmark_vulkan.h"
 
-#include <memory>
+#include "vulkan/vulkan_objects.h"
 
 namespace hpsf::benchmarks {
 namespace {
 
-struct PolicyObjects {
-  std::unique_ptr<VulkanDevice> device;
-  std::unique_ptr<KeyPass> key_pass;
-  std::unique_ptr<VulkanFilter> filter;
-};
-
-PolicyObjects objects[3];  // by StagingPolicy
+VulkanObjects objects;
 
 }  // namespace
 
 VulkanDevice* Device(benchmark::State& state, StagingPolicy staging) {
-  PolicyObjects& o = objects[int(staging)];
-  if (!o.device) {
-    try {
-      o.device = std::make_unique<VulkanDevice>("", staging);
-    } catch (const VulkanUnavailable& e) {
-      state.SkipWithError(e.what());
-      return nullptr;
-    }
+  try {
+    return &objects.Device(staging);
+  } catch (const VulkanUnavailable& e) {
+    state.SkipWithError(e.what());
+    return nullptr;
   }
-  return o.device.get();
 }
 
 KeyPass* KeyPassOn(benchmark::State& state, StagingPolicy staging) {
-  VulkanDevice* device = Device(state, staging);
-  if (!device) return nullptr;
-  PolicyObjects& o = objects[int(staging)];
-  if (!o.key_pass) o.key_pass = std::make_unique<KeyPass>(*device);
-  return o.key_pass.get();
+  return Device(state, staging) ? &objects.KeyPassOn(staging) : nullptr;
 }
 
 VulkanFilter* FilterOn(benchmark::State& state, StagingPolicy staging) {
-  VulkanDevice* device = Device(state, staging);
-  if (!device) return nullptr;
-  PolicyObjects& o = objects[int(staging)];
-  if (!o.filter) o.filter = std::make_unique<VulkanFilter>(*device);
-  return o.filter.get();
+  return Device(state, staging) ? &objects.FilterOn(staging) : nullptr;
 }
 
-void ReleaseVulkan() {
-  for (PolicyObjects& o : objects) {  // passes and filters before their device
-    o.filter.reset();
-    o.key_pass.reset();
-    o.device.reset();
-  }
-}
+void ReleaseVulkan() { objects.Release(); }
 
 }  // namespace hpsf::benchmarks

@@ -1,4 +1,4 @@
-// The Vulkan objects a benchmark binary shares, one set per staging policy, opened on first use and released by
+// The Vulkan objects a benchmark binary shares (vulkan/vulkan_objects.h), one set per staging policy, released by
 // the binary's main once the benchmarks have run: a device destroyed during static destruction crashed NVIDIA's
 // driver at exit. Use HPSF_BENCHMARK_MAIN() in place of BENCHMARK_MAIN().
 #ifndef HPSF_TOOLS_BENCHMARKS_BENCHMARK_VULKAN_H
