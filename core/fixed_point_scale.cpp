@@ -1,7 +1,9 @@
 #include "core/fixed_point_scale.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <vector>
 
 #include "core/input_check.h"
@@ -41,24 +43,46 @@ int ChooseFixedPointBits(std::span<const Record> records) {
   return ChooseFixedPointBitsOf(contributions);
 }
 
-int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions) {
-  glm::dvec3 total(0.0);
-  for (const glm::vec3& c : contributions) total += glm::dvec3(c);
-  // Exact test of one F: every c * 2^F is exact in double; each ceiling below 2^63 fits a uint64.
-  // All three channels in one pass over the contributions, the running sums in registers.
+int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner) {
+  const RangeRunner run = runner ? runner : RangeRunner([](std::size_t n, const auto& work) { work(0, n); });
+  std::mutex merge;
+  glm::dvec3 total(0.0);  // only the starting estimate: its rounding order does not change the answer
+  run(contributions.size(), [&](std::size_t begin, std::size_t end) {
+    glm::dvec3 part(0.0);
+    for (std::size_t i = begin; i < end; ++i) part += glm::dvec3(contributions[i]);
+    const std::lock_guard lock(merge);
+    total += part;
+  });
+  // Exact test of one F: every c * 2^F is exact in double; each ceiling below 2^63 fits a uint64. All three
+  // channels in one pass per range, the running sums in registers; ranges add up in 128 bits.
   auto fits = [&](int f) {
     const double scale = std::ldexp(1.0, f);
     constexpr std::uint64_t kLimit = std::uint64_t(1) << 63;
-    std::uint64_t x = 0, y = 0, z = 0;
-    for (const glm::vec3& c : contributions) {
-      const double cx = std::ceil(double(c.x) * scale), cy = std::ceil(double(c.y) * scale), cz = std::ceil(double(c.z) * scale);
-      if (cx >= 0x1p63 || cy >= 0x1p63 || cz >= 0x1p63) return false;
-      x += static_cast<std::uint64_t>(cx);  // both terms below 2^63: no wrap
-      y += static_cast<std::uint64_t>(cy);
-      z += static_cast<std::uint64_t>(cz);
-      if ((x | y | z) >= kLimit) return false;
-    }
-    return true;
+    std::atomic<bool> overflow{false};
+    unsigned __int128 x_total = 0, y_total = 0, z_total = 0;
+    run(contributions.size(), [&](std::size_t begin, std::size_t end) {
+      std::uint64_t x = 0, y = 0, z = 0;
+      for (std::size_t i = begin; i < end; ++i) {
+        const glm::vec3& c = contributions[i];
+        const double cx = std::ceil(double(c.x) * scale), cy = std::ceil(double(c.y) * scale), cz = std::ceil(double(c.z) * scale);
+        if (cx >= 0x1p63 || cy >= 0x1p63 || cz >= 0x1p63) {
+          overflow = true;
+          return;
+        }
+        x += static_cast<std::uint64_t>(cx);  // both terms below 2^63: no wrap
+        y += static_cast<std::uint64_t>(cy);
+        z += static_cast<std::uint64_t>(cz);
+        if ((x | y | z) >= kLimit) {
+          overflow = true;
+          return;
+        }
+      }
+      const std::lock_guard lock(merge);
+      x_total += x;
+      y_total += y;
+      z_total += z;
+    });
+    return !overflow && x_total < kLimit && y_total < kLimit && z_total < kLimit;
   };
   // Start from the estimate sum(ceil(c 2^F)) <= 2^F sum(c) + n, then step to the exact answer: usually one or
   // two passes instead of a binary search over all 253 values.

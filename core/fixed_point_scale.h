@@ -4,7 +4,9 @@
 #ifndef HPSF_CORE_FIXED_POINT_SCALE_H
 #define HPSF_CORE_FIXED_POINT_SCALE_H
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 
 #include <glm/vec3.hpp>
@@ -13,10 +15,15 @@
 
 namespace hpsf {
 
+// Runs work(begin, end) over disjoint ranges that cover [0, n), possibly on several threads at once. core has no
+// thread pool (it depends on glm alone), so a backend passes its own; empty runs one range on the caller.
+using RangeRunner = std::function<void(std::size_t n, const std::function<void(std::size_t begin, std::size_t end)>& work)>;
+
 int ChooseFixedPointBits(std::span<const Record> records);
 // The same choice from the contributions of the records that enter the table; a backend that has already
 // checked its records passes those, with zero in place of a record that does not enter (zero adds nothing).
-int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions);
+// The sums are integers, so F does not depend on how the runner splits the work.
+int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner = {});
 
 // The channel total bound of the choice above, exact: sum of ceil(c * 2^F) over accepted vertex records.
 // Saturates at 2^127 instead of wrapping.

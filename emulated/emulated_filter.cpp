@@ -20,6 +20,12 @@
 namespace hpsf {
 namespace {
 
+// F's passes over the contributions on all cores (core has no thread pool of its own).
+void AllCores(std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) { work(range.begin(), range.end()); });
+}
+
 class PhaseClock {
  public:
   // Seconds since the previous lap.
@@ -73,7 +79,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.probe_limit = config.probe_limit;
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
-  table.fixed_point_bits = ChooseFixedPointBitsOf(entering);
+  table.fixed_point_bits = ChooseFixedPointBitsOf(entering, AllCores);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
 
   run.timings.fixed_point = clock.Lap();

@@ -1,6 +1,8 @@
 // The per-batch choice of F never lets a channel's total reach 2^63, and is the largest F that does not.
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -36,6 +38,32 @@ RC_GTEST_PROP(FixedPointScale, TotalsStayBelowTwoToThe63AndFIsMaximal, ()) {
     if (f < shared::kFixedPointBitsMax) next_overflows = next_overflows || FixedPointCeilingSum(records, channel, f + 1) >= limit;
   }
   RC_ASSERT(next_overflows);
+}
+
+// The backends run F's passes on all cores: however the contributions are split into ranges, and in whatever
+// order the ranges run, F is the one the whole batch gives in one range.
+RC_GTEST_PROP(FixedPointScale, FDoesNotDependOnHowTheRunnerSplitsTheWork, ()) {
+  const int count = *rc::gen::inRange(1, 400);
+  const int exponent_spread = *rc::gen::inRange(0, 120);
+  std::vector<glm::vec3> contributions;
+  for (int i = 0; i < count; ++i) {
+    glm::vec3 c;
+    for (int k = 0; k < 3; ++k) {
+      const float mantissa = 1.0f + float(*rc::gen::inRange(0, 1 << 23)) * 0x1p-23f;
+      c[k] = *rc::gen::inRange(0, 8) == 0 ? 0.0f : std::ldexp(mantissa, *rc::gen::inRange(-exponent_spread, exponent_spread));
+    }
+    contributions.push_back(c);
+  }
+  const std::size_t chunk = *rc::gen::inRange<std::size_t>(1, std::size_t(count) + 1);
+  const bool backwards = *rc::gen::arbitrary<bool>();
+  const RangeRunner split = [&](std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
+    const std::size_t ranges = (n + chunk - 1) / chunk;
+    for (std::size_t k = 0; k < ranges; ++k) {
+      const std::size_t r = backwards ? ranges - 1 - k : k;
+      work(r * chunk, std::min(n, (r + 1) * chunk));
+    }
+  };
+  RC_ASSERT(ChooseFixedPointBitsOf(contributions, split) == ChooseFixedPointBitsOf(contributions));
 }
 
 }  // namespace

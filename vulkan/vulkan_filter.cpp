@@ -32,6 +32,12 @@ using vulkan_internal::DeviceBuffer;
 
 namespace {
 
+// F's passes over the contributions on all cores (core has no thread pool of its own).
+void AllCores(std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) { work(range.begin(), range.end()); });
+}
+
 // Each shader's local_size_x times its kRecordsPerInvocation (kPixelsPerInvocation).
 constexpr std::uint32_t kAccumulateRecordsPerWorkgroup = 128 * 16;
 constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;
@@ -183,7 +189,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.upload_ms = MillisecondsSince(start);
   run.timings.upload_copy_ms = upload.Submit();
   run.timings.upload_bytes = upload.bytes();
-  table.fixed_point_bits = ChooseFixedPointBitsOf(entering);  // the host's pre-pass
+  table.fixed_point_bits = ChooseFixedPointBitsOf(entering, AllCores);  // the host's pre-pass
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
