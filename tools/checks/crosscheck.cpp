@@ -11,6 +11,7 @@
 #include "emulated/simt/kernel_fault.h"
 #include "reference/float_replay.h"
 #include "reference/reference_filter.h"
+#include "tools/checks/image_check.h"
 #include "tools/checks/rerun_check.h"
 #include "tools/checks/table_checker.h"
 #include "vulkan/vulkan_filter.h"
@@ -42,7 +43,7 @@ std::vector<bool> Classify(const HashedRun& run, QualityFigures& quality) {
 
 // Level 3 for one hashed run: every record outside the classified ones (probe failures, aliased slots) sits
 // in a slot whose count, and in fixed64 whose sums, equal its reference cell's; with nothing classified in
-// fixed64, the image is the reference's, bit for bit.
+// fixed64, the image is the reference's, bit for bit; and every image is the resolve of its own table.
 // Returns what was compared, for the verdict's note.
 std::string CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const HashedRun& run,
                                  const std::vector<bool>& aliased, const std::string& prefix, LevelVerdict& ideal) {
@@ -70,7 +71,11 @@ std::string CompareWithReference(const RecordBatch& batch, const FilterConfig& c
   if (fixed && failures == 0 && std::count(aliased.begin(), aliased.end(), true) == 0 && !SameBits(run.image, reference.image)) {
     Fail(ideal, prefix + "nothing failed or aliased, yet the image differs from the reference");
   }
-  return "; " + std::to_string(compared) + " records compared";
+  // Every image, classified records included, is the resolve of its own table: bit for bit in fixed64, within
+  // the float32 bound of the exact sums.
+  for (const std::string& pixel : CheckImageAgainstTable(batch, run)) Fail(ideal, prefix + "image: " + pixel);
+  return "; " + std::to_string(compared) + " records compared; image " +
+         (fixed ? "equals the resolve of its table" : "within the float32 bound of its table's exact resolve");
 }
 
 // A verdict's note gathers what each backend contributed to it.

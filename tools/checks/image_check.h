@@ -1,0 +1,25 @@
+// Level 3's judgement of a hashed backend's image: it must be the resolve (core/resolve) of the backend's own
+// table, every record taking the average of the slot it was placed in. fixed64 sums are exact, so the image is
+// bit-identical to core's resolve of them. float32 sums are rounded in whatever order the atomics applied, so
+// the image is held to the exact resolve (each slot's sum taken exactly from the records placed there) within
+// what DESIGN.md's per-slot bound, gamma(n - 1) * sum|c|, allows after the throughput and the pixel mean, plus
+// the final rounding to float. Where nothing failed or aliased, the records of a slot are exactly those of the
+// reference's cell (level 3 checks that apart), so this is the bound against the exact reference.
+#ifndef HPSF_TOOLS_CHECKS_IMAGE_CHECK_H
+#define HPSF_TOOLS_CHECKS_IMAGE_CHECK_H
+
+#include <string>
+#include <vector>
+
+#include "core/hashed_run.h"
+#include "core/record.h"
+
+namespace hpsf {
+
+// Pixels outside what the table allows, each named with its channel, value, expected value and bound; empty
+// when the image holds. The run's table must have passed the table checker.
+std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const HashedRun& run);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_CHECKS_IMAGE_CHECK_H
