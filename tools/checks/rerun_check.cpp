@@ -1,16 +1,20 @@
 #include "tools/checks/rerun_check.h"
 
 #include <cstring>
+#include <vector>
 
 namespace hpsf {
 namespace {
 
 constexpr std::size_t kDifferencesShown = 20;
 
-bool SameImageBits(const Image& a, const Image& b) {
-  return a.width == b.width && a.height == b.height && a.pixels.size() == b.pixels.size() &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)) == 0;
+// Bitwise, so -0.0 and +0.0 differ and a NaN equals itself; memcmp is not called on an empty vector's null data.
+template <typename T>
+bool SameBits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
+
+bool SameImageBits(const Image& a, const Image& b) { return a.width == b.width && a.height == b.height && SameBits(a.pixels, b.pixels); }
 
 bool Placed(const HashedRun& run, std::size_t record) { return run.placements[record] < run.table.capacity; }
 
@@ -41,11 +45,7 @@ void CompareWholeTables(const HashedRun& first, const HashedRun& second, std::ve
   if (first.table.tags != second.table.tags) out.push_back("the tags differ");
   if (first.table.counts != second.table.counts) out.push_back("the counts differ");
   if (first.table.fixed_sums != second.table.fixed_sums) out.push_back("the fixed-point sums differ");
-  if (first.table.float_sums.size() != second.table.float_sums.size() ||
-      std::memcmp(first.table.float_sums.data(), second.table.float_sums.data(),
-                  first.table.float_sums.size() * sizeof(first.table.float_sums[0])) != 0) {
-    out.push_back("the float sums differ");
-  }
+  if (!SameBits(first.table.float_sums, second.table.float_sums)) out.push_back("the float sums differ");
 }
 
 }  // namespace
