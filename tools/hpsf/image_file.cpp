@@ -53,15 +53,23 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image, con
   OIIO::ImageSpec preview_spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
   std::error_code created;
   if (!exr.parent_path().empty()) std::filesystem::create_directories(exr.parent_path(), created);
+  // Both files are written under temporary names, then renamed; a failure at any step removes whatever this
+  // call created, the EXR already renamed into place included, so no output is left half made.
+  bool exr_placed = false;
   try {
     Write(exr_temporary.string(), spec, image.pixels.data(), exr_path);
     Write(png_temporary.string(), preview_spec, preview.data(), png.string());
-    std::filesystem::rename(exr_temporary, exr);
-    std::filesystem::rename(png_temporary, png);
+    std::error_code failed;
+    std::filesystem::rename(exr_temporary, exr, failed);
+    if (failed) throw InputError(exr_path + ": cannot put the image in place: " + failed.message());
+    exr_placed = true;
+    std::filesystem::rename(png_temporary, png, failed);
+    if (failed) throw InputError(png.string() + ": cannot put the preview in place: " + failed.message());
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(exr_temporary, ignored);
     std::filesystem::remove(png_temporary, ignored);
+    if (exr_placed) std::filesystem::remove(exr, ignored);
     throw;
   }
   return png.string();

@@ -1,0 +1,26 @@
+# An output write that fails part-way leaves nothing behind. Two failures after the EXR is written: the PNG
+# preview cannot be written (a directory holds its temporary name), and the PNG cannot take its final name (a
+# directory holds it) after the EXR has taken its own. Each must exit 3 naming the file, and leave neither the
+# EXR nor any temporary file.
+foreach(case png_write png_rename)
+  set(dir ${OUT}/partial_${case})
+  file(REMOVE_RECURSE ${dir})
+  if(case STREQUAL "png_write")
+    file(MAKE_DIRECTORY ${dir}/.out.partial.png/occupied)
+  else()
+    file(MAKE_DIRECTORY ${dir}/out.png/occupied)
+  endif()
+  execute_process(COMMAND ${HPSF} render cornell --size 8x8 --spp 1 -o ${dir}/out.exr RESULT_VARIABLE code ERROR_VARIABLE err)
+  message("${case}: exit ${code}: ${err}")
+  if(NOT code EQUAL 3 OR NOT err MATCHES "out.png")
+    message(FATAL_ERROR "${case}: a failed preview write must exit 3 and name the file")
+  endif()
+  foreach(left out.exr .out.partial.exr)
+    if(EXISTS ${dir}/${left})
+      message(FATAL_ERROR "${case}: ${dir}/${left} exists: a failed write left output behind")
+    endif()
+  endforeach()
+  if(case STREQUAL "png_rename" AND EXISTS ${dir}/.out.partial.png)
+    message(FATAL_ERROR "${case}: the temporary preview was left behind")
+  endif()
+endforeach()
