@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libtinyobjloader-dev libcli11-dev
-  libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
+  libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev
   libvulkan-dev glslang-tools glslang-dev spirv-tools mesa-vulkan-drivers vulkan-tools
 )
 

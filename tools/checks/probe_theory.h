@@ -1,0 +1,26 @@
+// Linear probing's theory (Knuth, TAOCP vol. 3, section 6.4, Algorithm L), exact for a circular table of M
+// slots holding N keys under uniform hashing, and the same figures measured from a table's slot0s. The
+// statistics tests and `hpsf stats` hold the index hash to it: a hash that clusters, or one too regular for its
+// keys, moves the mean probe count away from the theory.
+#ifndef HPSF_TOOLS_CHECKS_PROBE_THEORY_H
+#define HPSF_TOOLS_CHECKS_PROBE_THEORY_H
+
+#include <cstdint>
+#include <span>
+
+namespace hpsf {
+
+// Expected probes of a successful search, 1/2 (1 + Q0(M, N - 1)), about 1/2 (1 + 1 / (1 - a)) at load a = N / M.
+double ExpectedProbesOnHit(std::uint64_t slots, std::uint64_t keys);
+// Expected probes of an unsuccessful search (the insertion of key N + 1), 1/2 (1 + Q1(M, N)), about
+// 1/2 (1 + 1 / (1 - a)^2).
+double ExpectedProbesOnMiss(std::uint64_t slots, std::uint64_t keys);
+
+// The mean probes of a successful search over the keys whose first slots are `slot0s`, inserted by linear
+// probing without a limit into a table of `capacity` slots (a power of two, more than the keys). The total
+// displacement, hence the mean, does not depend on the order of insertion.
+double MeasuredProbesOnHit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_CHECKS_PROBE_THEORY_H
