@@ -7,10 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "emulated/emulated_filter.h"
+#include "property_tests/traced_batch.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/table_checker.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf::testing {
 namespace {
@@ -18,10 +17,7 @@ namespace {
 constexpr int kRuns = 20;
 
 TEST(ContendedAtomics, FastModeCountsAndFixedSumsAreExactOnEveryRun) {
-  TraceOptions trace;
-  trace.width = trace.height = 128;
-  trace.samples_per_pixel = 4;
-  const RecordBatch batch = TraceRecords(LoadScene("cornell"), trace).batch;
+  const RecordBatch batch = TracedBatch("cornell", 128, 4);
   FilterConfig config;
   config.lod = false;
   config.cell_size = 4096.0f;  // the box spans about 560 units from the origin: one cell

@@ -4,9 +4,8 @@
 // rerun which breaks the promise is caught is shown deterministically in tools/checks/rerun_check_test.cpp.
 #include <gtest/gtest.h>
 
+#include "property_tests/traced_batch.h"
 #include "tools/checks/crosscheck.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf::testing {
 namespace {
@@ -24,10 +23,7 @@ std::string FirstFailure(const CrosscheckReport& report) {
 
 TEST(CrosscheckRepeat, EveryBuiltInScenePassesTwentyTimesWithAllBackendsInBothAccumulations) {
   for (const std::string scene : {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
-    TraceOptions trace;  // as `hpsf crosscheck SCENE --size 64x64 --spp 2 --capacity 32768`
-    trace.width = trace.height = 64;
-    trace.samples_per_pixel = 2;
-    const RecordBatch batch = TraceRecords(LoadScene(scene), trace).batch;
+    const RecordBatch batch = TracedBatch(scene, 64, 2);  // as `hpsf crosscheck SCENE --size 64x64 --spp 2 --capacity 32768`
     for (const Accumulation accumulation : {Accumulation::kFloat32, Accumulation::kFixed64}) {
       FilterConfig config;
       config.capacity = 1u << 15;  // load at most 1/4: the promises of runs with nothing failed or aliased are exercised

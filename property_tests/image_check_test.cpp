@@ -9,20 +9,14 @@
 
 #include "core/resolve.h"
 #include "emulated/emulated_filter.h"
+#include "property_tests/traced_batch.h"
 #include "tools/checks/image_check.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf::testing {
 namespace {
 
 const RecordBatch& Cornell() {
-  static const RecordBatch batch = [] {
-    TraceOptions trace;
-    trace.width = trace.height = 24;
-    trace.samples_per_pixel = 4;
-    return TraceRecords(LoadScene("cornell"), trace).batch;
-  }();
+  static const RecordBatch batch = TracedBatch("cornell", 24, 4);
   return batch;
 }
 

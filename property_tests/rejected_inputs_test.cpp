@@ -11,12 +11,11 @@
 
 #include "core/input_check.h"
 #include "emulated/emulated_filter.h"
+#include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/crosscheck.h"
 #include "tools/checks/table_checker.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf::testing {
 namespace {
@@ -59,11 +58,8 @@ struct PoisonedBatch {
 };
 
 PoisonedBatch MakePoisonedBatch() {
-  TraceOptions trace;
-  trace.width = trace.height = 16;
-  trace.samples_per_pixel = 2;
   PoisonedBatch p;
-  p.batch = TraceRecords(LoadScene("cornell"), trace).batch;
+  p.batch = TracedBatch("cornell", 16, 2);
   std::size_t next = 0;
   for (const Poison& poison : Poisons()) {
     while (!shared::RecordHasVertex(p.batch.records[next])) ++next;  // every field is checked on a vertex record

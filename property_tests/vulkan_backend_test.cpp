@@ -17,19 +17,13 @@
 #include "tools/checks/crosscheck.h"
 #include "tools/checks/table_checker.h"
 #include "tracer/path_tracer.h"
+#include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "tools/checks/rerun_check.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf::testing {
 namespace {
-
-RecordBatch Traced(const std::string& scene, std::uint32_t size, std::uint32_t spp) {
-  TraceOptions trace;
-  trace.width = trace.height = size;
-  trace.samples_per_pixel = spp;
-  return TraceRecords(LoadScene(scene), trace).batch;
-}
 
 // The contract with the host mapping the kernels' buffers and with staging copies.
 void ExpectContract(const RecordBatch& batch, const FilterConfig& config, const std::string& what) {
@@ -48,7 +42,7 @@ void ExpectContract(const RecordBatch& batch, const FilterConfig& config, const 
 
 TEST(VulkanBackend, EveryBuiltInSceneHoldsTheContractInBothModes) {
   for (const std::string scene : {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
-    const RecordBatch batch = Traced(scene, 32, 2);
+    const RecordBatch batch = TracedBatch(scene, 32, 2);
     for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
       FilterConfig config;
       config.capacity = 1u << 14;
@@ -59,7 +53,7 @@ TEST(VulkanBackend, EveryBuiltInSceneHoldsTheContractInBothModes) {
 }
 
 TEST(VulkanBackend, UnkeyableRecordsAndClassifiedRecordsHoldTheContract) {
-  const RecordBatch batch = Traced("cornell", 32, 2);
+  const RecordBatch batch = TracedBatch("cornell", 32, 2);
   FilterConfig unkeyable;  // level of detail off with a tiny cell: every vertex unkeyable
   unkeyable.lod = false;
   unkeyable.cell_size = 1e-30f;
@@ -103,7 +97,7 @@ RC_GTEST_PROP(VulkanBackend, EveryTablePassesTheCheckerOnGeneratedBatches, ()) {
 // is fixed, so tables, placements, keys and images are bit-identical between the two; on other devices the
 // order differs from run to run and the two are held to the cross-check's rerun promise instead.
 TEST(VulkanBackend, StagedAndMappedRunsGiveTheSameBits) {
-  const RecordBatch batch = Traced("cornell", 48, 4);
+  const RecordBatch batch = TracedBatch("cornell", 48, 4);
   const char* previous = std::getenv("LP_NUM_THREADS");
   const std::string saved = previous ? previous : "";
   setenv("LP_NUM_THREADS", "1", 1);  // read when lavapipe creates its device
@@ -182,7 +176,7 @@ Float32Agreement CompareFloat32WithEmulator(const RecordBatch& batch, const Filt
 }
 
 TEST(VulkanBackend, Float32BitsBesideTheEmulatorsSequentialOrder) {
-  const RecordBatch batch = Traced("cornell", 32, 4);
+  const RecordBatch batch = TracedBatch("cornell", 32, 4);
   FilterConfig config;
   config.capacity = 1u << 14;
   config.accumulation = Accumulation::kFloat32;

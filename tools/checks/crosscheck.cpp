@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstring>
 
 #include "core/error.h"
 #include "core/footprint.h"
@@ -24,10 +23,6 @@ constexpr std::size_t kFailuresShown = 20;
 void Fail(LevelVerdict& verdict, std::string failure) {
   verdict.passed = false;
   if (verdict.failures.size() < kFailuresShown) verdict.failures.push_back(std::move(failure));
-}
-
-bool SameBits(const Image& a, const Image& b) {
-  return a.pixels.size() == b.pixels.size() && std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)) == 0;
 }
 
 // The quality figures of a hashed run: its probe failures and aliases.
