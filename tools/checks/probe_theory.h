@@ -21,6 +21,16 @@ double ExpectedProbesOnMiss(std::uint64_t slots, std::uint64_t keys);
 // displacement, hence the mean, does not depend on the order of insertion.
 double MeasuredProbesOnHit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity);
 
+// The probability that a new key exceeds a probe limit of `window` slots: that the `window` slots from its
+// slot0 are all taken, in a table of M slots holding N keys under uniform hashing. Exact: a sum over the length
+// L >= window of the cluster that covers the window (L keys parked in L slots, (L + 1)^(L - 1) ways; the other
+// N - L keys in the remaining M - L slots leaving both neighbours empty, (M - N - 1)(M - L - 1)^(N - L - 1) ways).
+double ProbabilityWindowFull(std::uint64_t slots, std::uint64_t keys, std::uint64_t window);
+
+// The share of the table's `capacity` windows of `window` slots that are full after the keys whose first slots
+// are `slot0s` were inserted by linear probing without a limit: the measured ProbabilityWindowFull.
+double MeasuredWindowFullShare(std::span<const std::uint32_t> slot0s, std::uint32_t capacity, std::uint32_t window);
+
 }  // namespace hpsf
 
 #endif  // HPSF_TOOLS_CHECKS_PROBE_THEORY_H
