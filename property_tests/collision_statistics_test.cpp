@@ -23,6 +23,7 @@
 #include "core/footprint.h"
 #include "core/key_batch.h"
 #include "emulated/emulated_filter.h"
+#include "property_tests/grid_batch.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "tools/checks/probe_theory.h"
@@ -43,35 +44,6 @@ constexpr double kFewestExpectedEvents = 10.0;
 constexpr std::uint32_t kWindows[] = {4, 16};  // probe limits whose overflow probability is tested
 // Sidak, per test of a family of 7 loads x (probes + 2 windows).
 const double kAlpha = 1.0 - std::pow(1.0 - 0.001, 1.0 / (std::size(kLoads) * (1 + std::size(kWindows))));
-
-FilterConfig GridConfig(std::uint32_t slots = kSlots) {
-  FilterConfig config;
-  config.lod = false;
-  config.cell_size = 1.0f;
-  config.jitter_scale = 0.0f;
-  config.normal.mode = NormalMode::kNone;
-  config.capacity = slots;
-  config.probe_limit = slots;
-  return config;
-}
-
-// `count` records in distinct cells of a 64 x 64 x n grid translated by 4096 r along x: table r's keys.
-RecordBatch GridBatch(int table, std::uint32_t count) {
-  RecordBatch batch;
-  batch.width = count;
-  batch.height = 1;
-  batch.samples_per_pixel = 1;
-  batch.fov_y_radians = 1.0;
-  for (std::uint32_t j = 0; j < count; ++j) {
-    VertexSample v;
-    v.pixel = j;
-    v.position = glm::vec3(float(j % 64 + 4096u * std::uint32_t(table)), float((j / 64) % 64), float(j / 4096)) + 0.5f;
-    v.previous = v.position + glm::vec3(0.0f, 0.0f, -1.0f);
-    v.contribution = v.throughput = glm::vec3(0.5f);
-    batch.records.push_back(MakeVertexRecord(v));
-  }
-  return batch;
-}
 
 using IndexFunction = std::uint32_t (*)(const KeyResult& key);
 std::uint32_t TheIndexHash(const KeyResult& key) { return key.slot0; }
@@ -260,7 +232,7 @@ TEST(CollisionStatistics, BackendProbeHistogramsAreTheTablesMean) {
   for (const double load : {0.5, 0.9}) {
     const std::uint32_t keys = std::uint32_t(load * kSlots);
     const RecordBatch batch = GridBatch(0, keys);
-    const FilterConfig config = GridConfig();
+    const FilterConfig config = GridConfig(kSlots);
     const std::vector<KeyResult> results = ComputeKeys(batch.records, MakeKeyParams(config, 1.0f, keys));
     std::vector<std::uint32_t> slot0s;
     for (const KeyResult& k : results) slot0s.push_back(k.slot0);
