@@ -8,14 +8,14 @@ namespace hpsf {
 namespace {
 
 std::vector<bool> InsertWithoutLimit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity,
-                                     std::uint64_t* probes = nullptr) {
+                                     std::vector<std::uint32_t>* probes = nullptr) {
   if (slot0s.empty() || slot0s.size() >= capacity) throw std::invalid_argument("probe theory: needs 0 < keys < capacity");
   std::vector<bool> taken(capacity, false);
   for (const std::uint32_t slot0 : slot0s) {
     std::uint32_t slot = slot0 & (capacity - 1u);
     for (std::uint64_t probe = 1;; ++probe) {
       if (!taken[slot]) {
-        if (probes != nullptr) *probes += probe;
+        if (probes != nullptr) probes->push_back(std::uint32_t(probe));
         break;
       }
       slot = (slot + 1) & (capacity - 1u);
@@ -50,9 +50,16 @@ double ExpectedProbesOnMiss(std::uint64_t slots, std::uint64_t keys) {
 }
 
 double MeasuredProbesOnHit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity) {
-  std::uint64_t probes = 0;
+  double total = 0.0;
+  for (const std::uint32_t probes : ProbesOnHit(slot0s, capacity)) total += probes;
+  return total / double(slot0s.size());
+}
+
+std::vector<std::uint32_t> ProbesOnHit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity) {
+  std::vector<std::uint32_t> probes;
+  probes.reserve(slot0s.size());
   InsertWithoutLimit(slot0s, capacity, &probes);
-  return double(probes) / double(slot0s.size());
+  return probes;
 }
 
 double ProbabilityWindowFull(std::uint64_t slots, std::uint64_t keys, std::uint64_t window) {
@@ -69,7 +76,9 @@ double ProbabilityWindowFull(std::uint64_t slots, std::uint64_t keys, std::uint6
       if (keys + 1 == slots) continue;  // one empty slot: the only cluster holds every key
       log_ways += std::log(m - n - 1) + (n - l - 1) * std::log(m - l - 1);
     }
-    p += placements * std::exp(log_ways - n * std::log(m));
+    const double term = placements * std::exp(log_ways - n * std::log(m));
+    p += term;
+    if (term < 1e-17 * p) break;  // the cluster lengths' tail decays geometrically: the rest cannot count
   }
   return p;
 }

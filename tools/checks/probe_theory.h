@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace hpsf {
 
@@ -20,6 +21,8 @@ double ExpectedProbesOnMiss(std::uint64_t slots, std::uint64_t keys);
 // probing without a limit into a table of `capacity` slots (a power of two, more than the keys). The total
 // displacement, hence the mean, does not depend on the order of insertion.
 double MeasuredProbesOnHit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity);
+// The same keys' probes one by one, in their order.
+std::vector<std::uint32_t> ProbesOnHit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity);
 
 // The probability that a new key exceeds a probe limit of `window` slots: that the `window` slots from its
 // slot0 are all taken, in a table of M slots holding N keys under uniform hashing. Exact: a sum over the length

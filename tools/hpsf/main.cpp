@@ -9,6 +9,7 @@
 #include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
 #include "tools/hpsf/render_command.h"
+#include "tools/hpsf/stats_command.h"
 #include "vulkan/vulkan_device.h"
 
 int main(int argc, char** argv) {
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   hpsf::AddReplayCommand(app);
   int exit_code = hpsf::kExitOk;
   hpsf::AddCrosscheckCommand(app, &exit_code);
+  hpsf::AddStatsCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,186 @@
+#include "tools/checks/table_statistics.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include <boost/math/distributions/binomial.hpp>
+
+#include "tools/checks/alias_theory.h"
+#include "tools/checks/probe_theory.h"
+
+namespace hpsf {
+namespace {
+
+constexpr double kLevel = 0.001;
+constexpr std::uint32_t kProbeLimits[] = {1, 2, 4, 8, 16, 32, 64};
+constexpr std::uint32_t kFingerprintBits[] = {8, 10, 12, 16, 24, 32};
+constexpr std::uint32_t kHistogramProbes = 16;  // the histogram's last bucket holds every longer search
+constexpr int kFills = 16;                      // a rate over the fill is the mean at this many loads
+constexpr std::uint32_t kJitterSamples = 1u << 16, kJitterMeanSamples = 1u << 18;
+
+RateFigure Rate(std::uint64_t events, std::uint64_t trials, double theory) {
+  RateFigure f{events, trials, theory, 0.0, 1.0};
+  if (trials == 0) return f;
+  using boost::math::binomial_distribution;
+  f.low = binomial_distribution<>::find_lower_bound_on_p(double(trials), double(events), kLevel / 2);
+  f.high = binomial_distribution<>::find_upper_bound_on_p(double(trials), double(events), kLevel / 2);
+  return f;
+}
+
+// A key inserted while the table fills from 0 to `keys` meets, on average over the fill, a full window of
+// `window` slots with this probability (the mean at kFills evenly spaced loads).
+double WindowFullOverTheFill(std::uint64_t slots, std::uint64_t keys, std::uint64_t window) {
+  if (window == 0) return 1.0;
+  if (window >= slots) return 0.0;
+  double sum = 0.0;
+  for (int fill = 0; fill < kFills; ++fill) {
+    sum += ProbabilityWindowFull(slots, std::uint64_t((fill + 0.5) / kFills * double(keys)), window);
+  }
+  return sum / kFills;
+}
+
+nlohmann::json ToJson(const RateFigure& f) {
+  return {{"events", f.events}, {"trials", f.trials},     {"rate", f.Rate()},
+          {"theory", f.theory}, {"interval", {f.low, f.high}}, {"exceeds_theory", f.ExceedsTheory()}};
+}
+
+}  // namespace
+
+bool TableStatistics::ExceedsTheory() const {
+  for (const ProbeLimitFigure& f : probe_limits) {
+    if (f.failures.ExceedsTheory()) return true;
+  }
+  for (const AliasFigure& f : fingerprints) {
+    if (f.aliases.ExceedsTheory()) return true;
+  }
+  for (const JitterVerdict& v : jitter) {
+    if (v.chi_square.p_value <= jitter_alpha) return true;
+  }
+  return false;
+}
+
+TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
+                                       const FilterConfig& config) {
+  TableStatistics s;
+  s.records = records.size();
+  s.capacity = config.capacity;
+  s.probe_limit = config.probe_limit;
+  s.fingerprint_bits = config.fingerprint_bits;
+
+  // The distinct keys in the order the records first meet them, and their records.
+  std::map<std::array<std::uint32_t, 6>, std::size_t> index;
+  std::vector<KeyResult> distinct;
+  std::vector<std::uint64_t> per_key;
+  for (const KeyResult& k : keys) {
+    if (k.status != shared::kKeyed) continue;
+    ++s.keyed_records;
+    const std::array<std::uint32_t, 6> words = {k.words.cell_x, k.words.cell_y, k.words.cell_z,
+                                                k.words.level,  k.words.normal, k.words.extra};
+    const auto [it, added] = index.emplace(words, distinct.size());
+    if (added) {
+      distinct.push_back(k);
+      per_key.push_back(0);
+    }
+    ++per_key[it->second];
+  }
+  s.distinct_keys = distinct.size();
+  s.load = double(s.distinct_keys) / double(s.capacity);
+  for (const std::uint64_t n : per_key) {
+    const std::size_t bucket = std::size_t(std::log2(double(n)));
+    if (s.records_per_cell.size() <= bucket) s.records_per_cell.resize(bucket + 1, 0);
+    ++s.records_per_cell[bucket];
+    s.max_records_per_cell = std::max(s.max_records_per_cell, n);
+  }
+  if (distinct.empty()) return s;
+
+  if (s.distinct_keys < s.capacity) {
+    std::vector<std::uint32_t> slot0s;
+    for (const KeyResult& k : distinct) slot0s.push_back(k.slot0);
+    s.probe_histogram.assign(kHistogramProbes, 0.0);
+    for (const std::uint32_t probes : ProbesOnHit(slot0s, s.capacity)) {
+      s.probe_histogram[std::min(probes, kHistogramProbes) - 1] += 1.0 / double(s.distinct_keys);
+      s.mean_probes += double(probes) / double(s.distinct_keys);
+    }
+    // A key found after k probes was inserted when a window of k - 1 slots from its slot0 was full and one of k
+    // was not.
+    for (std::uint32_t k = 1; k <= kHistogramProbes; ++k) {
+      const double longer = WindowFullOverTheFill(s.capacity, s.distinct_keys, k - 1);
+      s.probe_histogram_theory.push_back(
+          k == kHistogramProbes ? longer : longer - WindowFullOverTheFill(s.capacity, s.distinct_keys, k));
+    }
+    s.mean_probes_theory = ExpectedProbesOnHit(s.capacity, s.distinct_keys);
+  }
+
+  std::vector<std::uint32_t> limits(std::begin(kProbeLimits), std::end(kProbeLimits));
+  limits.push_back(config.probe_limit);
+  std::sort(limits.begin(), limits.end());
+  limits.erase(std::unique(limits.begin(), limits.end()), limits.end());
+  for (const std::uint32_t limit : limits) {
+    if (limit > s.capacity) continue;
+    const AliasTally t = InsertAndCountAliases(distinct, s.capacity, limit, config.fingerprint_bits);
+    s.probe_limits.push_back(
+        {limit, Rate(t.failed, t.keys, std::min(1.0, WindowFullOverTheFill(s.capacity, s.distinct_keys, limit)))});
+  }
+
+  std::vector<std::uint32_t> widths(std::begin(kFingerprintBits), std::end(kFingerprintBits));
+  widths.push_back(config.fingerprint_bits);
+  std::sort(widths.begin(), widths.end());
+  widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
+  double observed = 0.0, predicted = 0.0, compared_per_key = 0.0;
+  for (const std::uint32_t bits : widths) {
+    std::vector<KeyResult> at_width = distinct;
+    for (KeyResult& k : at_width) k.fingerprint = shared::Fingerprint(k.words, bits);
+    const AliasTally t = InsertAndCountAliases(at_width, s.capacity, config.probe_limit, bits);
+    s.fingerprints.push_back({bits, Rate(t.aliased, t.keys, t.PredictedRate())});
+    observed += double(t.aliased);
+    predicted += t.predicted;
+    compared_per_key = t.compared / double(t.keys);
+  }
+  // The 32-bit rate is too small to count: the share of the predicted aliases observed over all widths, times
+  // the chance at 32 bits of the tags a key compares.
+  s.extrapolated_alias_rate_32 = (predicted > 0.0 ? observed / predicted : 1.0) * compared_per_key * std::ldexp(1.0, -32);
+
+  s.jitter_alpha = SidakLevel(kLevel, int(std::size(kJitterTests)));
+  for (const JitterTest test : kJitterTests) {
+    const std::uint32_t samples = test == JitterTest::kMean ? kJitterMeanSamples : kJitterSamples;
+    s.jitter.push_back(RunJitterTest(CoreKeyPass, MakeJitterExperiment(test, config.seed, config.frame, samples)));
+  }
+  return s;
+}
+
+nlohmann::json TableStatistics::ToJson() const {
+  nlohmann::json j = {{"records", records},
+                      {"keyed_records", keyed_records},
+                      {"distinct_keys", distinct_keys},
+                      {"capacity", capacity},
+                      {"probe_limit", probe_limit},
+                      {"fingerprint_bits", fingerprint_bits},
+                      {"load", load},
+                      {"probes_on_hit",
+                       {{"histogram", probe_histogram},
+                        {"histogram_theory", probe_histogram_theory},
+                        {"mean", mean_probes},
+                        {"mean_theory", mean_probes_theory}}},
+                      {"records_per_cell", {{"log2_histogram", records_per_cell}, {"max", max_records_per_cell}}},
+                      {"extrapolated_alias_rate_32", extrapolated_alias_rate_32},
+                      {"exceeds_theory", ExceedsTheory()}};
+  for (const ProbeLimitFigure& f : probe_limits) {
+    j["probe_failures"].push_back({{"probe_limit", f.probe_limit}, {"failures", hpsf::ToJson(f.failures)}});
+  }
+  for (const AliasFigure& f : fingerprints) {
+    j["aliases"].push_back({{"fingerprint_bits", f.fingerprint_bits}, {"aliases", hpsf::ToJson(f.aliases)}});
+  }
+  for (const JitterVerdict& v : jitter) {
+    j["jitter"].push_back({{"test", ToString(v.test)},
+                           {"samples", v.samples},
+                           {"chi_square", v.chi_square.statistic},
+                           {"dof", v.chi_square.dof},
+                           {"p_value", v.chi_square.p_value},
+                           {"rejected", v.chi_square.p_value <= jitter_alpha}});
+  }
+  return j;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,59 @@
+// `hpsf stats`'s figures: within their theory for the key path's own keys, a warning when an index hash clusters
+// (probe failures above the theory); the distinct keys and records per cell counted.
+#include <gtest/gtest.h>
+
+#include "core/key_batch.h"
+#include "tools/checks/table_statistics.h"
+
+namespace hpsf {
+namespace {
+
+// 12,000 records in 3,000 distinct cells of a unit grid, four records each, into 4,096 slots.
+struct GridKeys {
+  GridKeys() {
+    config.lod = false;
+    config.cell_size = 1.0f;
+    config.normal.mode = NormalMode::kNone;
+    config.capacity = 4096;
+    config.probe_limit = 16;
+    for (std::uint32_t i = 0; i < 12000; ++i) {
+      VertexSample v;
+      v.pixel = i;
+      const std::uint32_t cell = i % 3000;
+      v.position = glm::vec3(float(cell % 64), float(cell / 64), 0.0f) + 0.5f;
+      v.previous = v.position - glm::vec3(0.0f, 0.0f, 1.0f);
+      v.contribution = v.throughput = glm::vec3(0.5f);
+      records.push_back(MakeVertexRecord(v));
+    }
+    config.jitter_scale = 0.0f;  // so each record stays in its cell
+    keys = ComputeKeys(records, MakeKeyParams(config, 1.0f, std::uint32_t(records.size())));
+  }
+  FilterConfig config;
+  std::vector<Record> records;
+  std::vector<KeyResult> keys;
+};
+
+TEST(TableStatistics, TheKeyPathsKeysAreWithinTheory) {
+  const GridKeys grid;
+  const TableStatistics s = MeasureTableStatistics(grid.records, grid.keys, grid.config);
+  EXPECT_EQ(s.distinct_keys, 3000u);
+  EXPECT_EQ(s.max_records_per_cell, 4u);
+  ASSERT_EQ(s.records_per_cell.size(), 3u);
+  EXPECT_EQ(s.records_per_cell[2], 3000u);  // every key has 4 records: bucket 4..7
+  EXPECT_DOUBLE_EQ(s.load, 3000.0 / 4096.0);
+  EXPECT_FALSE(s.ExceedsTheory()) << s.ToJson().dump(2);
+  EXPECT_EQ(s.ToJson()["exceeds_theory"], false);
+}
+
+TEST(TableStatistics, WarnsWhenProbeFailuresExceedTheTheory) {
+  GridKeys grid;
+  for (KeyResult& k : grid.keys) k.slot0 = k.slot0 & ~0xFu;  // an index hash that drops its low 4 bits
+  const TableStatistics s = MeasureTableStatistics(grid.records, grid.keys, grid.config);
+  EXPECT_TRUE(s.ExceedsTheory());
+  bool failures_exceed = false;
+  for (const ProbeLimitFigure& f : s.probe_limits) failures_exceed = failures_exceed || f.failures.ExceedsTheory();
+  EXPECT_TRUE(failures_exceed) << s.ToJson().dump(2);
+}
+
+}  // namespace
+}  // namespace hpsf

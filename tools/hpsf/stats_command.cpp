@@ -1,0 +1,116 @@
+#include "tools/hpsf/stats_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "core/error.h"
+#include "core/footprint.h"
+#include "core/key_batch.h"
+#include "core/record_file.h"
+#include "tools/checks/table_statistics.h"
+#include "tools/hpsf/filter_options.h"
+#include "tools/hpsf/image_size.h"
+#include "tracer/path_tracer.h"
+#include "tracer/scene_file.h"
+
+namespace hpsf {
+namespace {
+
+struct StatsOptions {
+  std::string input;
+  std::string size = "256x256";
+  TraceOptions trace;
+  FilterOptions filter;
+  bool json = false;
+};
+
+void PrintRate(std::uint32_t value, const RateFigure& f) {
+  std::printf("  %-9u %12.4g %12.4g   [%.3g, %.3g]%s\n", value, f.Rate(), f.theory, f.low, f.high,
+              f.ExceedsTheory() ? "   EXCEEDS THEORY" : "");
+}
+
+void PrintText(const TableStatistics& s, const std::string& input) {
+  std::printf("%s: %llu records, %llu keyed, %llu distinct keys; capacity %u: load %.4f\n", input.c_str(),
+              (unsigned long long)s.records, (unsigned long long)s.keyed_records,
+              (unsigned long long)s.distinct_keys, s.capacity, s.load);
+  if (!s.probe_histogram.empty()) {
+    std::printf("probes of a successful search (no limit): mean %.4f, theory %.4f\n", s.mean_probes,
+                s.mean_probes_theory);
+    for (std::size_t k = 0; k < s.probe_histogram.size(); ++k) {
+      if (s.probe_histogram[k] == 0.0 && s.probe_histogram_theory[k] < 1e-6) continue;
+      std::printf("  %s%-3zu %10.6f %10.6f\n", k + 1 == s.probe_histogram.size() ? ">=" : "  ", k + 1,
+                  s.probe_histogram[k], s.probe_histogram_theory[k]);
+    }
+  }
+  std::printf("probe failures per probe limit (keys in the batch's order; the bound counts failed keys as inserted):\n  %-9s %12s %12s   %s\n", "limit",
+              "rate", "bound", "99.9% interval");
+  for (const ProbeLimitFigure& f : s.probe_limits) PrintRate(f.probe_limit, f.failures);
+  std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits",
+              "rate", "predicted", "99.9% interval");
+  for (const AliasFigure& f : s.fingerprints) PrintRate(f.fingerprint_bits, f.aliases);
+  std::printf("  32 bits extrapolated: %.3g aliases per key\n", s.extrapolated_alias_rate_32);
+  std::printf("records per cell: max %llu;", (unsigned long long)s.max_records_per_cell);
+  for (std::size_t k = 0; k < s.records_per_cell.size(); ++k) {
+    std::printf(" %llu-%llu: %llu", 1ull << k, (2ull << k) - 1, (unsigned long long)s.records_per_cell[k]);
+  }
+  std::printf("\njitter tests (each at %.3g):\n", s.jitter_alpha);
+  for (const JitterVerdict& v : s.jitter) {
+    std::printf("  %-13s %s%s\n", ToString(v.test), v.chi_square.ToString().c_str(),
+                v.chi_square.p_value <= s.jitter_alpha ? "   REJECTED" : "");
+  }
+  std::printf("%s\n", s.ExceedsTheory() ? "WARN: a measured rate exceeds its theory" : "every rate within its theory");
+}
+
+int Run(StatsOptions& o) {
+  const FilterConfig config = ResolveFilterConfig(o.filter);
+  RecordBatch batch;
+  if (std::filesystem::path(o.input).extension() == ".hpsfv") {
+    batch = ReadRecordFile(o.input);
+  } else {
+    ParseSize(o.size, o.trace);
+    o.trace.seed = config.seed;
+    o.trace.Validate();
+    batch = TraceRecords(LoadScene(o.input), o.trace).batch;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
+  const std::vector<KeyResult> keys =
+      ComputeKeys(batch.records, MakeKeyParams(config, footprint, std::uint32_t(batch.records.size())));
+  const TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (o.json) {
+    nlohmann::json report = s.ToJson();
+    report["version"] = 1;
+    report["command"] = "stats";
+    report["input"] = o.input;
+    report["config"] = ToJson(config);
+    report["seconds"] = seconds;
+    std::cout << report.dump(2) << "\n";
+  } else {
+    PrintText(s, o.input);
+  }
+  return s.ExceedsTheory() ? kExitWarn : kExitOk;
+}
+
+}  // namespace
+
+void AddStatsCommand(CLI::App& app, int* exit_code) {
+  auto o = std::make_shared<StatsOptions>();
+  CLI::App* c = app.add_subcommand("stats", "The figures that size a table for a scene: load, probes, failures, "
+                                            "aliases, records per cell, jitter; each beside its theory");
+  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
+  c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();
+  c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
+  c->add_option("--max-depth", o->trace.max_depth,
+                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
+      ->capture_default_str();
+  c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
+  c->add_flag("--json", o->json, "Print the versioned report as JSON");
+  AddFilterOptions(*c, o->filter);
+  c->callback([o, exit_code] { *exit_code = Run(*o); });
+}
+
+}  // namespace hpsf
