@@ -140,7 +140,8 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
   }
   // The 32-bit rate is too small to count: the share of the predicted aliases observed over all widths, times
   // the chance at 32 bits of the tags a key compares.
-  s.extrapolated_alias_rate_32 = (predicted > 0.0 ? observed / predicted : 1.0) * compared_per_key * std::ldexp(1.0, -32);
+  const double observed_share = predicted > 0.0 ? observed / predicted : 1.0;
+  s.extrapolated_alias_rate_32 = observed_share * compared_per_key * std::ldexp(1.0, -32);
 
   s.jitter_alpha = SidakLevel(kLevel, int(std::size(kJitterTests)));
   for (const JitterTest test : kJitterTests) {

@@ -45,8 +45,9 @@ void PrintText(const TableStatistics& s, const std::string& input) {
                   s.probe_histogram[k], s.probe_histogram_theory[k]);
     }
   }
-  std::printf("probe failures per probe limit (keys in the batch's order; the bound counts failed keys as inserted):\n  %-9s %12s %12s   %s\n", "limit",
-              "rate", "bound", "99.9% interval");
+  std::printf("probe failures per probe limit (keys in the batch's order; the bound counts failed keys as "
+              "inserted):\n  %-9s %12s %12s   %s\n",
+              "limit", "rate", "bound", "99.9% interval");
   for (const ProbeLimitFigure& f : s.probe_limits) PrintRate(f.probe_limit, f.failures);
   std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits",
               "rate", "predicted", "99.9% interval");
@@ -101,7 +102,8 @@ void AddStatsCommand(CLI::App& app, int* exit_code) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* c = app.add_subcommand("stats", "The figures that size a table for a scene: load, probes, failures, "
                                             "aliases, records per cell, jitter; each beside its theory");
-  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
+  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")
+      ->required();
   c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth,
