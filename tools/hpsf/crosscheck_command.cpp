@@ -9,11 +9,10 @@
 #include "core/error.h"
 #include "core/record_file.h"
 #include "tools/checks/crosscheck.h"
-#include "tools/hpsf/image_size.h"
 #include "tools/hpsf/backend_options.h"
+#include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
 #include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf {
 namespace {
@@ -65,15 +64,7 @@ int Run(CrosscheckOptions& o) {
   const FilterConfig config = ResolveFilterConfig(o.filter);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ParseDefect(o.emulator.defect);  // a bad name is bad input before any tracing
-  RecordBatch batch;
-  if (std::filesystem::path(o.input).extension() == ".hpsfv") {
-    batch = ReadRecordFile(o.input);
-  } else {
-    ParseSize(o.size, o.trace);
-    o.trace.seed = config.seed;
-    o.trace.Validate();
-    batch = TraceRecords(LoadScene(o.input), o.trace).batch;
-  }
+  const RecordBatch batch = LoadOrTraceBatch(o.input, o.size, o.trace, config.seed);
   const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan);
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";

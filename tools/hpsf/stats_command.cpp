@@ -2,19 +2,16 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "core/error.h"
 #include "core/footprint.h"
 #include "core/key_batch.h"
-#include "core/record_file.h"
 #include "tools/checks/table_statistics.h"
+#include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
-#include "tools/hpsf/image_size.h"
 #include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf {
 namespace {
@@ -67,15 +64,7 @@ void PrintText(const TableStatistics& s, const std::string& input) {
 
 int Run(StatsOptions& o) {
   const FilterConfig config = ResolveFilterConfig(o.filter);
-  RecordBatch batch;
-  if (std::filesystem::path(o.input).extension() == ".hpsfv") {
-    batch = ReadRecordFile(o.input);
-  } else {
-    ParseSize(o.size, o.trace);
-    o.trace.seed = config.seed;
-    o.trace.Validate();
-    batch = TraceRecords(LoadScene(o.input), o.trace).batch;
-  }
+  const RecordBatch batch = LoadOrTraceBatch(o.input, o.size, o.trace, config.seed);
   const auto start = std::chrono::steady_clock::now();
   const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
   const std::vector<KeyResult> keys =
