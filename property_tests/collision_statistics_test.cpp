@@ -11,10 +11,8 @@
 // the cell coordinates) and one that drops words (the x coordinate alone), both rejected at every load from 0.5
 // (in tables of 2^13 slots); kResolution below states the power against any other shift of the mean.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <vector>
 
 #include <boost/math/distributions/students_t.hpp>
@@ -27,6 +25,7 @@
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "tools/checks/probe_theory.h"
+#include "tools/checks/table_statistics.h"
 
 namespace hpsf::testing {
 namespace {
@@ -123,15 +122,11 @@ const std::vector<std::uint32_t>& CornellSlot0s() {
     trace.samples_per_pixel = 1;
     const RecordBatch batch = TraceRecords(LoadScene("cornell"), trace).batch;
     const FilterConfig config;
-    const std::vector<KeyResult> keys = ComputeKeys(batch.records, MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), std::uint32_t(batch.records.size())));
-    std::map<std::array<std::uint32_t, 6>, std::uint32_t> seen;
+    const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
+    const std::vector<KeyResult> keys =
+        ComputeKeys(batch.records, MakeKeyParams(config, footprint, std::uint32_t(batch.records.size())));
     std::vector<std::uint32_t> distinct;
-    for (const KeyResult& k : keys) {
-      if (k.status != shared::kKeyed) continue;
-      const std::array<std::uint32_t, 6> words = {k.words.cell_x, k.words.cell_y, k.words.cell_z,
-                                                  k.words.level,  k.words.normal, k.words.extra};
-      if (seen.emplace(words, 0).second) distinct.push_back(k.slot0);
-    }
+    for (const KeyResult& k : DistinctKeys(keys)) distinct.push_back(k.slot0);
     return distinct;
   }();
   return slot0s;

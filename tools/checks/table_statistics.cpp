@@ -20,25 +20,43 @@ constexpr std::uint32_t kHistogramProbes = 16;  // the histogram's last bucket h
 constexpr int kFills = 16;                      // a rate over the fill is the mean at this many loads
 constexpr std::uint32_t kJitterSamples = 1u << 16, kJitterMeanSamples = 1u << 18;
 
-RateFigure Rate(std::uint64_t events, std::uint64_t trials, double theory) {
+RateFigure Rate(std::uint64_t events, std::uint64_t trials, double theory, double alpha) {
   RateFigure f{events, trials, theory, 0.0, 1.0};
   if (trials == 0) return f;
   using boost::math::binomial_distribution;
-  f.low = binomial_distribution<>::find_lower_bound_on_p(double(trials), double(events), kLevel / 2);
-  f.high = binomial_distribution<>::find_upper_bound_on_p(double(trials), double(events), kLevel / 2);
+  f.low = binomial_distribution<>::find_lower_bound_on_p(double(trials), double(events), alpha / 2);
+  f.high = binomial_distribution<>::find_upper_bound_on_p(double(trials), double(events), alpha / 2);
   return f;
 }
 
 // A key inserted while the table fills from 0 to `keys` meets, on average over the fill, a full window of
-// `window` slots with this probability (the mean at kFills evenly spaced loads).
-double WindowFullOverTheFill(std::uint64_t slots, std::uint64_t keys, std::uint64_t window) {
-  if (window == 0) return 1.0;
-  if (window >= slots) return 0.0;
-  double sum = 0.0;
-  for (int fill = 0; fill < kFills; ++fill) {
-    sum += ProbabilityWindowFull(slots, std::uint64_t((fill + 0.5) / kFills * double(keys)), window);
+// `window` slots with this probability (the mean at kFills evenly spaced loads). Memoized by window: the
+// histogram and the probe limits ask for the same ones.
+class WindowFullOverTheFill {
+ public:
+  WindowFullOverTheFill(std::uint64_t slots, std::uint64_t keys) : slots_(slots), keys_(keys) {}
+  double operator()(std::uint64_t window) {
+    if (window == 0) return 1.0;
+    if (window >= slots_) return 0.0;
+    const auto [it, added] = known_.emplace(window, 0.0);
+    if (!added) return it->second;
+    for (int fill = 0; fill < kFills; ++fill) {
+      it->second += ProbabilityWindowFull(slots_, std::uint64_t((fill + 0.5) / kFills * double(keys_)), window);
+    }
+    return it->second /= kFills;
   }
-  return sum / kFills;
+
+ private:
+  std::uint64_t slots_, keys_;
+  std::map<std::uint64_t, double> known_;
+};
+
+std::vector<std::uint32_t> SortedWith(std::span<const std::uint32_t> values, std::uint32_t extra) {
+  std::vector<std::uint32_t> all(values.begin(), values.end());
+  all.push_back(extra);
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return all;
 }
 
 nlohmann::json ToJson(const RateFigure& f) {
@@ -61,21 +79,12 @@ bool TableStatistics::ExceedsTheory() const {
   return false;
 }
 
-TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
-                                       const FilterConfig& config) {
-  TableStatistics s;
-  s.records = records.size();
-  s.capacity = config.capacity;
-  s.probe_limit = config.probe_limit;
-  s.fingerprint_bits = config.fingerprint_bits;
-
-  // The distinct keys in the order the records first meet them, and their records.
+std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys, std::vector<std::uint64_t>* results_per_key) {
   std::map<std::array<std::uint32_t, 6>, std::size_t> index;
   std::vector<KeyResult> distinct;
   std::vector<std::uint64_t> per_key;
   for (const KeyResult& k : keys) {
     if (k.status != shared::kKeyed) continue;
-    ++s.keyed_records;
     const std::array<std::uint32_t, 6> words = {k.words.cell_x, k.words.cell_y, k.words.cell_z,
                                                 k.words.level,  k.words.normal, k.words.extra};
     const auto [it, added] = index.emplace(words, distinct.size());
@@ -85,6 +94,21 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
     }
     ++per_key[it->second];
   }
+  if (results_per_key != nullptr) *results_per_key = std::move(per_key);
+  return distinct;
+}
+
+TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
+                                       const FilterConfig& config) {
+  TableStatistics s;
+  s.records = records.size();
+  s.capacity = config.capacity;
+  s.probe_limit = config.probe_limit;
+  s.fingerprint_bits = config.fingerprint_bits;
+
+  std::vector<std::uint64_t> per_key;
+  const std::vector<KeyResult> distinct = DistinctKeys(keys, &per_key);
+  for (const std::uint64_t n : per_key) s.keyed_records += n;
   s.distinct_keys = distinct.size();
   s.load = double(s.distinct_keys) / double(s.capacity);
   for (const std::uint64_t n : per_key) {
@@ -94,6 +118,12 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
     s.max_records_per_cell = std::max(s.max_records_per_cell, n);
   }
   if (distinct.empty()) return s;
+
+  WindowFullOverTheFill window_full(s.capacity, s.distinct_keys);
+  std::vector<std::uint32_t> limits = SortedWith(kProbeLimits, config.probe_limit);
+  std::erase_if(limits, [&](std::uint32_t limit) { return limit > s.capacity; });
+  const std::vector<std::uint32_t> widths = SortedWith(kFingerprintBits, config.fingerprint_bits);
+  const double alpha = SidakLevel(kLevel, int(limits.size() + widths.size()));
 
   if (s.distinct_keys < s.capacity) {
     std::vector<std::uint32_t> slot0s;
@@ -106,34 +136,23 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
     // A key found after k probes was inserted when a window of k - 1 slots from its slot0 was full and one of k
     // was not.
     for (std::uint32_t k = 1; k <= kHistogramProbes; ++k) {
-      const double longer = WindowFullOverTheFill(s.capacity, s.distinct_keys, k - 1);
-      s.probe_histogram_theory.push_back(
-          k == kHistogramProbes ? longer : longer - WindowFullOverTheFill(s.capacity, s.distinct_keys, k));
+      s.probe_histogram_theory.push_back(k == kHistogramProbes ? window_full(k - 1)
+                                                               : window_full(k - 1) - window_full(k));
     }
     s.mean_probes_theory = ExpectedProbesOnHit(s.capacity, s.distinct_keys);
   }
 
-  std::vector<std::uint32_t> limits(std::begin(kProbeLimits), std::end(kProbeLimits));
-  limits.push_back(config.probe_limit);
-  std::sort(limits.begin(), limits.end());
-  limits.erase(std::unique(limits.begin(), limits.end()), limits.end());
   for (const std::uint32_t limit : limits) {
-    if (limit > s.capacity) continue;
     const AliasTally t = InsertAndCountAliases(distinct, s.capacity, limit, config.fingerprint_bits);
-    s.probe_limits.push_back(
-        {limit, Rate(t.failed, t.keys, std::min(1.0, WindowFullOverTheFill(s.capacity, s.distinct_keys, limit)))});
+    s.probe_limits.push_back({limit, Rate(t.failed, t.keys, std::min(1.0, window_full(limit)), alpha)});
   }
 
-  std::vector<std::uint32_t> widths(std::begin(kFingerprintBits), std::end(kFingerprintBits));
-  widths.push_back(config.fingerprint_bits);
-  std::sort(widths.begin(), widths.end());
-  widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
   double observed = 0.0, predicted = 0.0, compared_per_key = 0.0;
   for (const std::uint32_t bits : widths) {
     std::vector<KeyResult> at_width = distinct;
     for (KeyResult& k : at_width) k.fingerprint = shared::Fingerprint(k.words, bits);
     const AliasTally t = InsertAndCountAliases(at_width, s.capacity, config.probe_limit, bits);
-    s.fingerprints.push_back({bits, Rate(t.aliased, t.keys, t.PredictedRate())});
+    s.fingerprints.push_back({bits, Rate(t.aliased, t.keys, t.PredictedRate(), alpha)});
     observed += double(t.aliased);
     predicted += t.predicted;
     compared_per_key = t.compared / double(t.keys);

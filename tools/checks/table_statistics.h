@@ -2,7 +2,8 @@
 // on the configured capacity, their probe lengths and probe failures per probe limit beside linear probing's
 // theory (probe_theory), fingerprint aliases per width beside the prediction from the windows (alias_theory),
 // records per cell, and the jitter tests' p-values (jitter_statistics). Each measured rate is held to its
-// theory: it exceeds it when the theory lies below the rate's 99.9% Clopper-Pearson interval.
+// theory: it exceeds it when the theory lies below the rate's Clopper-Pearson interval, whose level is
+// Sidak-corrected so that all the rates together hold at 0.001.
 #ifndef HPSF_TOOLS_CHECKS_TABLE_STATISTICS_H
 #define HPSF_TOOLS_CHECKS_TABLE_STATISTICS_H
 
@@ -23,7 +24,7 @@ namespace hpsf {
 struct RateFigure {
   std::uint64_t events = 0, trials = 0;
   double theory = 0.0;
-  double low = 0.0, high = 1.0;  // the measured rate's 99.9% Clopper-Pearson interval
+  double low = 0.0, high = 1.0;  // the measured rate's Clopper-Pearson interval (family level 0.001)
   double Rate() const { return trials == 0 ? 0.0 : double(events) / double(trials); }
   bool ExceedsTheory() const { return theory < low; }
 };
@@ -58,6 +59,9 @@ struct TableStatistics {
   bool ExceedsTheory() const;  // any rate above its theory, or a jitter test rejected
   nlohmann::json ToJson() const;
 };
+
+// The distinct full keys among the keyed results, in the order they first come, and how many results carry each.
+std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys, std::vector<std::uint64_t>* results_per_key = nullptr);
 
 TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
                                        const FilterConfig& config);

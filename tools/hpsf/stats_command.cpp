@@ -44,10 +44,10 @@ void PrintText(const TableStatistics& s, const std::string& input) {
   }
   std::printf("probe failures per probe limit (keys in the batch's order; the bound counts failed keys as "
               "inserted):\n  %-9s %12s %12s   %s\n",
-              "limit", "rate", "bound", "99.9% interval");
+              "limit", "rate", "bound", "interval");
   for (const ProbeLimitFigure& f : s.probe_limits) PrintRate(f.probe_limit, f.failures);
   std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits",
-              "rate", "predicted", "99.9% interval");
+              "rate", "predicted", "interval");
   for (const AliasFigure& f : s.fingerprints) PrintRate(f.fingerprint_bits, f.aliases);
   std::printf("  32 bits extrapolated: %.3g aliases per key\n", s.extrapolated_alias_rate_32);
   std::printf("records per cell: max %llu;", (unsigned long long)s.max_records_per_cell);
