@@ -4,8 +4,10 @@
 #include <atomic>
 #include <cmath>
 #include <mutex>
+#include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/input_check.h"
 #include "core/shared/fixed_point.h"
 
@@ -96,6 +98,15 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
   while (f > shared::kFixedPointBitsMin && !fits(f)) --f;
   while (f < shared::kFixedPointBitsMax && fits(f + 1)) ++f;
   return f;
+}
+
+void RequireFloat32Range(int fixed_point_bits) {
+  if (fixed_point_bits >= kFloat32FixedPointBitsMin) return;
+  throw ConfigError("--accum", "float32 cannot hold this batch: a channel's contributions total about 2^" +
+                                   std::to_string(62 - fixed_point_bits) +
+                                   " or more (F = " + std::to_string(fixed_point_bits) +
+                                   "), so a cell's float32 sum could overflow to Inf; use fixed64, or scale the batch"
+                                   " below 2^127 per channel");
 }
 
 double FromFixedPoint(std::uint64_t value, int fraction_bits) {

@@ -29,6 +29,13 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
 // Saturates at 2^127 instead of wrapping.
 unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int channel, int fraction_bits);
 
+// float32 accumulation refuses a batch whose channel total reaches about 2^127, which is F < -64: below it no
+// float32 cell sum can reach Inf (2^128), for a cell of fewer than 2^22 records cannot round its way there even
+// if every add rounds up by 2^-23, since (1 + 2^-23)^(2^22) < 2. fixed64 takes the same batch at any F.
+inline constexpr int kFloat32FixedPointBitsMin = -64;
+// Throws ConfigError naming --accum when fixed_point_bits, the batch's F, is below kFloat32FixedPointBitsMin.
+void RequireFloat32Range(int fixed_point_bits);
+
 // Back to a real number: value * 2^-F in double (exact below 2^53).
 double FromFixedPoint(std::uint64_t value, int fraction_bits);
 

@@ -81,6 +81,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.accumulation = config.accumulation;
   table.fixed_point_bits = ChooseFixedPointBitsOf(entering, AllCores);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
+  if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
   run.timings.fixed_point = clock.Lap();
   simt::DeviceMemory memory;

@@ -557,6 +557,55 @@ TEST(HardCases, Float32CellMixing1eMinus30And1e30) {
   }
 }
 
+// float32 cell sums that could overflow: four records of 2e38 in one cell total 8e38, above the float range
+// (3.4e38). Every backend refuses the batch in float32 with a ConfigError naming --accum (the command line's
+// exit 3) instead of summing to Inf; fixed64 takes it at F = -67. Four records of 2^125 (total 2^127) are
+// refused too, since at F = -64 their ceilings sum to 2^63 exactly; four of 2^124 (total 2^126) give F = -64,
+// the lowest float32 takes, and filter to finite pixels.
+TEST(HardCases, Float32RefusesTotalsThatCouldOverflow) {
+  auto four_records_of = [](float contribution) {
+    return HandMade(2, 2, 1, [contribution](std::uint32_t pixel, std::uint32_t sample) {
+      VertexSample v;
+      v.pixel = pixel;
+      v.sample = sample;
+      v.position = glm::vec3(0.5f, 0.5f, 0.5f);
+      v.previous = glm::vec3(0.5f, 0.5f, -1.5f);
+      v.contribution = glm::vec3(contribution, 1.0f, 1.0f);
+      v.throughput = glm::vec3(0.5f);
+      return MakeVertexRecord(v);
+    });
+  };
+  auto one_cell = [](Accumulation a) {
+    FilterConfig config = SmallTable(a);
+    config.lod = false;
+    config.cell_size = 1.0f;
+    config.jitter_scale = 0.0f;
+    return config;
+  };
+  const RecordBatch over = four_records_of(2e38f);
+  const FilterConfig float32 = one_cell(Accumulation::kFloat32);
+  auto expect_refused = [](const std::function<void()>& run, const std::string& backend) {
+    try {
+      run();
+      ADD_FAILURE() << backend << " summed the batch in float32";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("--accum"), std::string::npos) << backend << ": " << e.what();
+    }
+  };
+  expect_refused([&] { ReferenceFilter(over, float32); }, "reference");
+  expect_refused([&] { EmulatedFilter(over, float32, EmulatorOptions{}); }, "emulated");
+  for (const StagingPolicy staging : kStagingPolicies) {
+    expect_refused([&] { TestFilter(staging).Run(over, float32); }, std::string("vulkan ") + ToString(staging));
+  }
+  const CaseRuns fixed = RunCase("one cell of 4 x 2e38", over, one_cell(Accumulation::kFixed64), Expected(over, 0));
+  EXPECT_EQ(fixed.reference.stats.fixed_point_bits, -67);
+
+  expect_refused([&] { ReferenceFilter(four_records_of(0x1p125f), float32); }, "reference, 4 x 2^125");
+  const RecordBatch under = four_records_of(0x1p124f);
+  const CaseRuns runs = RunCase("one cell of 4 x 2^124", under, float32, Expected(under, 0));
+  EXPECT_EQ(runs.reference.stats.fixed_point_bits, kFloat32FixedPointBitsMin);
+}
+
 // The level clamps at both ends of [-126, 126], the widest range the config accepts (-127 and 127 are
 // refused): 2^l and 2^-l are normal there. +126: a filter width of 1e37 pixels puts w at 2^127 or Inf for every
 // Cornell vertex; the jitter of 2^126 moves positions to about 1e38, still finite and keyed. -126: vertices

@@ -190,6 +190,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.upload_copy_ms = upload.Submit();
   run.timings.upload_bytes = upload.bytes();
   table.fixed_point_bits = ChooseFixedPointBitsOf(entering, AllCores);  // the host's pre-pass
+  if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
