@@ -8,6 +8,7 @@
 #include "emulated/simt/kernel_fault.h"
 #include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
+#include "tools/hpsf/diff_command.h"
 #include "tools/hpsf/render_command.h"
 #include "tools/hpsf/stats_command.h"
 #include "vulkan/vulkan_device.h"
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   int exit_code = hpsf::kExitOk;
   hpsf::AddCrosscheckCommand(app, &exit_code);
   hpsf::AddStatsCommand(app, &exit_code);
+  hpsf::AddDiffCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

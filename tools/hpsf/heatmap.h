@@ -1,0 +1,31 @@
+// The error heatmap of `hpsf diff`: per pixel the largest |A - B| over the colour channels, through the
+// perceptually uniform "inferno" colour map of OpenImageIO (ImageBufAlgo::color_map) from 0 to the 99th
+// percentile of those errors (larger ones in the top colour), with a legend strip below naming the scale. Small
+// images are enlarged by whole pixels. Returned as 8-bit RGB for the report, or written as a PNG.
+#ifndef HPSF_TOOLS_HPSF_HEATMAP_H
+#define HPSF_TOOLS_HPSF_HEATMAP_H
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tools/checks/channel_image.h"
+
+namespace hpsf {
+
+struct Rgb8Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> bytes;  // width * height * 3
+};
+
+Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b);
+
+// The image as PNG file bytes, for a data URI.
+std::string EncodePng(const Rgb8Image& image);
+
+// Writes the PNG under a temporary name and renames it into place; InputError naming the path on failure.
+void WritePng(const std::string& path, const Rgb8Image& image);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_HPSF_HEATMAP_H
