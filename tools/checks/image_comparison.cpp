@@ -45,7 +45,11 @@ std::string ImageComparison::Explanation() const {
   }
   const bool higher = HigherIsBetter(thresholds.metric);
   const std::string name = ToString(thresholds.metric), above = higher ? "below" : "above";
-  const std::string value_text = name + " " + Shown(value);
+  std::string value_text = name + " " + Shown(value);
+  if (thresholds.metric == DiffMetric::kMaxAbs && metrics.max_abs > 0.0) {
+    value_text += " at (" + std::to_string(metrics.max_x) + ", " + std::to_string(metrics.max_y) + ", " +
+                  metrics.max_channel + ")";
+  }
   switch (verdict) {
     case DiffVerdict::kFail: return verdict_text + ": " + value_text + " is " + above + " --fail " + Shown(thresholds.fail);
     case DiffVerdict::kWarn:

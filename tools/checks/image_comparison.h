@@ -29,7 +29,7 @@ struct ImageComparison {
   DiffVerdict verdict = DiffVerdict::kPass;
   std::vector<MetadataDifference> metadata;
   double metrics_seconds = 0.0, ssim_seconds = 0.0;
-  // One line: the verdict and why, e.g. "WARN: max 0.5 is above --warn 0, not above --fail 1".
+  // One line: the verdict and why, e.g. "WARN: max 0.5 at (3, 4, R) is above --warn 0, not above --fail 1".
   std::string Explanation() const;
 };
 

@@ -4,7 +4,8 @@
 //   PSNR = 20 log10(peak / RMSE) with peak the largest value in A or B but at least 1, as OpenImageIO's idiff
 //   takes it (+inf when equal), so the two agree on HDR renders;
 //   mean and maximum |d| and where the maximum is (the first in pixel order on a tie);
-//   the p-th percentile of |d| (nearest rank); the fraction of pixels whose largest |d| exceeds a threshold.
+//   the p-th percentile of |d| (nearest rank, rounded to float); the fraction of pixels whose largest |d| exceeds
+//   a threshold.
 // A value that is not finite in A or B is not a number to subtract: it counts as equal when A and B hold the
 // same one (both NaN, or the same infinity) and as a mismatch otherwise, and enters no other metric. SSIM is
 // computed elsewhere (tools/checks/ssim.h).

@@ -1,6 +1,7 @@
 #include "tools/checks/ssim.h"
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/ocl.hpp>
 #include <opencv2/quality/qualityssim.hpp>
 
 #include "tools/checks/image_metrics.h"
@@ -23,6 +24,8 @@ cv::Mat DisplayedChannel(const ChannelImage& image, std::size_t channel) {
 
 double SrgbSsim(const ChannelImage& a, const ChannelImage& b) {
   CheckComparable(a, b);
+  // The quality module works on UMat; without this OpenCV probes for an OpenCL device on the first call.
+  cv::ocl::setUseOpenCL(false);
   double sum = 0.0;
   int counted = 0;
   for (std::size_t c = 0; c < a.channels.size(); ++c) {

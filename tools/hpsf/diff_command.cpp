@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -9,6 +10,7 @@
 #include "tools/checks/image_comparison.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
+#include "tools/hpsf/html_report.h"
 
 namespace hpsf {
 namespace {
@@ -20,6 +22,7 @@ struct DiffOptions {
   double percentile = 99.0;
   double pixel_threshold = 1e-3;
   std::string heatmap;
+  std::string html;
   bool json = false;
 };
 
@@ -79,9 +82,28 @@ void Run(const DiffOptions& o, int* exit_code) {
   // Everything that can refuse the input runs before the first file is written.
   const ImageComparison comparison = CompareImages(a, b, options);
   std::optional<Rgb8Image> heatmap;
-  if (!o.heatmap.empty()) {
-    heatmap = RenderHeatmap(a, b);
-    WritePng(o.heatmap, *heatmap);
+  if (!o.heatmap.empty()) heatmap = RenderHeatmap(a, b);
+  // The report is made in memory before any file is written, so that a failure leaves no heatmap behind either.
+  std::string html;
+  double html_seconds = 0.0;
+  if (!o.html.empty()) {
+    const auto html_start = std::chrono::steady_clock::now();
+    ReportEntry entry{o.a + " against " + o.b, &a, &b, o.a, o.b, comparison, std::nullopt};
+    const auto name = [](const std::string& path) { return std::filesystem::path(path).filename().string(); };
+    html = RenderHtmlReport("hpsf diff " + name(o.a) + " against " + name(o.b), {entry});
+    html_seconds = SecondsSince(html_start);
+  }
+  if (heatmap) WritePng(o.heatmap, *heatmap);
+  if (!o.html.empty()) {
+    const auto write_start = std::chrono::steady_clock::now();
+    try {
+      WriteHtmlReport(o.html, html);
+    } catch (const InputError&) {
+      std::error_code ignored;  // all or nothing: the heatmap goes too
+      if (heatmap) std::filesystem::remove(o.heatmap, ignored);
+      throw;
+    }
+    html_seconds += SecondsSince(write_start);
   }
   if (o.json) {
     nlohmann::json report = ToJson(comparison);
@@ -93,10 +115,15 @@ void Run(const DiffOptions& o, int* exit_code) {
     report["channels"] = a.channels;
     report["timings"]["read_s"] = read_seconds;
     if (!o.heatmap.empty()) report["outputs"]["heatmap"] = o.heatmap;
+    if (!o.html.empty()) {
+      report["outputs"]["html"] = o.html;
+      report["timings"]["html_s"] = html_seconds;
+    }
     std::cout << report.dump(2) << "\n";
   } else {
     PrintText(o, a, comparison);
     if (!o.heatmap.empty()) std::printf("wrote %s\n", o.heatmap.c_str());
+    if (!o.html.empty()) std::printf("wrote %s (%.2f s)\n", o.html.c_str(), html_seconds);
   }
   *exit_code = ExitCode(comparison.verdict);
 }
@@ -122,6 +149,9 @@ void AddDiffCommand(CLI::App& app, int* exit_code) {
   c->add_option("--pixel-threshold", o->pixel_threshold, "A pixel is over it when its largest |A-B| exceeds it")
       ->capture_default_str();
   c->add_option("--heatmap", o->heatmap, "Write the error heatmap (PNG) here");
+  c->add_option("--html", o->html,
+                "Write a self-contained HTML report here: A, B and the heatmap, a wipe, an exposure control, the "
+                "metrics and the metadata");
   c->add_flag("--json", o->json, "Print the report as JSON");
   c->callback([o, exit_code] { Run(*o, exit_code); });
 }

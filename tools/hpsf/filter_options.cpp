@@ -7,6 +7,8 @@ namespace hpsf {
 void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   FilterConfig& c = o.config;
   command.add_flag("--no-filter", o.no_filter, "Plain path tracing: each sample keeps its own contribution");
+  command.add_flag("--variance", o.variance,
+                   "Also write each pixel's variance (channels variance.R/G/B) and the image mean's; needs 2+ spp");
   command.add_option("--filter-width", c.filter_width_px, "Cell size in pixels at a primary hit")->capture_default_str();
   command.add_option("--jitter", c.jitter_scale, "Jitter amplitude in cells (0: off)")->capture_default_str();
   command.add_option("--normal", o.normal, "Normal key: none, sign or octahedral:B")->capture_default_str();
@@ -30,6 +32,13 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   config.lod = o.lod == "on";
   config.Validate();
   return config;
+}
+
+void CheckVarianceSamples(const FilterOptions& o, std::uint32_t samples_per_pixel, const std::string& source) {
+  if (o.variance && samples_per_pixel < 2) {
+    throw ConfigError("--variance", "needs 2 or more samples per pixel to see a pixel's spread; " + source + " has " +
+                                        std::to_string(samples_per_pixel));
+  }
 }
 
 nlohmann::json ToJson(const FilterConfig& c) {

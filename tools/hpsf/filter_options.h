@@ -3,6 +3,7 @@
 #ifndef HPSF_TOOLS_HPSF_FILTER_OPTIONS_H
 #define HPSF_TOOLS_HPSF_FILTER_OPTIONS_H
 
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -19,10 +20,14 @@ struct FilterOptions {
   std::string lod = "on";
   std::string accumulation = "fixed64";
   bool no_filter = false;
+  bool variance = false;  // also write each pixel's variance (tools/checks/pixel_variance.h)
 };
 
 void AddFilterOptions(CLI::App& command, FilterOptions& options);
 FilterConfig ResolveFilterConfig(const FilterOptions& options);
+// --variance estimates the within-pixel spread from a pixel's own samples, which takes two or more: a ConfigError
+// naming --variance otherwise. `source` says where the count came from (--spp, or the record file).
+void CheckVarianceSamples(const FilterOptions& options, std::uint32_t samples_per_pixel, const std::string& source);
 
 nlohmann::json ToJson(const FilterConfig& config);
 nlohmann::json ToJson(const FilterStats& stats);

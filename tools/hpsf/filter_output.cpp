@@ -3,8 +3,10 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "core/error.h"
+#include "tools/checks/pixel_variance.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/version.h"
 
@@ -15,27 +17,62 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The hashed backend's run, emulated or Vulkan.
+const HashedRun& Hashed(const BackendOutput& result) {
+  return result.emulated ? static_cast<const HashedRun&>(*result.emulated) : *result.vulkan;
+}
+
+// The variance from the groups whose averages the backend's resolve used: the reference's cells or a hashed
+// table's slots (a probe failure or an unplaced record is past the capacity), or none without the filter.
+PixelVariance EstimateVariance(const RecordBatch& batch, const BackendOutput& result, bool filtered) {
+  if (!filtered) return EstimatePixelVariance(batch, {}, 0);
+  if (result.reference) {
+    return EstimatePixelVariance(batch, result.reference->placement, result.reference->cells.size());
+  }
+  return EstimatePixelVariance(batch, Hashed(result).placements, Hashed(result).table.capacity);
+}
+
+// Every digit of a double, so the statistical comparison reads back exactly what was estimated.
+std::string Digits(const glm::dvec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%.17g %.17g %.17g", v.x, v.y, v.z);
+  return text;
+}
+
 }  // namespace
 
 nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request) {
   CheckBackend(request.backend);
   const FilterConfig config = ResolveFilterConfig(options);
+  CheckVarianceSamples(options, batch.samples_per_pixel, "the batch of " + request.scene);
   nlohmann::json report;
   const auto filter_start = std::chrono::steady_clock::now();
   const BackendOutput result = RunBackend(request.backend, batch, config, request.emulator, request.defect, request.vulkan);
   const double filter_seconds = SecondsSince(filter_start);
   const Image image = options.no_filter ? UnfilteredImage(batch) : result.image;
-  const int fixed_point_bits = result.reference ? result.reference->stats.fixed_point_bits : result.emulated->table.fixed_point_bits;
+  // A Vulkan run has no emulated part: its F is in its own table (reading the empty emulated one wrote garbage).
+  const int fixed_point_bits =
+      result.reference ? result.reference->stats.fixed_point_bits : Hashed(result).table.fixed_point_bits;
 
-  const std::map<std::string, std::string> metadata = {
+  std::map<std::string, std::string> metadata = {
       {"scene", request.scene},
       {"config", config.ToString()},
       {"seed", std::to_string(config.seed)},
       {"backend", options.no_filter ? "none (unfiltered)" : request.backend},
       {"version", kHpsfVersion},
       {"F", std::to_string(fixed_point_bits)}};
+  std::optional<PixelVariance> variance;
+  if (options.variance) {
+    const auto variance_start = std::chrono::steady_clock::now();
+    variance = EstimateVariance(batch, result, !options.no_filter);
+    report["timings"]["variance_s"] = SecondsSince(variance_start);
+    metadata["mean_variance"] = Digits(variance->mean_variance);
+    metadata["spp"] = std::to_string(batch.samples_per_pixel);
+    report["mean_variance"] = {variance->mean_variance.x, variance->mean_variance.y, variance->mean_variance.z};
+  }
   const auto write_start = std::chrono::steady_clock::now();
-  const std::string preview = WriteImageFiles(request.output, image, metadata);
+  const std::string preview =
+      WriteImageFiles(request.output, image, metadata, variance ? &variance->variance : nullptr);
 
   report["filtered"] = !options.no_filter;
   report["backend"] = request.backend;
@@ -73,6 +110,11 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
     std::cout << "emulated (" << s["mode"].get<std::string>() << "): slots used " << s["slots_used"] << ", probe failures "
               << s["probe_failures"] << ", F " << s["fixed_point_bits"]
               << (s.contains("trace_hash") ? ", trace " + s["trace_hash"].get<std::string>() : std::string()) << "\n";
+  }
+  if (report.contains("mean_variance")) {
+    const auto& v = report["mean_variance"];
+    std::printf("variance of the image mean: %.3g %.3g %.3g\n", v[0].get<double>(), v[1].get<double>(),
+                v[2].get<double>());
   }
   if (report.contains("rays_per_s")) {
     std::printf("%.3g rays/s, %.3g records/s filtered\n", report["rays_per_s"].get<double>(), report["records_per_s"].get<double>());

@@ -37,7 +37,7 @@ void Check(bool ok, const OIIO::ImageBuf& buffer, const char* step) {
 
 }  // namespace
 
-Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b) {
+Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b, HeatmapScale* scale_out) {
   CheckComparable(a, b);
   std::vector<float> errors(a.PixelCount());
   float largest = 0.0f;
@@ -57,6 +57,7 @@ Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b) {
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
     scale = sorted[k] > 0.0f ? sorted[k] : largest;
   }
+  if (scale_out) *scale_out = HeatmapScale{scale, largest};
   for (float& e : errors) e = std::isfinite(e) ? (scale > 0.0f ? std::min(e / scale, 1.0f) : 0.0f) : 1.0f;
 
   // Small images are enlarged by whole pixels (no filtering) so that a one-pixel error stays visible.

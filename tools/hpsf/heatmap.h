@@ -18,7 +18,13 @@ struct Rgb8Image {
   std::vector<std::uint8_t> bytes;  // width * height * 3
 };
 
-Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b);
+// The colour map's range: black is 0, the top colour `top` (the 99th percentile) and above; `largest` is the
+// largest finite error. The HTML report repeats it as text, since the legend shrinks with a large image.
+struct HeatmapScale {
+  float top = 0.0f, largest = 0.0f;
+};
+
+Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b, HeatmapScale* scale_out = nullptr);
 
 // The image as PNG file bytes, for a data URI.
 std::string EncodePng(const Rgb8Image& image);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
@@ -26,9 +28,17 @@ void Write(const std::string& path, const OIIO::ImageSpec& spec, const void* dat
   }
 }
 
+void CopyHpsfMetadata(const OIIO::ImageSpec& spec, std::map<std::string, std::string>& metadata) {
+  for (const OIIO::ParamValue& p : spec.extra_attribs) {
+    const std::string name = p.name().string();
+    if (name.rfind("hpsf:", 0) == 0) metadata[name.substr(5)] = p.get_string();
+  }
+}
+
 }  // namespace
 
-std::string WriteImageFiles(const std::string& exr_path, const Image& image, const std::map<std::string, std::string>& metadata) {
+std::string WriteImageFiles(const std::string& exr_path, const Image& image,
+                            const std::map<std::string, std::string>& metadata, const Image* variance) {
   const std::filesystem::path exr(exr_path);
   if (exr.extension() != ".exr") throw InputError(exr_path + ": the output must be an .exr file");
   const std::filesystem::path png = std::filesystem::path(exr).replace_extension(".png");
@@ -42,7 +52,21 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image, con
   // OpenEXR writes chunks in the order its threads finish them; one thread makes the file bytes, not only the
   // pixels, the same on every run, so files can be compared as files.
   OIIO::attribute("exr_threads", 1);
-  OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
+  if (variance && (variance->width != image.width || variance->height != image.height)) {
+    throw std::invalid_argument(exr_path + ": the variance image's size differs from the image's");
+  }
+  OIIO::ImageSpec spec(int(image.width), int(image.height), variance ? 6 : 3, OIIO::TypeDesc::FLOAT);
+  // The variance rides in the same file, by channel name, so the image and its noise cannot be separated.
+  std::vector<float> channels;
+  if (variance) {
+    spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+    channels.reserve(image.pixels.size() * 6);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+      for (const glm::vec3& v : {image.pixels[i], variance->pixels[i]}) {
+        channels.insert(channels.end(), {v.x, v.y, v.z});
+      }
+    }
+  }
   for (const auto& [key, value] : metadata) spec.attribute("hpsf:" + key, value);
   // No timestamp either (OpenEXR's capDate): the same render gives the same file.
   spec.attribute("DateTime", "");
@@ -57,7 +81,8 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image, con
   // call created, the EXR already renamed into place included, so no output is left half made.
   bool exr_placed = false;
   try {
-    Write(exr_temporary.string(), spec, image.pixels.data(), exr_path);
+    const void* pixels = variance ? static_cast<const void*>(channels.data()) : image.pixels.data();
+    Write(exr_temporary.string(), spec, pixels, exr_path);
     Write(png_temporary.string(), preview_spec, preview.data(), png.string());
     std::error_code failed;
     std::filesystem::rename(exr_temporary, exr, failed);
@@ -88,13 +113,41 @@ Image ReadExr(const std::string& path, std::map<std::string, std::string>* metad
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     image.pixels[i] = glm::vec3(data[i * spec.nchannels], data[i * spec.nchannels + 1], data[i * spec.nchannels + 2]);
   }
-  if (metadata) {
-    for (const OIIO::ParamValue& p : spec.extra_attribs) {
-      const std::string name = p.name().string();
-      if (name.rfind("hpsf:", 0) == 0) (*metadata)[name.substr(5)] = p.get_string();
-    }
-  }
+  if (metadata) CopyHpsfMetadata(spec, *metadata);
   return image;
+}
+
+NoisyImage ReadExrWithVariance(const std::string& path, std::map<std::string, std::string>* metadata) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError(path + ": cannot read the image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  const char* const names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  int index[6];
+  for (int k = 0; k < 6; ++k) {
+    const auto found = std::find(spec.channelnames.begin(), spec.channelnames.end(), names[k]);
+    if (found == spec.channelnames.end()) {
+      throw InputError(path + ": no channel '" + names[k] + "'" + (k >= 3 ? " (render it with --variance)" : ""));
+    }
+    index[k] = int(found - spec.channelnames.begin());
+  }
+  const std::string mean_variance = spec.get_string_attribute("hpsf:mean_variance");
+  NoisyImage noisy;
+  if (std::sscanf(mean_variance.c_str(), "%lf %lf %lf", &noisy.mean_variance.x, &noisy.mean_variance.y,
+                  &noisy.mean_variance.z) != 3) {
+    throw InputError(path + ": no attribute 'hpsf:mean_variance' of three numbers (render it with --variance)");
+  }
+  std::vector<float> data(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data())) {
+    throw InputError(path + ": cannot read the pixels: " + in->geterror());
+  }
+  noisy.mean = noisy.variance = Image(std::uint32_t(spec.width), std::uint32_t(spec.height));
+  for (std::size_t i = 0; i < noisy.mean.pixels.size(); ++i) {
+    const float* pixel = &data[i * spec.nchannels];
+    noisy.mean.pixels[i] = glm::vec3(pixel[index[0]], pixel[index[1]], pixel[index[2]]);
+    noisy.variance.pixels[i] = glm::vec3(pixel[index[3]], pixel[index[4]], pixel[index[5]]);
+  }
+  if (metadata) CopyHpsfMetadata(spec, *metadata);
+  return noisy;
 }
 
 }  // namespace hpsf

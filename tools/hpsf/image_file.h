@@ -7,15 +7,22 @@
 #include <string>
 
 #include "core/image.h"
+#include "tools/checks/statistical_compare.h"
 
 namespace hpsf {
 
 // Writes `exr_path` (must end in .exr) and the preview with the extension replaced by .png; returns the
-// preview's path. metadata keys are stored as "hpsf:<key>".
-std::string WriteImageFiles(const std::string& exr_path, const Image& image, const std::map<std::string, std::string>& metadata);
+// preview's path. metadata keys are stored as "hpsf:<key>". With a variance image (the same size), the EXR gets
+// three more channels after R, G, B: variance.R, variance.G, variance.B; the preview stays the image.
+std::string WriteImageFiles(const std::string& exr_path, const Image& image,
+                            const std::map<std::string, std::string>& metadata, const Image* variance = nullptr);
 
 // Reads an EXR written by hpsf (tests, diffs).
 Image ReadExr(const std::string& path, std::map<std::string, std::string>* metadata = nullptr);
+
+// Reads an EXR written with --variance for the statistical comparison: R, G, B and variance.R/G/B found by name,
+// and hpsf:mean_variance. A missing channel or attribute is an InputError naming the file and what is missing.
+NoisyImage ReadExrWithVariance(const std::string& path, std::map<std::string, std::string>* metadata = nullptr);
 
 }  // namespace hpsf
 

@@ -9,6 +9,7 @@
 #include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
 #include "tools/hpsf/diff_command.h"
+#include "tools/hpsf/golden_command.h"
 #include "tools/hpsf/render_command.h"
 #include "tools/hpsf/stats_command.h"
 #include "vulkan/vulkan_device.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   hpsf::AddCrosscheckCommand(app, &exit_code);
   hpsf::AddStatsCommand(app, &exit_code);
   hpsf::AddDiffCommand(app, &exit_code);
+  hpsf::AddGoldenCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -41,6 +41,7 @@ void RunRender(RenderOptions& o) {
   o.trace.seed = o.filter.config.seed;
   o.trace.Validate();
   ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
+  CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
   const Scene scene = LoadScene(o.scene);
 
   const auto start = std::chrono::steady_clock::now();

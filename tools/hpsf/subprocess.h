@@ -1,0 +1,25 @@
+// Runs a program and collects what it printed: `hpsf golden` renders each case with the hpsf binary itself, as
+// `hpsf render` or `hpsf replay` would be run by hand, so a golden case is exactly a command line.
+#ifndef HPSF_TOOLS_HPSF_SUBPROCESS_H
+#define HPSF_TOOLS_HPSF_SUBPROCESS_H
+
+#include <string>
+#include <vector>
+
+namespace hpsf {
+
+struct ProcessResult {
+  int exit_code = -1;   // the program's exit status, or 128 + the signal that ended it
+  std::string output;   // stdout and stderr together
+};
+
+// argv[0] is the program's path; it runs in `folder` (empty: this process's). Throws std::runtime_error when it
+// cannot be started.
+ProcessResult RunProcess(const std::vector<std::string>& argv, const std::string& folder = "");
+
+// This program's own path (/proc/self/exe).
+std::string SelfPath();
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_HPSF_SUBPROCESS_H

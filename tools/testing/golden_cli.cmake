@@ -1,0 +1,57 @@
+# hpsf golden on a copy of golden/: a one-pixel change of a fixed64 golden fails its case for every backend,
+# names the case and leaves the new image, the heatmap and its report beside the golden; bless rewrites that golden alone
+# and says what changed, after which the case passes; a bad manifest is bad input naming the file and the case.
+set(dir ${OUT}/golden_cli)
+file(REMOVE_RECURSE ${dir})
+file(COPY ${GOLDEN} DESTINATION ${dir})
+set(golden ${dir}/golden)
+
+function(run code regex)
+  execute_process(COMMAND ${HPSF} golden ${ARGN} RESULT_VARIABLE got OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("hpsf golden ${ARGN}: exit ${got}\n${out}${err}")
+  if(NOT got EQUAL code)
+    message(FATAL_ERROR "hpsf golden ${ARGN}: exit ${got}, expected ${code}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${regex}")
+    message(FATAL_ERROR "hpsf golden ${ARGN}: the output does not match '${regex}'")
+  endif()
+  set(output "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+# One pixel of the fixed64 Cornell golden, moved by 1e-3 in red (oiiotool keeps the hpsf: metadata).
+execute_process(COMMAND oiiotool ${golden}/cornell-fixed64.exr --box:color=0.25,0.25,0.25:fill=1 10,20,10,20
+                        -o ${golden}/cornell-fixed64.exr RESULT_VARIABLE code)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "oiiotool could not change the golden")
+endif()
+run(2 "FAIL  cornell/fixed64 +reference FAIL: max .* at \\(10, 20, .\\).*FAIL  cornell/fixed64 +emulated.*FAIL  cornell/fixed64 +vulkan.*PASS  furnace/fixed64.*6 checks of 2 cases: 3 pass, 0 warn, 3 fail"
+    check --manifest ${golden}/manifest.json cornell/fixed64 furnace/fixed64)
+foreach(backend reference emulated vulkan)
+  foreach(artifact new.exr heatmap.png report.html)
+    if(NOT EXISTS ${golden}/cornell-fixed64.${backend}.${artifact})
+      message(FATAL_ERROR "the failing case left no cornell-fixed64.${backend}.${artifact}")
+    endif()
+  endforeach()
+endforeach()
+if(EXISTS ${golden}/furnace-fixed64.reference.new.exr)
+  message(FATAL_ERROR "a passing case left its new image behind")
+endif()
+
+run(0 "blessed +cornell/fixed64 .*changed: FAIL: max .* at \\(10, 20, .\\) is above --fail 0" bless --manifest ${golden}/manifest.json cornell/fixed64)
+if(output MATCHES "furnace")
+  message(FATAL_ERROR "bless touched a golden it was not asked for")
+endif()
+run(0 "3 checks of 1 cases: 3 pass" check --manifest ${golden}/manifest.json cornell/fixed64)
+if(EXISTS ${golden}/cornell-fixed64.reference.new.exr)
+  message(FATAL_ERROR "a case that passes again still has the new image of its failure beside it")
+endif()
+
+# Bad manifests: exit 3, the file and the case named.
+file(WRITE ${dir}/broken.json "{\"hpsf_golden\": 1, \"cases\": [")
+run(3 "broken.json: not valid JSON" check --manifest ${dir}/broken.json)
+file(WRITE ${dir}/unknown.json "{\"hpsf_golden\": 1, \"cases\": [{\"name\": \"x\", \"scene\": \"cornell\", \"backends\": [\"reference\"], \"golden\": \"x.exr\", \"tolerance\": 1}]}")
+run(3 "unknown.json: case 0 \\(x\\): unknown field 'tolerance'" check --manifest ${dir}/unknown.json)
+file(WRITE ${dir}/both.json "{\"hpsf_golden\": 1, \"cases\": [{\"name\": \"y\", \"scene\": \"cornell\", \"records\": \"r.hpsfv\", \"backends\": [\"reference\"], \"golden\": \"y.exr\"}]}")
+run(3 "both.json: case 0 \\(y\\): give exactly one of scene and records" check --manifest ${dir}/both.json)
+run(3 "no case named 'nosuch'" check --manifest ${golden}/manifest.json nosuch)
+run(3 "cannot open the golden manifest" check --manifest ${dir}/missing.json)
