@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "tools/checks/ssim.h"
@@ -28,17 +29,21 @@ ImageComparison CompareImages(const ChannelImage& a, const ChannelImage& b, cons
   auto start = std::chrono::steady_clock::now();
   c.metrics = ComputeMetrics(a, b, options.metrics);
   c.metrics_seconds = SecondsSince(start);
-  start = std::chrono::steady_clock::now();
-  c.ssim = SrgbSsim(a, b);
-  c.ssim_seconds = SecondsSince(start);
-  c.value = MetricValue(c.metrics, c.thresholds.metric, c.ssim);
-  c.verdict = Judge(c.metrics, c.ssim, c.thresholds);
+  if (options.ssim || c.thresholds.metric == DiffMetric::kSsim) {
+    start = std::chrono::steady_clock::now();
+    c.ssim = SrgbSsim(a, b);
+    c.ssim_seconds = SecondsSince(start);
+  }
+  const double ssim = c.ssim.value_or(std::numeric_limits<double>::quiet_NaN());
+  c.value = MetricValue(c.metrics, c.thresholds.metric, ssim);
+  c.verdict = Judge(c.metrics, ssim, c.thresholds);
   c.metadata = DiffMetadata(a.metadata, b.metadata);
   return c;
 }
 
 std::string ImageComparison::Explanation() const {
   const std::string verdict_text = ToString(verdict);
+  if (judged_by) return verdict_text + ": " + *judged_by;
   if (metrics.nonfinite_mismatches > 0) {
     return verdict_text + ": " + std::to_string(metrics.nonfinite_mismatches) +
            " values are not finite in one image and differ in the other";
@@ -63,7 +68,7 @@ std::string ImageComparison::Explanation() const {
 nlohmann::json ToJson(const ImageComparison& c) {
   nlohmann::json j;
   j["metrics"] = ToJson(c.metrics);
-  j["metrics"]["ssim"] = c.ssim;
+  j["metrics"]["ssim"] = c.ssim ? nlohmann::json(*c.ssim) : nlohmann::json(nullptr);
   j["rule"] = {{"metric", ToString(c.thresholds.metric)},
                {"warn", c.thresholds.warn},
                {"fail", c.thresholds.fail},

@@ -1,12 +1,14 @@
 #include "tools/checks/image_metrics.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <vector>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
@@ -46,10 +48,19 @@ ImageMetrics ComputeMetrics(const ChannelImage& a, const ChannelImage& b, const 
   m.percentile_rank = options.percentile;
   m.pixel_threshold = options.pixel_threshold;
   // Rows in fixed chunks on every core; the chunks' sums are added in chunk order, so no figure depends on the
-  // number of threads. Each |d| is kept, as a float, for the percentile; a value that enters no metric is -1,
-  // below every error.
+  // number of threads. The percentile is selected without keeping every error: a histogram of the errors' top
+  // 16 bits (a non-negative float's bits order as its value) finds the bucket that holds it, and a second pass
+  // collects that bucket alone. Both give the k-th smallest whatever the threads did.
   const std::size_t width = std::size_t(a.width), per_pixel = colour.size();
-  std::vector<float> errors(a.PixelCount() * per_pixel);
+  const auto error_of = [&](std::size_t p, std::size_t k, float* error) {
+    const float va = a.At(p, colour[k]), vb = b.At(p, colour[k]);
+    if (!std::isfinite(va) || !std::isfinite(vb)) return false;
+    *error = float(std::abs(double(va) - double(vb)));
+    return true;
+  };
+  const auto bucket_of = [](float error) { return std::bit_cast<std::uint32_t>(error) >> 16; };
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> histograms(
+      [] { return std::vector<std::uint32_t>(1u << 16, 0u); });
   struct Part {
     double squared = 0.0, relative = 0.0, absolute = 0.0, peak = 1.0, max_abs = 0.0;
     std::size_t max_value = 0;  // pixel * colour count + colour index of the first maximum
@@ -59,15 +70,14 @@ ImageMetrics ComputeMetrics(const ChannelImage& a, const ChannelImage& b, const 
   std::vector<Part> parts((std::size_t(a.height) + kRowsPerChunk - 1) / kRowsPerChunk);
   tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t chunk) {
     Part& part = parts[chunk];
+    std::vector<std::uint32_t>& histogram = histograms.local();
     const std::size_t end_pixel = std::min(std::size_t(a.height), (chunk + 1) * kRowsPerChunk) * width;
     for (std::size_t p = chunk * kRowsPerChunk * width; p < end_pixel; ++p) {
       double pixel_max = 0.0;
       for (std::size_t k = 0; k < per_pixel; ++k) {
         const float va = a.At(p, colour[k]), vb = b.At(p, colour[k]);
-        float& stored = errors[p * per_pixel + k];
         if (!std::isfinite(va) || !std::isfinite(vb)) {
           part.nonfinite_mismatches += !SameNonFinite(va, vb);
-          stored = -1.0f;
           continue;
         }
         part.peak = std::max({part.peak, double(va), double(vb)});
@@ -77,7 +87,7 @@ ImageMetrics ComputeMetrics(const ChannelImage& a, const ChannelImage& b, const 
         part.relative += d * d / (double(vb) * double(vb) + 0.01);
         part.absolute += e;
         ++part.values;
-        stored = float(e);
+        ++histogram[bucket_of(float(e))];
         pixel_max = std::max(pixel_max, e);
         if (e > part.max_abs) {
           part.max_abs = e;
@@ -114,11 +124,30 @@ ImageMetrics ComputeMetrics(const ChannelImage& a, const ChannelImage& b, const 
   m.mean_abs = absolute / n;
   m.fraction_over = double(pixels_over) / double(a.PixelCount());
   if (m.values > 0) {
-    // The non-finite entries (-1) sort first; the k-th smallest error follows them.
     const double rank = std::ceil(options.percentile / 100.0 * double(m.values));
-    const std::size_t k = errors.size() - m.values + std::size_t(std::clamp(rank, 1.0, double(m.values))) - 1;
-    std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(k), errors.end());
-    m.percentile = errors[k];
+    std::uint64_t k = std::uint64_t(std::clamp(rank, 1.0, double(m.values))) - 1;  // from 0
+    std::uint32_t bucket = 0;
+    for (;; ++bucket) {
+      std::uint64_t count = 0;
+      for (const std::vector<std::uint32_t>& h : histograms) count += h[bucket];
+      if (k < count) break;
+      k -= count;
+    }
+    tbb::enumerable_thread_specific<std::vector<float>> found;
+    tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t chunk) {
+      std::vector<float>& mine = found.local();
+      const std::size_t end_pixel = std::min(std::size_t(a.height), (chunk + 1) * kRowsPerChunk) * width;
+      for (std::size_t p = chunk * kRowsPerChunk * width; p < end_pixel; ++p) {
+        for (std::size_t c = 0; c < per_pixel; ++c) {
+          float e;
+          if (error_of(p, c, &e) && bucket_of(e) == bucket) mine.push_back(e);
+        }
+      }
+    });
+    std::vector<float> in_bucket;
+    for (const std::vector<float>& f : found) in_bucket.insert(in_bucket.end(), f.begin(), f.end());
+    std::nth_element(in_bucket.begin(), in_bucket.begin() + std::ptrdiff_t(k), in_bucket.end());
+    m.percentile = in_bucket[std::size_t(k)];
   }
   return m;
 }

@@ -48,13 +48,49 @@ void RequireSize(const Image& image, const Image& like, const char* what) {
 std::string StatisticalComparison::ToString() const {
   char text[512];
   std::snprintf(text, sizeof text,
-                "%s at alpha %.3g: pixels %llu tested, %llu rejected (|z| > %.3f), worst (%u, %u) channel %d z %.3g; "
+                "%s at alpha %.3g: pixels %llu tested, %llu rejected (|z| > %.3f), worst (%u, %u, %c) z %.3g; "
                 "image mean z (%.3g, %.3g, %.3g), threshold %.3f",
                 consistent ? "consistent with noise" : "NOT consistent with noise", alpha,
                 static_cast<unsigned long long>(pixels_tested), static_cast<unsigned long long>(pixels_rejected),
-                pixel_threshold, worst.x, worst.y, worst.channel, worst.z, mean_z.x, mean_z.y, mean_z.z,
+                pixel_threshold, worst.x, worst.y, "RGB"[worst.channel], worst.z, mean_z.x, mean_z.y, mean_z.z,
                 mean_threshold);
   return text;
+}
+
+NoisyImage ToNoisyImage(const ChannelImage& image) {
+  const char* const names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  int index[6];
+  for (int k = 0; k < 6; ++k) {
+    index[k] = image.ChannelIndex(names[k]);
+    if (index[k] < 0) {
+      throw InputError(image.path + ": no channel '" + names[k] + "'" + (k >= 3 ? " (render it with --variance)" : ""));
+    }
+  }
+  NoisyImage noisy;
+  const auto found = image.metadata.find("mean_variance");
+  if (found == image.metadata.end() || std::sscanf(found->second.c_str(), "%lf %lf %lf", &noisy.mean_variance.x,
+                                                   &noisy.mean_variance.y, &noisy.mean_variance.z) != 3) {
+    throw InputError(image.path + ": no attribute 'hpsf:mean_variance' of three numbers (render it with --variance)");
+  }
+  noisy.mean = noisy.variance = Image(std::uint32_t(image.width), std::uint32_t(image.height));
+  for (std::size_t p = 0; p < image.PixelCount(); ++p) {
+    noisy.mean.pixels[p] = glm::vec3(image.At(p, index[0]), image.At(p, index[1]), image.At(p, index[2]));
+    noisy.variance.pixels[p] = glm::vec3(image.At(p, index[3]), image.At(p, index[4]), image.At(p, index[5]));
+  }
+  return noisy;
+}
+
+nlohmann::json ToJson(const StatisticalComparison& c) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(v > 0 ? "inf" : "nan"); };
+  return {{"alpha", c.alpha},
+          {"pixels_tested", c.pixels_tested},
+          {"pixels_rejected", c.pixels_rejected},
+          {"pixel_threshold", c.pixel_threshold},
+          {"worst_pixel", {{"x", c.worst.x}, {"y", c.worst.y}, {"channel", "RGB"[c.worst.channel]},
+                           {"z", number(c.worst.z)}}},
+          {"mean_z", {number(c.mean_z.x), number(c.mean_z.y), number(c.mean_z.z)}},
+          {"mean_threshold", c.mean_threshold},
+          {"consistent_with_noise", c.consistent}};
 }
 
 StatisticalComparison CompareStatistically(const NoisyImage& a, const NoisyImage& b, double alpha) {

@@ -28,8 +28,10 @@
 #include <string>
 
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/image.h"
+#include "tools/checks/channel_image.h"
 
 namespace hpsf {
 
@@ -39,6 +41,11 @@ struct NoisyImage {
   Image variance;
   glm::dvec3 mean_variance{0.0};
 };
+
+// The mean (R, G, B), the variance (variance.R, .G, .B, found by name) and the image mean's variance (metadata
+// mean_variance, three numbers) of an image rendered with --variance; InputError naming the file and what is
+// missing otherwise.
+NoisyImage ToNoisyImage(const ChannelImage& image);
 
 struct PixelZ {
   std::uint32_t x = 0;
@@ -58,6 +65,8 @@ struct StatisticalComparison {
   bool consistent = true;  // no test of either family rejected
   std::string ToString() const;
 };
+
+nlohmann::json ToJson(const StatisticalComparison& comparison);
 
 // Throws InputError when the images' sizes differ.
 StatisticalComparison CompareStatistically(const NoisyImage& a, const NoisyImage& b, double alpha = 0.01);

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "tools/checks/image_comparison.h"
+#include "tools/checks/statistical_compare.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
@@ -23,6 +24,9 @@ struct DiffOptions {
   double pixel_threshold = 1e-3;
   std::string heatmap;
   std::string html;
+  bool ssim = false;
+  bool statistical = false;
+  double alpha = 0.01;
   bool json = false;
 };
 
@@ -56,7 +60,9 @@ void PrintText(const DiffOptions& o, const ChannelImage& a, const ImageCompariso
   for (const std::string& name : a.channels) channels += (channels.empty() ? "" : ",") + name;
   std::printf("hpsf diff %s (A) against %s (B): %dx%d [%s]\n", o.a.c_str(), o.b.c_str(), a.width, a.height,
               channels.c_str());
-  std::printf("  rmse %.6g  mse %.6g  relmse %.6g  psnr %.6g dB  ssim %.6g\n", m.rmse, m.mse, m.relmse, m.psnr, c.ssim);
+  std::printf("  rmse %.6g  mse %.6g  relmse %.6g  psnr %.6g dB", m.rmse, m.mse, m.relmse, m.psnr);
+  if (c.ssim) std::printf("  ssim %.6g", *c.ssim);
+  std::printf("\n");
   std::printf("  |A-B| mean %.6g  max %.6g at (%d, %d, %s)  p%g %.6g  pixels over %g: %.4g%%\n", m.mean_abs,
               m.max_abs, m.max_x, m.max_y, m.max_channel.c_str(), m.percentile_rank, m.percentile, m.pixel_threshold,
               100.0 * m.fraction_over);
@@ -79,8 +85,17 @@ void Run(const DiffOptions& o, int* exit_code) {
   options.thresholds = thresholds;
   options.metrics.percentile = o.percentile;
   options.metrics.pixel_threshold = o.pixel_threshold;
+  options.ssim = o.ssim;
   // Everything that can refuse the input runs before the first file is written.
-  const ImageComparison comparison = CompareImages(a, b, options);
+  ImageComparison comparison = CompareImages(a, b, options);
+  std::optional<StatisticalComparison> statistical;
+  if (o.statistical) {
+    const NoisyImage noisy_a = ToNoisyImage(a);  // A's missing channel is named first
+    const NoisyImage noisy_b = ToNoisyImage(b);
+    statistical = CompareStatistically(noisy_a, noisy_b, o.alpha);
+    comparison.verdict = statistical->consistent ? DiffVerdict::kPass : DiffVerdict::kFail;
+    comparison.judged_by = statistical->ToString();
+  }
   std::optional<Rgb8Image> heatmap;
   if (!o.heatmap.empty()) heatmap = RenderHeatmap(a, b);
   // The report is made in memory before any file is written, so that a failure leaves no heatmap behind either.
@@ -89,6 +104,7 @@ void Run(const DiffOptions& o, int* exit_code) {
   if (!o.html.empty()) {
     const auto html_start = std::chrono::steady_clock::now();
     ReportEntry entry{o.a + " against " + o.b, &a, &b, o.a, o.b, comparison, std::nullopt};
+    if (statistical) entry.extra = ToJson(*statistical);
     const auto name = [](const std::string& path) { return std::filesystem::path(path).filename().string(); };
     html = RenderHtmlReport("hpsf diff " + name(o.a) + " against " + name(o.b), {entry});
     html_seconds = SecondsSince(html_start);
@@ -114,6 +130,7 @@ void Run(const DiffOptions& o, int* exit_code) {
     report["size"] = {a.width, a.height};
     report["channels"] = a.channels;
     report["timings"]["read_s"] = read_seconds;
+    if (statistical) report["statistical"] = ToJson(*statistical);
     if (!o.heatmap.empty()) report["outputs"]["heatmap"] = o.heatmap;
     if (!o.html.empty()) {
       report["outputs"]["html"] = o.html;
@@ -152,6 +169,13 @@ void AddDiffCommand(CLI::App& app, int* exit_code) {
   c->add_option("--html", o->html,
                 "Write a self-contained HTML report here: A, B and the heatmap, a wipe, an exposure control, the "
                 "metrics and the metadata");
+  c->add_flag("--ssim", o->ssim, "Also compute SSIM (slow: 2.7 s at 1080p); implied by --metric ssim");
+  c->add_flag("--statistical", o->statistical,
+              "Judge by per-pixel and image-mean z-tests instead of --metric (both images rendered with --variance): "
+              "FAIL when the difference is not consistent with their noise");
+  c->add_option("--alpha", o->alpha, "--statistical: the probability of failing two consistent renders")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-12, 0.5));
   c->add_flag("--json", o->json, "Print the report as JSON");
   c->callback([o, exit_code] { Run(*o, exit_code); });
 }

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "tools/checks/golden_manifest.h"
 #include "tools/checks/image_comparison.h"
+#include "tools/checks/statistical_compare.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
@@ -51,6 +52,7 @@ struct CheckOutcome {
   DiffVerdict verdict = DiffVerdict::kFail;
   std::string explanation;
   std::optional<ImageComparison> comparison;
+  std::optional<StatisticalComparison> statistical;
   std::shared_ptr<const ChannelImage> fresh, golden;  // for the report, when both were read
   std::string render_output;  // kept when the render itself failed
   std::vector<std::string> artifacts;
@@ -104,6 +106,7 @@ ReportEntry ReportEntryOf(const CheckOutcome& outcome) {
   entry.a_label = "new render (" + outcome.backend + ")";
   entry.b_label = "golden " + outcome.golden->path;
   entry.comparison = *outcome.comparison;
+  if (outcome.statistical) entry.extra = ToJson(*outcome.statistical);
   return entry;
 }
 
@@ -138,7 +141,13 @@ CheckOutcome Check(const GoldenManifest& manifest, const GoldenCase& c, const st
     outcome.golden = std::make_shared<const ChannelImage>(ReadChannelImage(c.golden));
     ComparisonOptions options;
     options.thresholds = c.thresholds;
-    const ImageComparison comparison = CompareImages(*outcome.fresh, *outcome.golden, options);
+    ImageComparison comparison = CompareImages(*outcome.fresh, *outcome.golden, options);
+    if (c.comparison == GoldenComparison::kStatistical) {
+      const NoisyImage fresh = ToNoisyImage(*outcome.fresh);
+      outcome.statistical = CompareStatistically(fresh, ToNoisyImage(*outcome.golden), c.alpha);
+      comparison.verdict = outcome.statistical->consistent ? DiffVerdict::kPass : DiffVerdict::kFail;
+      comparison.judged_by = outcome.statistical->ToString();
+    }
     outcome.verdict = comparison.verdict;
     outcome.explanation = comparison.Explanation();
     outcome.comparison = comparison;
@@ -199,6 +208,7 @@ void RunCheck(const GoldenOptions& o, int* exit_code) {
       nlohmann::json check = {{"case", r.case_name}, {"backend", r.backend}, {"verdict", ToString(r.verdict)},
                               {"explanation", r.explanation}, {"artifacts", r.artifacts}, {"seconds", r.seconds}};
       if (r.comparison) check["comparison"] = ToJson(*r.comparison);
+      if (r.statistical) check["statistical"] = ToJson(*r.statistical);
       if (!r.render_output.empty()) check["render_output"] = r.render_output;
       report["checks"].push_back(check);
     }

@@ -11,15 +11,11 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
+#include "tools/checks/srgb.h"
+#include "tools/hpsf/channel_image_file.h"
 
 namespace hpsf {
 namespace {
-
-std::uint8_t EncodeSrgb(float linear) {
-  const float c = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
-  const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
-}
 
 void Write(const std::string& path, const OIIO::ImageSpec& spec, const void* data, const std::string& shown_as) {
   auto out = OIIO::ImageOutput::create(path);
@@ -72,7 +68,7 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
   spec.attribute("DateTime", "");
   std::vector<std::uint8_t> preview(image.pixels.size() * 3);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    for (int c = 0; c < 3; ++c) preview[3 * i + c] = EncodeSrgb(image.pixels[i][c]);
+    for (int c = 0; c < 3; ++c) preview[3 * i + c] = EncodeSrgb8(image.pixels[i][c]);
   }
   OIIO::ImageSpec preview_spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
   std::error_code created;
@@ -118,36 +114,9 @@ Image ReadExr(const std::string& path, std::map<std::string, std::string>* metad
 }
 
 NoisyImage ReadExrWithVariance(const std::string& path, std::map<std::string, std::string>* metadata) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path + ": cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const char* const names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  int index[6];
-  for (int k = 0; k < 6; ++k) {
-    const auto found = std::find(spec.channelnames.begin(), spec.channelnames.end(), names[k]);
-    if (found == spec.channelnames.end()) {
-      throw InputError(path + ": no channel '" + names[k] + "'" + (k >= 3 ? " (render it with --variance)" : ""));
-    }
-    index[k] = int(found - spec.channelnames.begin());
-  }
-  const std::string mean_variance = spec.get_string_attribute("hpsf:mean_variance");
-  NoisyImage noisy;
-  if (std::sscanf(mean_variance.c_str(), "%lf %lf %lf", &noisy.mean_variance.x, &noisy.mean_variance.y,
-                  &noisy.mean_variance.z) != 3) {
-    throw InputError(path + ": no attribute 'hpsf:mean_variance' of three numbers (render it with --variance)");
-  }
-  std::vector<float> data(std::size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data())) {
-    throw InputError(path + ": cannot read the pixels: " + in->geterror());
-  }
-  noisy.mean = noisy.variance = Image(std::uint32_t(spec.width), std::uint32_t(spec.height));
-  for (std::size_t i = 0; i < noisy.mean.pixels.size(); ++i) {
-    const float* pixel = &data[i * spec.nchannels];
-    noisy.mean.pixels[i] = glm::vec3(pixel[index[0]], pixel[index[1]], pixel[index[2]]);
-    noisy.variance.pixels[i] = glm::vec3(pixel[index[3]], pixel[index[4]], pixel[index[5]]);
-  }
-  if (metadata) CopyHpsfMetadata(spec, *metadata);
-  return noisy;
+  const ChannelImage image = ReadChannelImage(path);
+  if (metadata) *metadata = image.metadata;
+  return ToNoisyImage(image);
 }
 
 }  // namespace hpsf

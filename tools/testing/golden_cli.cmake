@@ -1,6 +1,7 @@
 # hpsf golden on a copy of golden/: a one-pixel change of a fixed64 golden fails its case for every backend,
 # names the case and leaves the new image, the heatmap and its report beside the golden; bless rewrites that golden alone
-# and says what changed, after which the case passes; a bad manifest is bad input naming the file and the case.
+# and says what changed, after which the case passes; the statistical case passes another seed and fails a 1%
+# bias; a bad manifest is bad input naming the file and the case.
 set(dir ${OUT}/golden_cli)
 file(REMOVE_RECURSE ${dir})
 file(COPY ${GOLDEN} DESTINATION ${dir})
@@ -45,6 +46,34 @@ run(0 "3 checks of 1 cases: 3 pass" check --manifest ${golden}/manifest.json cor
 if(EXISTS ${golden}/cornell-fixed64.reference.new.exr)
   message(FATAL_ERROR "a case that passes again still has the new image of its failure beside it")
 endif()
+
+# The statistical case survives another seed and fails a 1% bias: the manifest's last case renders the Cornell
+# floor at seed 1; here at seed 2, first against its golden (consistent with noise), then against the golden
+# with green scaled by 0.99 (its image-mean test rejects; power 0.99 by statistical_compare_test's figures).
+file(READ ${golden}/manifest.json manifest)
+string(JSON cases LENGTH "${manifest}" cases)
+math(EXPR last "${cases} - 1")
+string(JSON name GET "${manifest}" cases ${last} name)
+string(JSON seed_flag GET "${manifest}" cases ${last} args 4)
+if(NOT name STREQUAL "cornell-floor/statistical" OR NOT seed_flag STREQUAL "--seed")
+  message(FATAL_ERROR "the manifest's last case is not the statistical Cornell floor at args[4] --seed")
+endif()
+string(JSON manifest SET "${manifest}" cases ${last} args 5 "\"2\"")
+file(WRITE ${golden}/manifest.json "${manifest}")
+run(0 "PASS  cornell-floor/statistical +reference PASS: consistent with noise.*2 checks of 1 cases: 2 pass"
+    check --manifest ${golden}/manifest.json cornell-floor/statistical)
+execute_process(COMMAND oiiotool ${golden}/cornell-floor-statistical.exr --mulc 1,0.99,1,1,1,1
+                        -o ${golden}/cornell-floor-statistical.exr RESULT_VARIABLE code)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "oiiotool could not scale the statistical golden")
+endif()
+run(2 "FAIL  cornell-floor/statistical +reference FAIL: NOT consistent with noise.*0 pass, 0 warn, 2 fail"
+    check --manifest ${golden}/manifest.json cornell-floor/statistical)
+foreach(artifact new.exr heatmap.png report.html)
+  if(NOT EXISTS ${golden}/cornell-floor-statistical.reference.${artifact})
+    message(FATAL_ERROR "the failing statistical case left no ${artifact}")
+  endif()
+endforeach()
 
 # Bad manifests: exit 3, the file and the case named.
 file(WRITE ${dir}/broken.json "{\"hpsf_golden\": 1, \"cases\": [")
