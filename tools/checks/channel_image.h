@@ -15,9 +15,9 @@ struct ChannelImage {
   std::string path;  // where it was read from, for messages
   int width = 0;
   int height = 0;
-  std::vector<std::string> channels;             // e.g. R, G, B, variance.R, ...
-  std::vector<float> values;                     // width * height * channels.size()
-  std::map<std::string, std::string> metadata;   // the hpsf: attributes, without the prefix
+  std::vector<std::string> channels;            // e.g. R, G, B, variance.R, ...
+  std::vector<float> values;                    // width * height * channels.size()
+  std::map<std::string, std::string> metadata;  // the hpsf: attributes, without the prefix
 
   std::size_t PixelCount() const { return std::size_t(width) * std::size_t(height); }
   float At(std::size_t pixel, std::size_t channel) const { return values[pixel * channels.size() + channel]; }

@@ -9,14 +9,14 @@ namespace hpsf {
 namespace {
 
 constexpr std::array<std::pair<DiffMetric, const char*>, 9> kNames = {{{DiffMetric::kMse, "mse"},
-                                                                         {DiffMetric::kRmse, "rmse"},
-                                                                         {DiffMetric::kRelMse, "relmse"},
-                                                                         {DiffMetric::kPsnr, "psnr"},
-                                                                         {DiffMetric::kMeanAbs, "mean"},
-                                                                         {DiffMetric::kMaxAbs, "max"},
-                                                                         {DiffMetric::kPercentile, "percentile"},
-                                                                         {DiffMetric::kFractionOver, "fraction"},
-                                                                         {DiffMetric::kSsim, "ssim"}}};
+                                                                       {DiffMetric::kRmse, "rmse"},
+                                                                       {DiffMetric::kRelMse, "relmse"},
+                                                                       {DiffMetric::kPsnr, "psnr"},
+                                                                       {DiffMetric::kMeanAbs, "mean"},
+                                                                       {DiffMetric::kMaxAbs, "max"},
+                                                                       {DiffMetric::kPercentile, "percentile"},
+                                                                       {DiffMetric::kFractionOver, "fraction"},
+                                                                       {DiffMetric::kSsim, "ssim"}}};
 
 }  // namespace
 
@@ -46,33 +46,48 @@ bool HigherIsBetter(DiffMetric metric) { return metric == DiffMetric::kPsnr || m
 
 std::string ToString(DiffVerdict verdict) {
   switch (verdict) {
-    case DiffVerdict::kPass: return "PASS";
-    case DiffVerdict::kWarn: return "WARN";
-    case DiffVerdict::kFail: return "FAIL";
+    case DiffVerdict::kPass:
+      return "PASS";
+    case DiffVerdict::kWarn:
+      return "WARN";
+    case DiffVerdict::kFail:
+      return "FAIL";
   }
   return "?";
 }
 
 int ExitCode(DiffVerdict verdict) {
   switch (verdict) {
-    case DiffVerdict::kPass: return kExitOk;
-    case DiffVerdict::kWarn: return kExitWarn;
-    case DiffVerdict::kFail: return kExitCheckFailed;
+    case DiffVerdict::kPass:
+      return kExitOk;
+    case DiffVerdict::kWarn:
+      return kExitWarn;
+    case DiffVerdict::kFail:
+      return kExitCheckFailed;
   }
   return kExitCheckFailed;
 }
 
 double MetricValue(const ImageMetrics& m, DiffMetric metric, double ssim) {
   switch (metric) {
-    case DiffMetric::kMse: return m.mse;
-    case DiffMetric::kRmse: return m.rmse;
-    case DiffMetric::kRelMse: return m.relmse;
-    case DiffMetric::kPsnr: return m.psnr;
-    case DiffMetric::kMeanAbs: return m.mean_abs;
-    case DiffMetric::kMaxAbs: return m.max_abs;
-    case DiffMetric::kPercentile: return m.percentile;
-    case DiffMetric::kFractionOver: return m.fraction_over;
-    case DiffMetric::kSsim: return ssim;
+    case DiffMetric::kMse:
+      return m.mse;
+    case DiffMetric::kRmse:
+      return m.rmse;
+    case DiffMetric::kRelMse:
+      return m.relmse;
+    case DiffMetric::kPsnr:
+      return m.psnr;
+    case DiffMetric::kMeanAbs:
+      return m.mean_abs;
+    case DiffMetric::kMaxAbs:
+      return m.max_abs;
+    case DiffMetric::kPercentile:
+      return m.percentile;
+    case DiffMetric::kFractionOver:
+      return m.fraction_over;
+    case DiffMetric::kSsim:
+      return ssim;
   }
   return 0.0;
 }

@@ -31,7 +31,7 @@ double MetricValue(const ImageMetrics& metrics, DiffMetric metric, double ssim);
 
 struct DiffThresholds {
   DiffMetric metric = DiffMetric::kMaxAbs;
-  double warn = 0.0;   // any difference at all warns: exactness is what hpsf promises
+  double warn = 0.0;  // any difference at all warns: exactness is what hpsf promises
   double fail = 1e-6;
 };
 

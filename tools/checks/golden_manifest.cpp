@@ -2,9 +2,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/error.h"
 
@@ -51,11 +50,12 @@ GoldenManifest ReadGoldenManifest(const std::string& path) {
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   manifest.folder = folder.empty() ? "." : folder.string();
   std::set<std::string> names;
-  const std::set<std::string> known = {"name", "scene",  "records", "args",  "backends",
-                                       "golden", "comparison", "metric", "warn", "fail", "alpha"};
+  const std::set<std::string> known = {"name",       "scene",  "records", "args", "backends", "golden",
+                                       "comparison", "metric", "warn",    "fail", "alpha"};
   for (std::size_t i = 0; i < json["cases"].size(); ++i) {
     const nlohmann::json& c = json["cases"][i];
-    const std::string name = c.is_object() && c.contains("name") && c["name"].is_string() ? c["name"].get<std::string>() : "";
+    const std::string name =
+        c.is_object() && c.contains("name") && c["name"].is_string() ? c["name"].get<std::string>() : "";
     const std::string where = Where(path, i, name);
     if (!c.is_object()) throw InputError(where + ": expected an object");
     for (const auto& [key, value] : c.items()) {

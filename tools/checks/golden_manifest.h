@@ -29,7 +29,7 @@ struct GoldenCase {
   std::string golden;                 // the golden EXR (resolved against the manifest folder)
   GoldenComparison comparison = GoldenComparison::kExact;
   DiffThresholds thresholds{DiffMetric::kMaxAbs, 0.0, 0.0};
-  double alpha = 0.01;                // statistical: the family's significance level
+  double alpha = 0.01;  // statistical: the family's significance level
   // The command line that renders this case with `backend` into `output`, without the program name.
   std::vector<std::string> Command(const std::string& backend, const std::string& output) const;
 };

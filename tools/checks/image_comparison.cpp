@@ -56,11 +56,13 @@ std::string ImageComparison::Explanation() const {
                   metrics.max_channel + ")";
   }
   switch (verdict) {
-    case DiffVerdict::kFail: return verdict_text + ": " + value_text + " is " + above + " --fail " + Shown(thresholds.fail);
+    case DiffVerdict::kFail:
+      return verdict_text + ": " + value_text + " is " + above + " --fail " + Shown(thresholds.fail);
     case DiffVerdict::kWarn:
-      return verdict_text + ": " + value_text + " is " + above + " --warn " + Shown(thresholds.warn) + ", not " + above +
-             " --fail " + Shown(thresholds.fail);
-    case DiffVerdict::kPass: return verdict_text + ": " + value_text + " is not " + above + " --warn " + Shown(thresholds.warn);
+      return verdict_text + ": " + value_text + " is " + above + " --warn " + Shown(thresholds.warn) + ", not " +
+             above + " --fail " + Shown(thresholds.fail);
+    case DiffVerdict::kPass:
+      return verdict_text + ": " + value_text + " is not " + above + " --warn " + Shown(thresholds.warn);
   }
   return verdict_text;
 }

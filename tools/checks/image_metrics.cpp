@@ -1,5 +1,8 @@
 #include "tools/checks/image_metrics.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -7,9 +10,6 @@
 #include <limits>
 #include <sstream>
 #include <vector>
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 
@@ -31,8 +31,8 @@ nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 void CheckComparable(const ChannelImage& a, const ChannelImage& b) {
   if (a.width != b.width || a.height != b.height || a.channels != b.channels) {
-    throw InputError(a.path + " and " + b.path + " cannot be compared: " + a.path + " is " + Shape(a) + ", " +
-                     b.path + " is " + Shape(b));
+    throw InputError(a.path + " and " + b.path + " cannot be compared: " + a.path + " is " + Shape(a) + ", " + b.path +
+                     " is " + Shape(b));
   }
   if (a.PixelCount() == 0) throw InputError(a.path + ": the image has no pixels");
 }

@@ -13,30 +13,29 @@
 #define HPSF_TOOLS_CHECKS_IMAGE_METRICS_H
 
 #include <cstdint>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "tools/checks/channel_image.h"
 
 namespace hpsf {
 
 struct MetricOptions {
-  double percentile = 99.0;         // in (0, 100]
-  double pixel_threshold = 1e-3;    // for the fraction of pixels over it
+  double percentile = 99.0;       // in (0, 100]
+  double pixel_threshold = 1e-3;  // for the fraction of pixels over it
 };
 
 struct ImageMetrics {
-  std::uint64_t values = 0;              // pixels x colour channels compared
+  std::uint64_t values = 0;  // pixels x colour channels compared
   std::uint64_t nonfinite_mismatches = 0;
   double mse = 0.0, rmse = 0.0, relmse = 0.0, psnr = 0.0;
   double mean_abs = 0.0, max_abs = 0.0;
-  double peak = 1.0;                     // PSNR's
+  double peak = 1.0;  // PSNR's
   int max_x = 0, max_y = 0;
   std::string max_channel;
-  double percentile = 0.0;               // the value of the percentile below
+  double percentile = 0.0;  // the value of the percentile below
   double percentile_rank = 99.0;
-  double fraction_over = 0.0;            // of pixels
+  double fraction_over = 0.0;  // of pixels
   double pixel_threshold = 1e-3;
   std::string ToString() const;
 };

@@ -1,6 +1,14 @@
 // The plain metrics of `hpsf diff` and its verdict rule on constructed images whose answers are known by hand,
 // and RMSE, PSNR, the mean and the maximum error (with its place) against OpenImageIO's own comparison, the code
 // behind `idiff` and `oiiotool --diff`, on two real renders.
+#include "tools/checks/image_metrics.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,21 +16,13 @@
 #include <regex>
 #include <string>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include "core/error.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/diff_verdict.h"
 #include "tools/checks/image_comparison.h"
-#include "tools/checks/image_metrics.h"
-#include "tools/checks/ssim.h"
 #include "tools/checks/srgb.h"
+#include "tools/checks/ssim.h"
 
 namespace hpsf {
 namespace {
@@ -119,8 +119,8 @@ TEST(ImageMetrics, NonFiniteValuesMatchOnlyThemselves) {
   ChannelImage a = b;
   EXPECT_EQ(ComputeMetrics(a, b).nonfinite_mismatches, 0u);  // NaN against NaN, Inf against Inf
   EXPECT_EQ(ComputeMetrics(a, b).values, 9u);
-  At(a, 0, 0, 0) = 1.0f;   // a number against NaN
-  At(a, 0, 1, 0) = -inf;   // -Inf against +Inf
+  At(a, 0, 0, 0) = 1.0f;  // a number against NaN
+  At(a, 0, 1, 0) = -inf;  // -Inf against +Inf
   const ImageMetrics m = ComputeMetrics(a, b);
   EXPECT_EQ(m.nonfinite_mismatches, 2u);
   EXPECT_EQ(m.max_abs, 0.0);  // they enter no other metric
@@ -206,9 +206,11 @@ TEST(ImageMetrics, AgreeWithOpenImageIoOnRealRenders) {
   EXPECT_EQ(m.max_x, oiio.maxx);
   EXPECT_EQ(m.max_y, oiio.maxy);
   EXPECT_EQ(m.max_channel, a.channels[std::size_t(oiio.maxc)]);
-  std::printf("cornell 48x48, seeds 1 and 2: hpsf rmse %.9g psnr %.9g max %.9g at (%d, %d, %s); OpenImageIO "
-              "rmse %.9g psnr %.9g max %.9g at (%d, %d, %d)\n", m.rmse, m.psnr, m.max_abs, m.max_x, m.max_y,
-              m.max_channel.c_str(), oiio.rms_error, oiio.PSNR, double(oiio.maxerror), oiio.maxx, oiio.maxy, oiio.maxc);
+  std::printf(
+      "cornell 48x48, seeds 1 and 2: hpsf rmse %.9g psnr %.9g max %.9g at (%d, %d, %s); OpenImageIO "
+      "rmse %.9g psnr %.9g max %.9g at (%d, %d, %d)\n",
+      m.rmse, m.psnr, m.max_abs, m.max_x, m.max_y, m.max_channel.c_str(), oiio.rms_error, oiio.PSNR,
+      double(oiio.maxerror), oiio.maxx, oiio.maxy, oiio.maxc);
 }
 
 void WriteExr(const std::string& path, const ChannelImage& image) {
@@ -226,11 +228,13 @@ TEST(ImageMetrics, AgreeWithTheIdiffProgram) {
   const ChannelImage a = FromImage(ReferenceFilter(TraceRecords(LoadScene("cornell"), trace).batch, {}).image, "a");
   trace.seed = 3;
   const ChannelImage b = FromImage(ReferenceFilter(TraceRecords(LoadScene("cornell"), trace).batch, {}).image, "b");
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("hpsf_idiff_test_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("hpsf_idiff_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   WriteExr((dir / "a.exr").string(), a);
   WriteExr((dir / "b.exr").string(), b);
-  const std::string command = "idiff -v -fail 1e9 -warn 1e9 " + (dir / "a.exr").string() + " " + (dir / "b.exr").string();
+  const std::string command =
+      "idiff -v -fail 1e9 -warn 1e9 " + (dir / "a.exr").string() + " " + (dir / "b.exr").string();
   FILE* pipe = popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string printed;

@@ -28,7 +28,8 @@ std::vector<MetadataDifference> DiffMetadata(const std::map<std::string, std::st
 nlohmann::json ToJson(const std::vector<MetadataDifference>& differences) {
   nlohmann::json list = nlohmann::json::array();
   for (const MetadataDifference& d : differences) {
-    list.push_back({{"key", d.key}, {"a", d.a ? nlohmann::json(*d.a) : nlohmann::json(nullptr)},
+    list.push_back({{"key", d.key},
+                    {"a", d.a ? nlohmann::json(*d.a) : nlohmann::json(nullptr)},
                     {"b", d.b ? nlohmann::json(*d.b) : nlohmann::json(nullptr)}});
   }
   return list;

@@ -26,10 +26,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <span>
 #include <string>
-
-#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "core/record.h"

@@ -14,7 +14,9 @@ inline float EncodeSrgb(float linear) {
   return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-inline std::uint8_t EncodeSrgb8(float linear) { return static_cast<std::uint8_t>(std::lround(EncodeSrgb(linear) * 255.0f)); }
+inline std::uint8_t EncodeSrgb8(float linear) {
+  return static_cast<std::uint8_t>(std::lround(EncodeSrgb(linear) * 255.0f));
+}
 
 }  // namespace hpsf
 

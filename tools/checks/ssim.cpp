@@ -14,7 +14,8 @@ cv::Mat DisplayedChannel(const ChannelImage& image, std::size_t channel) {
   cv::Mat mat(image.height, image.width, CV_32FC1);
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
-      mat.at<float>(y, x) = 255.0f * EncodeSrgb(image.At(std::size_t(y) * std::size_t(image.width) + std::size_t(x), channel));
+      mat.at<float>(y, x) =
+          255.0f * EncodeSrgb(image.At(std::size_t(y) * std::size_t(image.width) + std::size_t(x), channel));
     }
   }
   return mat;
@@ -30,7 +31,8 @@ double SrgbSsim(const ChannelImage& a, const ChannelImage& b) {
   int counted = 0;
   for (std::size_t c = 0; c < a.channels.size(); ++c) {
     if (!IsColorChannel(a.channels[c])) continue;
-    const cv::Scalar ssim = cv::quality::QualitySSIM::compute(DisplayedChannel(b, c), DisplayedChannel(a, c), cv::noArray());
+    const cv::Scalar ssim =
+        cv::quality::QualitySSIM::compute(DisplayedChannel(b, c), DisplayedChannel(a, c), cv::noArray());
     sum += ssim[0];
     ++counted;
   }

@@ -1,9 +1,8 @@
 #include "tools/checks/statistical_compare.h"
 
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <cstdio>
-
-#include <boost/math/distributions/normal.hpp>
 
 #include "core/error.h"
 #include "tools/checks/chi_square.h"
@@ -86,8 +85,8 @@ nlohmann::json ToJson(const StatisticalComparison& c) {
           {"pixels_tested", c.pixels_tested},
           {"pixels_rejected", c.pixels_rejected},
           {"pixel_threshold", c.pixel_threshold},
-          {"worst_pixel", {{"x", c.worst.x}, {"y", c.worst.y}, {"channel", "RGB"[c.worst.channel]},
-                           {"z", number(c.worst.z)}}},
+          {"worst_pixel",
+           {{"x", c.worst.x}, {"y", c.worst.y}, {"channel", "RGB"[c.worst.channel]}, {"z", number(c.worst.z)}}},
           {"mean_z", {number(c.mean_z.x), number(c.mean_z.y), number(c.mean_z.z)}},
           {"mean_threshold", c.mean_threshold},
           {"consistent_with_noise", c.consistent}};

@@ -63,8 +63,8 @@ void PrintText(const DiffOptions& o, const ChannelImage& a, const ImageCompariso
   std::printf("  rmse %.6g  mse %.6g  relmse %.6g  psnr %.6g dB", m.rmse, m.mse, m.relmse, m.psnr);
   if (c.ssim) std::printf("  ssim %.6g", *c.ssim);
   std::printf("\n");
-  std::printf("  |A-B| mean %.6g  max %.6g at (%d, %d, %s)  p%g %.6g  pixels over %g: %.4g%%\n", m.mean_abs,
-              m.max_abs, m.max_x, m.max_y, m.max_channel.c_str(), m.percentile_rank, m.percentile, m.pixel_threshold,
+  std::printf("  |A-B| mean %.6g  max %.6g at (%d, %d, %s)  p%g %.6g  pixels over %g: %.4g%%\n", m.mean_abs, m.max_abs,
+              m.max_x, m.max_y, m.max_channel.c_str(), m.percentile_rank, m.percentile, m.pixel_threshold,
               100.0 * m.fraction_over);
   if (m.nonfinite_mismatches > 0) {
     std::printf("  %llu values are not finite in one image and differ in the other\n",

@@ -3,11 +3,10 @@
 #ifndef HPSF_TOOLS_HPSF_FILTER_OPTIONS_H
 #define HPSF_TOOLS_HPSF_FILTER_OPTIONS_H
 
-#include <cstdint>
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/filter_config.h"
 #include "core/filter_result.h"

@@ -54,13 +54,12 @@ nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& opt
   const int fixed_point_bits =
       result.reference ? result.reference->stats.fixed_point_bits : Hashed(result).table.fixed_point_bits;
 
-  std::map<std::string, std::string> metadata = {
-      {"scene", request.scene},
-      {"config", config.ToString()},
-      {"seed", std::to_string(config.seed)},
-      {"backend", options.no_filter ? "none (unfiltered)" : request.backend},
-      {"version", kHpsfVersion},
-      {"F", std::to_string(fixed_point_bits)}};
+  std::map<std::string, std::string> metadata = {{"scene", request.scene},
+                                                 {"config", config.ToString()},
+                                                 {"seed", std::to_string(config.seed)},
+                                                 {"backend", options.no_filter ? "none (unfiltered)" : request.backend},
+                                                 {"version", kHpsfVersion},
+                                                 {"F", std::to_string(fixed_point_bits)}};
   std::optional<PixelVariance> variance;
   if (options.variance) {
     const auto variance_start = std::chrono::steady_clock::now();

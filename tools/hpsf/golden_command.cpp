@@ -54,7 +54,7 @@ struct CheckOutcome {
   std::optional<ImageComparison> comparison;
   std::optional<StatisticalComparison> statistical;
   std::shared_ptr<const ChannelImage> fresh, golden;  // for the report, when both were read
-  std::string render_output;  // kept when the render itself failed
+  std::string render_output;                          // kept when the render itself failed
   std::vector<std::string> artifacts;
   double seconds = 0.0;
 };
@@ -153,8 +153,8 @@ CheckOutcome Check(const GoldenManifest& manifest, const GoldenCase& c, const st
     outcome.comparison = comparison;
     if (outcome.verdict != DiffVerdict::kPass) {
       WritePng(artifacts.heatmap.string(), RenderHeatmap(*outcome.fresh, *outcome.golden));
-      WriteHtmlReport(artifacts.report.string(),
-                      RenderHtmlReport("hpsf golden check: " + c.name + " (" + backend + ")", {ReportEntryOf(outcome)}));
+      WriteHtmlReport(artifacts.report.string(), RenderHtmlReport("hpsf golden check: " + c.name + " (" + backend + ")",
+                                                                  {ReportEntryOf(outcome)}));
     }
   }
   if (outcome.verdict != DiffVerdict::kPass) {
@@ -205,16 +205,17 @@ void RunCheck(const GoldenOptions& o, int* exit_code) {
     nlohmann::json report = {{"hpsf_report", "golden check"}, {"version", 1}, {"manifest", manifest.path}};
     report["checks"] = nlohmann::json::array();
     for (const CheckOutcome& r : outcomes) {
-      nlohmann::json check = {{"case", r.case_name}, {"backend", r.backend}, {"verdict", ToString(r.verdict)},
-                              {"explanation", r.explanation}, {"artifacts", r.artifacts}, {"seconds", r.seconds}};
+      nlohmann::json check = {
+          {"case", r.case_name},          {"backend", r.backend},     {"verdict", ToString(r.verdict)},
+          {"explanation", r.explanation}, {"artifacts", r.artifacts}, {"seconds", r.seconds}};
       if (r.comparison) check["comparison"] = ToJson(*r.comparison);
       if (r.statistical) check["statistical"] = ToJson(*r.statistical);
       if (!r.render_output.empty()) check["render_output"] = r.render_output;
       report["checks"].push_back(check);
     }
     if (!o.html.empty()) report["outputs"]["html"] = o.html;
-    report["summary"] = {{"checks", outcomes.size()}, {"pass", counts[0]}, {"warn", counts[1]}, {"fail", counts[2]},
-                         {"verdict", ToString(worst)}, {"seconds", seconds}};
+    report["summary"] = {{"checks", outcomes.size()}, {"pass", counts[0]},          {"warn", counts[1]},
+                         {"fail", counts[2]},         {"verdict", ToString(worst)}, {"seconds", seconds}};
     std::cout << report.dump(2) << "\n";
   } else {
     std::printf("golden check %s: %zu checks of %zu cases: %zu pass, %zu warn, %zu fail (%.1f s): %s\n",
@@ -249,7 +250,8 @@ void RunBless(const GoldenOptions& o) {
     } else {
       ComparisonOptions exact;
       exact.thresholds = {DiffMetric::kMaxAbs, 0.0, 0.0};
-      const ImageComparison change = CompareImages(ReadChannelImage(rendered.string()), ReadChannelImage(c->golden), exact);
+      const ImageComparison change =
+          CompareImages(ReadChannelImage(rendered.string()), ReadChannelImage(c->golden), exact);
       if (change.verdict == DiffVerdict::kPass && change.metadata.empty()) {
         std::printf("unchanged  %-32s %s\n", c->name.c_str(), c->golden.c_str());
         continue;
@@ -271,17 +273,19 @@ void AddGoldenCommand(CLI::App& app, int* exit_code) {
   golden->require_subcommand(1);
   auto check = std::make_shared<GoldenOptions>();
   CLI::App* c = golden->add_subcommand(
-      "check", "Render every case with each backend and compare with its golden: exit 0 pass, 1 warn, 2 fail, 3 bad "
-               "manifest. A case that does not pass leaves GOLDEN.BACKEND.new.exr, .heatmap.png and .report.html "
-               "beside its golden");
+      "check",
+      "Render every case with each backend and compare with its golden: exit 0 pass, 1 warn, 2 fail, 3 bad "
+      "manifest. A case that does not pass leaves GOLDEN.BACKEND.new.exr, .heatmap.png and .report.html "
+      "beside its golden");
   c->add_option("cases", check->cases, "Only these cases (default: all)");
   c->add_option("--manifest", check->manifest, "The manifest")->capture_default_str();
   c->add_option("--html", check->html, "Write one HTML report of every comparison here");
   c->add_flag("--json", check->json, "Print the report as JSON");
   c->callback([check, exit_code] { RunCheck(*check, exit_code); });
   auto bless = std::make_shared<GoldenOptions>();
-  CLI::App* b = golden->add_subcommand("bless", "Render cases with their first backend and rewrite their goldens, "
-                                                "saying what changed (the only writer of goldens)");
+  CLI::App* b = golden->add_subcommand("bless",
+                                       "Render cases with their first backend and rewrite their goldens, "
+                                       "saying what changed (the only writer of goldens)");
   b->add_option("cases", bless->cases, "Only these cases (default: all)");
   b->add_option("--manifest", bless->manifest, "The manifest")->capture_default_str();
   b->callback([bless] { RunBless(*bless); });

@@ -1,14 +1,14 @@
 #include "tools/hpsf/heatmap.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include "core/error.h"
 #include "tools/checks/image_metrics.h"
@@ -66,7 +66,8 @@ Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b, HeatmapSca
   std::vector<float> zoomed(std::size_t(shown_width) * std::size_t(shown_height));
   for (int y = 0; y < shown_height; ++y) {
     for (int x = 0; x < shown_width; ++x) {
-      zoomed[std::size_t(y) * shown_width + x] = errors[std::size_t(y / zoom) * std::size_t(a.width) + std::size_t(x / zoom)];
+      zoomed[std::size_t(y) * shown_width + x] =
+          errors[std::size_t(y / zoom) * std::size_t(a.width) + std::size_t(x / zoom)];
     }
   }
   OIIO::ImageBuf error_image(OIIO::ImageSpec(shown_width, shown_height, 1, OIIO::TypeDesc::FLOAT), zoomed.data());

@@ -99,7 +99,8 @@ std::vector<MetricRow> MetricRows(const ImageComparison& c) {
       {"pixels over " + FormatNumber(m.pixel_threshold), FormatNumber(m.fraction_over),
        FormatNumber(100.0 * m.fraction_over) + "% of pixels have a largest |A\u2212B| above it",
        DiffMetric::kFractionOver},
-      {"SSIM", c.ssim ? FormatNumber(*c.ssim) : "not computed", "of the sRGB previews (hpsf diff --ssim)", DiffMetric::kSsim},
+      {"SSIM", c.ssim ? FormatNumber(*c.ssim) : "not computed", "of the sRGB previews (hpsf diff --ssim)",
+       DiffMetric::kSsim},
   };
 }
 

@@ -1,13 +1,14 @@
 // The EXR's variance channels (`--variance`) as the statistical comparison reads them back: by name, exactly,
 // and with a clear error naming the file and what is missing when a file has none.
+#include "tools/hpsf/image_file.h"
+
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <map>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "core/error.h"
-#include "tools/hpsf/image_file.h"
 
 namespace hpsf {
 namespace {

@@ -9,8 +9,8 @@
 namespace hpsf {
 
 struct ProcessResult {
-  int exit_code = -1;   // the program's exit status, or 128 + the signal that ended it
-  std::string output;   // stdout and stderr together
+  int exit_code = -1;  // the program's exit status, or 128 + the signal that ended it
+  std::string output;  // stdout and stderr together
 };
 
 // argv[0] is the program's path; it runs in `folder` (empty: this process's). Throws std::runtime_error when it
