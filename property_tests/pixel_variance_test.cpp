@@ -4,17 +4,16 @@
 // (the naive estimate) must fail where cells are shared, which is the oracle of the cell term. Seeds are fixed, so
 // each ratio is one number that never changes between runs and the test cannot flake; each band is stated with
 // the spread a correct estimate's ratio has over seeds, and what a wrong estimate gives.
-#include "tools/checks/pixel_variance.h"
-
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
+#include "tools/checks/pixel_variance.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 

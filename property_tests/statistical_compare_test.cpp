@@ -2,17 +2,16 @@
 // consistent with noise, 1% more green is seen by the image-mean test, one pixel ten times brighter by the pixel
 // test; constructed images check the arithmetic (z, the Sidak thresholds, no noise, NaN). The renders use fixed
 // seeds, so each verdict is one fixed outcome; the power stated for the 1% bias is computed from the renders.
-#include "tools/checks/statistical_compare.h"
-
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
+#include <gtest/gtest.h>
+
 #include "core/error.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/pixel_variance.h"
+#include "tools/checks/statistical_compare.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 

@@ -4,10 +4,11 @@
 #ifndef HPSF_TOOLS_CHECKS_IMAGE_COMPARISON_H
 #define HPSF_TOOLS_CHECKS_IMAGE_COMPARISON_H
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "tools/checks/channel_image.h"
 #include "tools/checks/diff_verdict.h"

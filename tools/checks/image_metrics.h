@@ -13,8 +13,9 @@
 #define HPSF_TOOLS_CHECKS_IMAGE_METRICS_H
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "tools/checks/channel_image.h"
 

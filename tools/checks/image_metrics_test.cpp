@@ -1,14 +1,6 @@
 // The plain metrics of `hpsf diff` and its verdict rule on constructed images whose answers are known by hand,
 // and RMSE, PSNR, the mean and the maximum error (with its place) against OpenImageIO's own comparison, the code
 // behind `idiff` and `oiiotool --diff`, on two real renders.
-#include "tools/checks/image_metrics.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,13 +8,21 @@
 #include <regex>
 #include <string>
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include "core/error.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/diff_verdict.h"
 #include "tools/checks/image_comparison.h"
-#include "tools/checks/srgb.h"
+#include "tools/checks/image_metrics.h"
 #include "tools/checks/ssim.h"
+#include "tools/checks/srgb.h"
 
 namespace hpsf {
 namespace {

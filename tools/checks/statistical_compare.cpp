@@ -1,8 +1,9 @@
 #include "tools/checks/statistical_compare.h"
 
-#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <cstdio>
+
+#include <boost/math/distributions/normal.hpp>
 
 #include "core/error.h"
 #include "tools/checks/chi_square.h"

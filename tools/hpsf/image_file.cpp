@@ -1,7 +1,5 @@
 #include "tools/hpsf/image_file.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,9 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
+
 #include "core/error.h"
 #include "tools/checks/srgb.h"
-#include "tools/hpsf/channel_image_file.h"
 
 namespace hpsf {
 namespace {
@@ -111,12 +110,6 @@ Image ReadExr(const std::string& path, std::map<std::string, std::string>* metad
   }
   if (metadata) CopyHpsfMetadata(spec, *metadata);
   return image;
-}
-
-NoisyImage ReadExrWithVariance(const std::string& path, std::map<std::string, std::string>* metadata) {
-  const ChannelImage image = ReadChannelImage(path);
-  if (metadata) *metadata = image.metadata;
-  return ToNoisyImage(image);
 }
 
 }  // namespace hpsf

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "core/image.h"
-#include "tools/checks/statistical_compare.h"
 
 namespace hpsf {
 
@@ -19,10 +18,6 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
 
 // Reads an EXR written by hpsf (tests, diffs).
 Image ReadExr(const std::string& path, std::map<std::string, std::string>* metadata = nullptr);
-
-// Reads an EXR written with --variance for the statistical comparison: R, G, B and variance.R/G/B found by name,
-// and hpsf:mean_variance. A missing channel or attribute is an InputError naming the file and what is missing.
-NoisyImage ReadExrWithVariance(const std::string& path, std::map<std::string, std::string>* metadata = nullptr);
 
 }  // namespace hpsf
 

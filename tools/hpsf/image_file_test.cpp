@@ -1,14 +1,15 @@
-// The EXR's variance channels (`--variance`) as the statistical comparison reads them back: by name, exactly,
-// and with a clear error naming the file and what is missing when a file has none.
-#include "tools/hpsf/image_file.h"
-
-#include <gtest/gtest.h>
-
+// The EXR's variance channels (`--variance`) as the statistical comparison reads them back (ReadChannelImage, then
+// ToNoisyImage): by name, exactly, and with a clear error naming the file and what is missing when a file has none.
 #include <filesystem>
 #include <map>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include "core/error.h"
+#include "tools/checks/statistical_compare.h"
+#include "tools/hpsf/channel_image_file.h"
+#include "tools/hpsf/image_file.h"
 
 namespace hpsf {
 namespace {
@@ -27,12 +28,13 @@ TEST(ImageFile, VarianceChannelsRoundTripByName) {
   const std::string path = Path("image_file_variance.exr");
   const Image image = Ramp(1.0f), variance = Ramp(0.01f);
   WriteImageFiles(path, image, {{"mean_variance", "0.25 1.0000000000000002 3e-300"}, {"spp", "4"}}, &variance);
-  std::map<std::string, std::string> metadata;
-  const NoisyImage read = ReadExrWithVariance(path, &metadata);
+  const ChannelImage file = ReadChannelImage(path);
+  const std::map<std::string, std::string>& metadata = file.metadata;
+  const NoisyImage read = ToNoisyImage(file);
   EXPECT_TRUE(SameBits(read.mean, image));
   EXPECT_TRUE(SameBits(read.variance, variance));
   EXPECT_EQ(read.mean_variance, glm::dvec3(0.25, 1.0000000000000002, 3e-300));
-  EXPECT_EQ(metadata["spp"], "4");
+  EXPECT_EQ(metadata.at("spp"), "4");
   // The plain reader still finds R, G, B first.
   EXPECT_TRUE(SameBits(ReadExr(path), image));
 }
@@ -41,7 +43,7 @@ TEST(ImageFile, AnExrWithoutVarianceIsBadInputNamingTheChannel) {
   const std::string path = Path("image_file_plain.exr");
   WriteImageFiles(path, Ramp(1.0f), {{"mean_variance", "1 1 1"}});
   try {
-    ReadExrWithVariance(path);
+    ToNoisyImage(ReadChannelImage(path));
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
@@ -56,7 +58,7 @@ TEST(ImageFile, AnExrWithoutTheMeanVarianceIsBadInput) {
   EXPECT_THROW(
       {
         try {
-          ReadExrWithVariance(path);
+          ToNoisyImage(ReadChannelImage(path));
         } catch (const InputError& e) {
           EXPECT_NE(std::string(e.what()).find("hpsf:mean_variance"), std::string::npos) << e.what();
           throw;

@@ -1,7 +1,8 @@
 // hpsf: a verification harness for hashed path space filtering. Exit codes: 0 pass, 1 warn, 2 a failed check,
 // 3 bad input (a bad option or file, or no usable Vulkan device).
-#include <CLI/CLI.hpp>
 #include <iostream>
+
+#include <CLI/CLI.hpp>
 
 #include "core/error.h"
 #include "emulated/simt/kernel_fault.h"
