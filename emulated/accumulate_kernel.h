@@ -30,6 +30,7 @@ struct AccumulateArgs {
   std::span<const std::uint8_t> accepted;  // CheckRecordInputs passed
   std::uint32_t capacity = 0;
   std::uint32_t probe_limit = 0;
+  std::uint32_t fingerprint_bits = 32;  // the keys' fingerprints are reduced already; broken kernels reduce their own
   Accumulation accumulation = Accumulation::kFixed64;
   float fixed_point_scale = 1.0f;  // 2^F
   TableBuffers buffers{};

@@ -1,6 +1,7 @@
 #include "emulated/defect_injection.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "core/error.h"
 #include "core/hash_table.h"
@@ -9,7 +10,7 @@
 namespace hpsf {
 namespace {
 
-// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in.
+// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes.
 simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect) {
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
@@ -19,9 +20,11 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     co_return;
   }
   // D3: the reduced fingerprint without its 0 -> 1 fix.
-  const std::uint32_t fingerprint =
-      defect == Defect::kD3ZeroFingerprint ? shared::FullFingerprint(key.words) >> 24 : key.fingerprint;
+  const std::uint32_t fingerprint = defect == Defect::kD3ZeroFingerprint
+                                        ? shared::FullFingerprint(key.words) >> (32u - args.fingerprint_bits)
+                                        : key.fingerprint;
   const Record& r = args.records[i];
+  const bool fixed = args.accumulation == Accumulation::kFixed64;
   bool placed = false;
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
     // D8: the probe index clamped to the last slot, or not wrapped at all, instead of wrapped.
@@ -38,12 +41,18 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     }
     if (tag != kEmptyTag && tag != fingerprint) continue;
     for (int c = 0; c < 3; ++c) {
-      const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+      const std::uint64_t index = std::uint64_t(slot) * 3 + c;
       if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
-        const std::uint64_t old = co_await ctx.Load(b.sums, std::uint64_t(slot) * 3 + c);
-        co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c, old + add);
+        const std::uint64_t old = co_await ctx.Load(b.sums, index);
+        const std::uint64_t sum = fixed ? old + shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale)
+                                        : std::bit_cast<std::uint32_t>(std::bit_cast<float>(std::uint32_t(old)) + r.contribution[c]);
+        co_await ctx.Store(b.sums, index, sum);
+      } else if (fixed) {
+        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+        const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, index, add);
+        if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
       } else {
-        co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
+        co_await ctx.AtomicAddFloat(b.sums, index, std::bit_cast<std::uint32_t>(r.contribution[c]));
       }
     }
     if (defect == Defect::kD9NonAtomicAdd) {

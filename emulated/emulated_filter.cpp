@@ -91,6 +91,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   args.accepted = accepted;
   args.capacity = config.capacity;
   args.probe_limit = config.probe_limit;
+  args.fingerprint_bits = config.fingerprint_bits;
   args.accumulation = config.accumulation;
   args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
   TableBuffers& b = args.buffers;

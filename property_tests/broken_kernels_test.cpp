@@ -16,58 +16,15 @@
 #include "emulated/emulated_filter.h"
 #include "emulated/simt/kernel_fault.h"
 #include "emulated/simt/schedule.h"
+#include "property_tests/constructed_cells.h"
 #include "tools/checks/table_checker.h"
 
 namespace hpsf {
 namespace {
 
-// Keys chosen by cell: level of detail off, unit cells, no jitter, no normal bucket, so a record at
-// (x + 0.5, y + 0.5, z + 0.5) has the cell (x, y, z) and everything about its key is known in advance.
-FilterConfig ConstructedConfig(std::uint32_t capacity, std::uint32_t probe_limit, std::uint32_t fingerprint_bits = 32) {
-  FilterConfig c;
-  c.lod = false;
-  c.cell_size = 1.0f;
-  c.jitter_scale = 0.0f;
-  c.normal = {NormalMode::kNone, 0};
-  c.capacity = capacity;
-  c.probe_limit = probe_limit;
-  c.fingerprint_bits = fingerprint_bits;
-  return c;
-}
-
-KeyResult KeyOfCell(const FilterConfig& config, glm::ivec3 cell) {
-  VertexSample v;
-  v.position = glm::vec3(cell) + glm::vec3(0.5f);
-  v.previous = v.position + glm::vec3(0.0f, 0.0f, -10.0f);
-  return shared::ComputeKey(MakeKeyParams(config, 0.01f, 1), MakeVertexRecord(v));
-}
-
-RecordBatch BatchOfCells(const std::vector<glm::ivec3>& cells) {
-  RecordBatch batch;
-  batch.width = static_cast<std::uint32_t>(cells.size());
-  batch.height = 1;
-  batch.samples_per_pixel = 1;
-  batch.fov_y_radians = 0.5;
-  for (std::uint32_t i = 0; i < cells.size(); ++i) {
-    VertexSample v;
-    v.pixel = i;
-    v.position = glm::vec3(cells[i]) + glm::vec3(0.5f);
-    v.previous = v.position + glm::vec3(0.0f, 0.0f, -10.0f);
-    v.contribution = glm::vec3(1.0f + 0.25f * float(i % 7), 0.5f, 0.125f);
-    v.throughput = glm::vec3(0.5f);
-    batch.records.push_back(MakeVertexRecord(v));
-  }
-  return batch;
-}
-
-// The first cell along x (from `start`) whose key satisfies `wanted`.
-glm::ivec3 FindCell(const FilterConfig& config, const std::function<bool(const KeyResult&)>& wanted, int start = 0) {
-  for (int x = start; x < start + 2000000; ++x) {
-    if (wanted(KeyOfCell(config, {x, 3, -7}))) return {x, 3, -7};
-  }
-  ADD_FAILURE() << "no cell found";
-  return {0, 0, 0};
-}
+using testing::BatchOfCells;
+using testing::ConstructedConfig;
+using testing::FindCell;
 
 std::vector<TableViolation> CheckRun(const RecordBatch& batch, const EmulatedRun& run) {
   return CheckTable({run.table, batch.records, run.keys, run.placements});
@@ -88,6 +45,24 @@ TEST(BrokenKernels, CorrectKernelPassesOnEveryConstructedInput) {
   const glm::ivec3 last = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
   const RecordBatch batch = BatchOfCells({zero, zero, last, last, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}});
   EXPECT_TRUE(CheckRun(batch, RunFaithful(batch, config, AccumulateKernel)).empty());
+}
+
+// Each broken kernel is the correct one with exactly one change: on an input that does not reach its defect (one
+// record, one probe, a slot away from the end, a 32-bit fingerprint that is not 0) it passes, in both modes. hpsf
+// fuzz found that the mutants once added fixed point into float32 tables and reduced D3's fingerprint to 8 bits
+// whatever the width, so they failed on anything, and a fuzzer "found" them without reaching their defects.
+TEST(BrokenKernels, EachMutantPassesAnInputThatDoesNotReachItsDefect) {
+  for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+    FilterConfig config = ConstructedConfig(64, 1, 32);
+    config.accumulation = accumulation;
+    const glm::ivec3 cell = FindCell(config, [](const KeyResult& k) { return k.slot0 == 10u && k.fingerprint > 1u; });
+    const RecordBatch batch = BatchOfCells({cell});
+    for (const Defect defect : {Defect::kD2AddsAgain, Defect::kD3ZeroFingerprint, Defect::kD8ClampedProbe, Defect::kD8UnwrappedProbe,
+                                Defect::kD9NonAtomicAdd, Defect::kD13LoadThenStoreClaim}) {
+      const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(defect)));
+      EXPECT_TRUE(violations.empty()) << ToString(defect) << " in " << ToString(accumulation) << ": " << violations.front().ToString();
+    }
+  }
 }
 
 TEST(BrokenKernels, D2AddingAgainAfterAMatchIsCaught) {
@@ -133,7 +108,7 @@ TEST(BrokenKernels, D8AnUnwrappedProbeFaultsOutOfBoundsInBothModes) {
       run();
       ADD_FAILURE() << "the unwrapped probe did not fault";
     } catch (const simt::KernelFault& fault) {
-      EXPECT_THAT(fault.what(), testing::HasSubstr("out-of-bounds access to buffer 'tags' at index 64 of 64"));
+      EXPECT_THAT(fault.what(), ::testing::HasSubstr("out-of-bounds access to buffer 'tags' at index 64 of 64"));
       std::printf("D8 unwrapped caught: %s\n", fault.what());
     }
   }

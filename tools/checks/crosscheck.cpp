@@ -184,12 +184,8 @@ void CompareKeys(const RecordBatch& batch, const FilterConfig& config, const Has
   keys.note = "vulkan accumulate pass against core, word for word: " + std::to_string(compared) + " accepted records compared";
 }
 
-void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const VulkanBackendOptions& options,
+void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, VulkanFilter& filter,
                  CrosscheckReport& report, LevelVerdict& keys, LevelVerdict& tables, LevelVerdict& ideal, LevelVerdict& determinism) {
-  VulkanDevice device(options.device_filter, options.staging);
-  report.vulkan_device = device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info + "), memory " +
-                         device.info().memory;
-  VulkanFilter filter(device, options.accumulate_spv);
   const VulkanRun run = filter.Run(batch, config);
   keys.applicable = true;
   CompareKeys(batch, config, run, keys);
@@ -225,14 +221,30 @@ nlohmann::json CrosscheckReport::ToJson() const {
   return j;
 }
 
-CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {
-  for (const std::string& b : backends) {
+struct Crosschecker::VulkanContext {
+  VulkanDevice device;
+  VulkanFilter filter;
+  std::string description;
+  explicit VulkanContext(const VulkanBackendOptions& options)
+      : device(options.device_filter, options.staging),
+        filter(device, options.accumulate_spv),
+        description(device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info +
+                    "), memory " + device.info().memory) {}
+};
+
+Crosschecker::Crosschecker(const std::vector<std::string>& backends, Defect defect, const VulkanBackendOptions& vulkan)
+    : backends_(backends), defect_(defect), vulkan_options_(vulkan) {
+  for (const std::string& b : backends_) {
     if (b != "reference" && b != "emulated" && b != "vulkan") {
       throw ConfigError("--backends", "'" + b + "' is not a backend; expected reference, emulated or vulkan");
     }
   }
-  auto has = [&](const char* name) { return std::find(backends.begin(), backends.end(), name) != backends.end(); };
+}
+
+Crosschecker::~Crosschecker() = default;
+
+CrosscheckReport Crosschecker::Check(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator) {
+  auto has = [&](const char* name) { return std::find(backends_.begin(), backends_.end(), name) != backends_.end(); };
   const bool hashed = has("emulated") || has("vulkan");
   CrosscheckReport report;
   LevelVerdict keys{1, "keys", false, true, "joins with the Vulkan backend; the emulator calls the same core code as the reference", {}};
@@ -241,10 +253,19 @@ CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config
   LevelVerdict determinism{4, "determinism", hashed, true, "", {}};
 
   const FilterResult reference = ReferenceFilter(batch, config);
-  if (has("emulated")) JudgeEmulated(batch, config, reference, emulator, defect, report, tables, ideal, determinism);
-  if (has("vulkan")) JudgeVulkan(batch, config, reference, vulkan, report, keys, tables, ideal, determinism);
+  if (has("emulated")) JudgeEmulated(batch, config, reference, emulator, defect_, report, tables, ideal, determinism);
+  if (has("vulkan")) {
+    if (!vulkan_) vulkan_ = std::make_unique<VulkanContext>(vulkan_options_);
+    report.vulkan_device = vulkan_->description;
+    JudgeVulkan(batch, config, reference, vulkan_->filter, report, keys, tables, ideal, determinism);
+  }
   report.levels = {keys, tables, ideal, determinism};
   return report;
+}
+
+CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
+                            const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {
+  return Crosschecker(backends, defect, vulkan).Check(batch, config, emulator);
 }
 
 }  // namespace hpsf

@@ -6,6 +6,7 @@
 #define HPSF_TOOLS_CHECKS_CROSSCHECK_H
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,27 @@ struct VulkanBackendOptions {
   StagingPolicy staging = StagingPolicy::kAuto;  // --vk-staging
 };
 
+// The cross-check of batch after batch on the same backends, keeping the Vulkan device and its pipelines from one
+// batch to the next (hpsf fuzz judges thousands of small batches; creating a device costs more than one of them).
 // backends: "reference", "emulated", "vulkan" (the reference is always run: it is the ideal).
 // defect: a known broken kernel for the emulated backend, to show the gate fails.
+class Crosschecker {
+ public:
+  Crosschecker(const std::vector<std::string>& backends, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
+  ~Crosschecker();
+  Crosschecker(const Crosschecker&) = delete;
+  Crosschecker& operator=(const Crosschecker&) = delete;
+  CrosscheckReport Check(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator);
+
+ private:
+  struct VulkanContext;
+  std::vector<std::string> backends_;
+  Defect defect_;
+  VulkanBackendOptions vulkan_options_;
+  std::unique_ptr<VulkanContext> vulkan_;  // created by the first batch that needs it
+};
+
+// One batch through a Crosschecker of its own.
 CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
                             const EmulatorOptions& emulator, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
 

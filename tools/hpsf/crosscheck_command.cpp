@@ -1,17 +1,15 @@
 #include "tools/hpsf/crosscheck_command.h"
 
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "core/error.h"
-#include "core/record_file.h"
 #include "tools/checks/crosscheck.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
+#include "tools/hpsf/repro_bundle.h"
 #include "tracer/path_tracer.h"
 
 namespace hpsf {
@@ -36,27 +34,19 @@ std::vector<std::string> SplitList(const std::string& text) {
   return items;
 }
 
+// The same check on the same records: every option that decides the outcome, the input replaced by the recorded
+// batch, and a bundle of its own so the original is kept for comparison.
 void WriteBundle(const CrosscheckOptions& o, const RecordBatch& batch, const CrosscheckReport& report) {
-  const std::filesystem::path dir = o.repro_dir;
-  std::filesystem::create_directories(dir);
-  const std::string records = (dir / "records.hpsfv").string();
-  WriteRecordFile(records, batch);
-  std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
-  // The same check on the same records: every option that decides the outcome, the input replaced by the
-  // recorded batch, and a bundle of its own so the original is kept for comparison.
-  std::string command = "exec '" + std::filesystem::read_symlink("/proc/self/exe").string() + "' crosscheck records.hpsfv";
+  std::vector<std::string> arguments;
   for (std::size_t i = 0; i < o.arguments.size(); ++i) {
     if (o.arguments[i] == "--repro-dir") {
       ++i;
       continue;
     }
-    command += " '" + o.arguments[i] + "'";
+    if (o.arguments[i] != "--json") arguments.push_back(o.arguments[i]);
   }
-  std::ofstream(dir / "reproduce.sh") << "#!/bin/sh\n# Reproduces the failed cross-check exactly: same records, options, seed and schedule.\n"
-                                      << "cd \"$(dirname \"$0\")\" || exit 3\n"
-                                      << command << " --repro-dir reproduced --json > reproduced.json\n";
-  std::filesystem::permissions(dir / "reproduce.sh", std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
-  std::cerr << "hpsf: the contract does not hold; repro bundle in " << dir.string()
+  WriteReproBundle(o.repro_dir, batch, report, arguments);
+  std::cerr << "hpsf: the contract does not hold; repro bundle in " << o.repro_dir
             << " (records.hpsfv, report.json; reproduce.sh reruns the check and writes reproduced.json)\n";
 }
 

@@ -9,6 +9,7 @@
 #include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
 #include "tools/hpsf/diff_command.h"
+#include "tools/hpsf/fuzz_command.h"
 #include "tools/hpsf/golden_command.h"
 #include "tools/hpsf/render_command.h"
 #include "tools/hpsf/stats_command.h"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   hpsf::AddStatsCommand(app, &exit_code);
   hpsf::AddDiffCommand(app, &exit_code);
   hpsf::AddGoldenCommand(app, &exit_code);
+  hpsf::AddFuzzCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

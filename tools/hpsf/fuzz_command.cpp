@@ -1,0 +1,192 @@
+#include "tools/hpsf/fuzz_command.h"
+
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "tools/checks/adversarial_case.h"
+#include "tools/checks/case_shrinker.h"
+#include "tools/checks/crosscheck.h"
+#include "tools/hpsf/backend_options.h"
+#include "tools/hpsf/filter_options.h"
+#include "tools/hpsf/repro_bundle.h"
+
+namespace hpsf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct FuzzOptions {
+  std::string backend = "emulated";
+  std::string defect = "none";
+  std::string accumulation;  // empty: both for the built-in kernels; a user's shader must name its mode
+  VulkanBackendOptions vulkan;
+  std::optional<double> seconds;
+  std::optional<std::uint64_t> runs;
+  std::uint32_t seed = 1;
+  std::uint32_t max_records = 96;
+  std::string repro_dir = "hpsf-fuzz-repro";
+  bool json = false;
+};
+
+double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+struct Failure {
+  std::uint64_t run = 0;
+  double seconds_to_find = 0;
+  AdversarialCase found;
+  ShrinkResult shrink;
+  double shrink_seconds = 0;
+  CrosscheckReport report;  // of the shrunk case
+};
+
+// The first failing level and its first failure, for the summary line.
+std::string FirstFailure(const CrosscheckReport& report) {
+  for (const LevelVerdict& v : report.levels) {
+    if (v.applicable && !v.passed) {
+      return "level " + std::to_string(v.level) + " " + v.name + ": " + (v.failures.empty() ? "" : v.failures.front());
+    }
+  }
+  return "";
+}
+
+nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, const std::array<std::uint64_t, kAdversarialFamilies>& families,
+                      const std::optional<Failure>& failure) {
+  nlohmann::json j = {{"version", 1},
+                      {"command", "fuzz"},
+                      {"backend", o.backend},
+                      {"defect", o.defect},
+                      {"accumulate_spv", o.vulkan.accumulate_spv},
+                      {"accum", o.accumulation.empty() ? "both" : o.accumulation},
+                      {"seed", o.seed},
+                      {"runs", runs},
+                      {"seconds", seconds},
+                      {"runs_per_second", seconds > 0 ? double(runs) / seconds : 0.0},
+                      {"passed", !failure.has_value()}};
+  for (int f = 0; f < kAdversarialFamilies; ++f) j["runs_per_family"][ToString(AdversarialFamily(f))] = families[std::size_t(f)];
+  if (failure) {
+    j["failure"] = {{"run", failure->run},
+                    {"seconds_to_find", failure->seconds_to_find},
+                    {"family", ToString(failure->found.family)},
+                    {"records", failure->found.batch.records.size()},
+                    {"case", failure->found.ToString()},
+                    {"shrunk_records", failure->shrink.shrunk.batch.records.size()},
+                    {"shrunk_case", failure->shrink.shrunk.ToString()},
+                    {"shrink_checks", failure->shrink.checks},
+                    {"shrink_seconds", failure->shrink_seconds},
+                    {"shrink_exhausted", failure->shrink.exhausted},
+                    {"repro_dir", o.repro_dir},
+                    {"report", failure->report.ToJson()}};
+  }
+  return j;
+}
+
+int Run(FuzzOptions& o) {
+  CheckBackend(o.backend);
+  if (o.backend == "reference") throw ConfigError("--backend", "the reference is the oracle; fuzz emulated or vulkan");
+  const Defect defect = ParseDefect(o.defect);
+  if (defect != Defect::kNone && o.backend != "emulated") {
+    throw ConfigError("--inject-defect", "breaks the emulated backend's kernel; for Vulkan give a broken shader with --accumulate-spv");
+  }
+  if (!o.vulkan.accumulate_spv.empty() && o.backend != "vulkan") {
+    throw ConfigError("--accumulate-spv", "runs on the Vulkan backend; add --backend vulkan");
+  }
+  if (o.accumulation.empty() && !o.vulkan.accumulate_spv.empty()) {
+    throw ConfigError("--accum", "say which mode the shader given with --accumulate-spv accumulates in: fixed64, float32 or both");
+  }
+  std::optional<Accumulation> accumulation;
+  if (!o.accumulation.empty() && o.accumulation != "both") accumulation = ParseAccumulation(o.accumulation);
+  if (o.max_records < 2 || o.max_records > 4096) throw ConfigError("--max-records", "must lie in [2, 4096]");
+  if (o.seconds && !(*o.seconds > 0)) throw ConfigError("--time", "must be a positive number of seconds");
+  if (!o.seconds && !o.runs) o.seconds = 60.0;
+
+  const std::vector<std::string> backends = {"reference", o.backend};
+  Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
+  // A broken kernel's races must replay from the schedule, which the emulator's fast mode does not promise.
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation};
+  const bool terminal = isatty(STDERR_FILENO) && !o.json;
+
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last_progress = start;
+  std::array<std::uint64_t, kAdversarialFamilies> families{};
+  std::optional<Failure> failure;
+  std::uint64_t run = 0;
+  for (; !(o.runs && run >= *o.runs) && !(o.seconds && SecondsSince(start) >= *o.seconds); ++run) {
+    const AdversarialCase c = MakeAdversarialCase(o.seed, run, generate);
+    ++families[std::size_t(c.family)];
+    if (!checker.Check(c.batch, c.config, c.emulator).Passed()) {
+      failure = Failure{run, SecondsSince(start), c, {}, 0, {}};
+      ++run;
+      break;
+    }
+    if (terminal && SecondsSince(last_progress) >= 0.25) {
+      last_progress = Clock::now();
+      const double elapsed = SecondsSince(start);
+      std::fprintf(stderr, "\rfuzz: %llu runs, %.1f runs/s, %.0f s", (unsigned long long)(run + 1), double(run + 1) / elapsed, elapsed);
+    }
+  }
+  if (terminal) std::fprintf(stderr, "\r%60s\r", "");
+  const double seconds = SecondsSince(start);
+
+  if (failure) {
+    const Clock::time_point shrink_start = Clock::now();
+    failure->shrink = ShrinkCase(failure->found, [&](const AdversarialCase& c) {
+      return !checker.Check(c.batch, c.config, c.emulator).Passed();
+    }, accumulation.has_value());
+    failure->shrink_seconds = SecondsSince(shrink_start);
+    const AdversarialCase& shrunk = failure->shrink.shrunk;
+    failure->report = checker.Check(shrunk.batch, shrunk.config, shrunk.emulator);
+    WriteReproBundle(o.repro_dir, shrunk.batch, failure->report, CrosscheckArguments(backends, shrunk.config, shrunk.emulator, defect, o.vulkan));
+  }
+
+  if (o.json) {
+    std::cout << ToJson(o, run, seconds, families, failure).dump(2) << "\n";
+  } else if (!failure) {
+    std::printf("fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u: every table passed the checker and the contract\n",
+                (unsigned long long)run, seconds, double(run) / seconds, o.seed);
+  } else {
+    const Failure& f = *failure;
+    std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` finds it again)\n",
+                (unsigned long long)f.run, f.seconds_to_find, o.seed, o.seed, (unsigned long long)(f.run + 1));
+    std::printf("  found: %s\n", f.found.ToString().c_str());
+    std::printf("  shrunk in %llu checks (%.2f s)%s: %s\n", (unsigned long long)f.shrink.checks, f.shrink_seconds,
+                f.shrink.exhausted ? ", stopped at the check limit" : "", f.shrink.shrunk.ToString().c_str());
+    std::printf("  %s\n", FirstFailure(f.report).c_str());
+    std::printf("  repro bundle in %s: reproduce.sh runs `hpsf crosscheck records.hpsfv` with the same options\n", o.repro_dir.c_str());
+  }
+  return failure ? kExitCheckFailed : kExitOk;
+}
+
+}  // namespace
+
+void AddFuzzCommand(CLI::App& app, int* exit_code) {
+  auto o = std::make_shared<FuzzOptions>();
+  CLI::App* c = app.add_subcommand("fuzz", "Adversarial batches against a backend or your accumulate shader, judged by the "
+                                           "table checker and the cross-check contract; a failure is shrunk to a repro bundle");
+  c->add_option("--backend", o->backend, "emulated or vulkan")->capture_default_str();
+  c->add_option("--accumulate-spv", o->vulkan.accumulate_spv, "Vulkan: your accumulate shader (SPIR-V) through the stable buffer interface");
+  c->add_option("--accum", o->accumulation, "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
+  c->add_option("--inject-defect", o->defect, "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D13)")->capture_default_str();
+  CLI::Option* time = c->add_option("--time", o->seconds, "Stop after this many seconds (default 60 when --runs is not given)");
+  c->add_option("--runs", o->runs, "Stop after this many batches: the same seed and runs judge the same batches")->excludes(time);
+  c->add_option("--seed", o->seed, "Seed of the batches and schedules")->capture_default_str();
+  c->add_option("--max-records", o->max_records, "Records per batch at most, 2..4096")->capture_default_str();
+  c->add_option("--repro-dir", o->repro_dir, "Where a failure's shrunk repro bundle is written")->capture_default_str();
+  c->add_option("--vk-device", o->vulkan.device_filter, "Vulkan: the device whose name contains this text");
+  c->add_option_function<std::string>(
+       "--vk-staging", [o](const std::string& text) { o->vulkan.staging = ParseStagingPolicy(text); },
+       "Vulkan: always, never or auto")
+      ->default_str("auto");
+  c->add_flag("--json", o->json, "Print the versioned report as JSON");
+  c->callback([o, exit_code] { *exit_code = Run(*o); });
+}
+
+}  // namespace hpsf

@@ -1,0 +1,72 @@
+#include "tools/hpsf/repro_bundle.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/record_file.h"
+
+namespace hpsf {
+namespace {
+
+// Nine significant digits give back every float exactly.
+std::string ExactFloat(float value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", double(value));
+  return text;
+}
+
+std::string Quoted(const std::string& word) {
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
+void WriteReproBundle(const std::string& dir_name, const RecordBatch& batch, const CrosscheckReport& report,
+                      const std::vector<std::string>& crosscheck_arguments) {
+  const std::filesystem::path dir = dir_name;
+  std::filesystem::create_directories(dir);
+  WriteRecordFile((dir / "records.hpsfv").string(), batch);
+  std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
+  std::string command = "exec " + Quoted(std::filesystem::read_symlink("/proc/self/exe").string()) + " crosscheck records.hpsfv";
+  for (const std::string& argument : crosscheck_arguments) command.append(" ").append(Quoted(argument));
+  std::ofstream(dir / "reproduce.sh") << "#!/bin/sh\n# Reproduces the failed cross-check exactly: same records, options, seed and schedule.\n"
+                                      << "cd \"$(dirname \"$0\")\" || exit 3\n"
+                                      << command << " --repro-dir reproduced --json > reproduced.json\n";
+  std::filesystem::permissions(dir / "reproduce.sh", std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
+}
+
+std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& backends, const FilterConfig& c,
+                                             const EmulatorOptions& emulator, Defect defect,
+                                             const VulkanBackendOptions& vulkan) {
+  std::string backend_list;
+  for (const std::string& b : backends) backend_list.append(backend_list.empty() ? "" : ",").append(b);
+  std::vector<std::string> a = {"--backends", backend_list,
+                                "--filter-width", ExactFloat(c.filter_width_px),
+                                "--jitter", ExactFloat(c.jitter_scale),
+                                "--normal", c.normal.ToString(),
+                                "--lod", c.lod ? "on" : "off",
+                                "--cell-size", ExactFloat(c.cell_size),
+                                "--level-min=" + std::to_string(c.level_min),
+                                "--level-max=" + std::to_string(c.level_max),
+                                "--accum", ToString(c.accumulation),
+                                "--seed", std::to_string(c.seed),
+                                "--capacity", std::to_string(c.capacity),
+                                "--probe-limit", std::to_string(c.probe_limit),
+                                "--fingerprint-bits", std::to_string(c.fingerprint_bits)};
+  if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
+  const bool faithful = emulator.mode == simt::Mode::kFaithful;
+  a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});
+  if (faithful) a.insert(a.end(), {"--warp-size", std::to_string(emulator.warp_size), "--schedule", emulator.schedule});
+  if (defect != Defect::kNone) a.insert(a.end(), {"--inject-defect", ToString(defect)});
+  if (!vulkan.device_filter.empty()) a.insert(a.end(), {"--vk-device", vulkan.device_filter});
+  if (vulkan.staging != StagingPolicy::kAuto) a.insert(a.end(), {"--vk-staging", ToString(vulkan.staging)});
+  if (!vulkan.accumulate_spv.empty()) {
+    a.insert(a.end(), {"--accumulate-spv", std::filesystem::absolute(vulkan.accumulate_spv).string()});
+  }
+  return a;
+}
+
+}  // namespace hpsf
