@@ -14,7 +14,6 @@
 namespace hpsf {
 namespace {
 
-constexpr unsigned __int128 kLimit = static_cast<unsigned __int128>(1) << 63;
 constexpr unsigned __int128 kSaturated = static_cast<unsigned __int128>(1) << 127;
 
 bool EntersTable(const Record& r) {

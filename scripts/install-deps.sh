@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev
   libvulkan-dev glslang-tools glslang-dev spirv-tools mesa-vulkan-drivers vulkan-tools
   libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium
+  clang-15 libfuzzer-15-dev llvm-15
 )
 
 missing=()

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <tiny_obj_loader.h>
 
@@ -11,23 +13,47 @@
 namespace hpsf {
 namespace {
 
-// Every "v" line must hold three finite numbers; tinyobjloader silently turns unparsable ones into 0.
-void CheckVertexLines(const std::string& path) {
-  std::ifstream in(path);
+// The file's lines as tinyobjloader splits them: at "\n", "\r\n" or a lone "\r".
+std::vector<std::string> ObjLines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the mesh file");
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    std::istringstream tokens(line);
+  std::vector<std::string> lines(1);
+  for (char c; in.get(c);) {
+    if (c == '\r' && in.peek() == '\n') continue;
+    if (c == '\n' || c == '\r') {
+      lines.emplace_back();
+    } else {
+      lines.back() += c;
+    }
+  }
+  return lines;
+}
+
+// Every "v" line must hold three finite numbers; tinyobjloader silently turns unparsable ones into 0. hpsf ignores
+// skin weights ("vw"), but tinyobjloader converts their joint ids to int unchecked (undefined beyond int range).
+void CheckLines(const std::string& path) {
+  const std::vector<std::string> lines = ObjLines(path);
+  for (std::size_t index = 0; index < lines.size(); ++index) {
+    const std::string place = path + ":" + std::to_string(index + 1);
+    std::istringstream tokens(lines[index]);
     std::string tag;
-    if (!(tokens >> tag) || tag != "v") continue;
+    if (!(tokens >> tag)) continue;
+    if (tag == "vw") {
+      for (std::string token; tokens >> token;) {
+        const double value = std::strtod(token.c_str(), nullptr);
+        if (!(std::abs(value) < 2147483648.0)) {
+          throw InputError(place + ": skin weight value '" + token + "' lies beyond the range of a joint id");
+        }
+      }
+    }
+    if (tag != "v") continue;
     for (int axis = 0; axis < 3; ++axis) {
       std::string token;
       tokens >> token;
       char* end = nullptr;
       const double value = std::strtod(token.c_str(), &end);
       if (token.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) >= 3e38) {
-        throw InputError(path + ":" + std::to_string(number) + ": vertex coordinate " + std::to_string(axis + 1) +
-                         " is not a finite number: '" + token + "'");
+        throw InputError(place + ": vertex coordinate " + std::to_string(axis + 1) + " is not a finite number: '" + token + "'");
       }
     }
   }
@@ -36,7 +62,7 @@ void CheckVertexLines(const std::string& path) {
 }  // namespace
 
 std::vector<ObjTriangle> LoadObjTriangles(const std::string& path) {
-  CheckVertexLines(path);
+  CheckLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -49,12 +75,14 @@ std::vector<ObjTriangle> LoadObjTriangles(const std::string& path) {
     for (std::size_t face = 0; face + 2 < indices.size(); face += 3) {
       ObjTriangle t;
       for (int corner = 0; corner < 3; ++corner) {
-        const int v = indices[face + corner].vertex_index;
-        if (v < 0 || std::size_t(3 * v + 2) >= attrib.vertices.size()) {
+        const int index = indices[face + corner].vertex_index;
+        // In size_t: 3 * index overflows int for an index past 2^31 / 3.
+        const std::size_t v = 3 * std::size_t(index);
+        if (index < 0 || v + 2 >= attrib.vertices.size()) {
           throw InputError(path + ": face " + std::to_string(face / 3 + 1) + " of shape '" + shape.name +
                            "' refers to a missing vertex");
         }
-        t.p[corner] = glm::dvec3(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
+        t.p[corner] = glm::dvec3(attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]);
       }
       triangles.push_back(t);
     }

@@ -18,6 +18,9 @@ namespace {
 
 using nlohmann::json;
 
+// Below float's largest value (3.4e38) with a margin, so a point converts to a finite float.
+bool WithinFloatRange(const glm::dvec3& p) { return std::abs(p.x) < 3e38 && std::abs(p.y) < 3e38 && std::abs(p.z) < 3e38; }
+
 class SceneParser {
  public:
   SceneParser(std::string source, std::string directory) : source_(std::move(source)), directory_(std::move(directory)) {}
@@ -28,11 +31,17 @@ class SceneParser {
       root = json::parse(text);
     } catch (const json::parse_error& e) {
       throw InputError(source_ + ": not valid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+    } catch (const json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
+      throw InputError(source_ + ": not valid JSON: " + e.what());
     }
     Expect(root.is_object(), "", "a JSON object");
     Expect(root.contains("hpsf_scene") && root["hpsf_scene"] == 1, "/hpsf_scene", "the format version 1");
     Scene scene;
-    scene.name = root.value("name", std::filesystem::path(source_).stem().string());
+    scene.name = std::filesystem::path(source_).stem().string();
+    if (root.contains("name")) {
+      Expect(root["name"].is_string(), "/name", "a string");
+      scene.name = root["name"].get<std::string>();
+    }
     scene.camera = ParseCamera(Member(root, "", "camera"));
     if (root.contains("sky")) scene.sky = Color(root["sky"], "/sky", 0.0f, INFINITY);
     const json& materials = Member(root, "", "materials");
@@ -71,7 +80,7 @@ class SceneParser {
     Expect(value.is_array() && value.size() == 3, pointer, "an array of 3 numbers");
     glm::dvec3 p;
     for (int i = 0; i < 3; ++i) p[i] = Number(value[i], pointer + "/" + std::to_string(i));
-    Expect(std::abs(p.x) < 3e38 && std::abs(p.y) < 3e38 && std::abs(p.z) < 3e38, pointer, "coordinates within float range");
+    Expect(WithinFloatRange(p), pointer, "coordinates within float range");
     return p;
   }
   glm::vec3 Color(const json& value, const std::string& pointer, float low, float high) const {
@@ -139,7 +148,12 @@ class SceneParser {
       const double scale = j.contains("scale") ? Number(j["scale"], pointer + "/scale") : 1.0;
       const glm::dvec3 translate = j.contains("translate") ? Point(j["translate"], pointer + "/translate") : glm::dvec3(0.0);
       for (const ObjTriangle& t : LoadObjTriangles(path.string())) {
-        add(t.p[0] * scale + translate, t.p[1] * scale + translate, t.p[2] * scale + translate);
+        glm::dvec3 p[3];
+        for (int i = 0; i < 3; ++i) {
+          p[i] = t.p[i] * scale + translate;
+          Expect(WithinFloatRange(p[i]), pointer + "/scale", "a scale and translation that keep the mesh within float range");
+        }
+        add(p[0], p[1], p[2]);
       }
     } else {
       Fail(pointer, "expected a 'quad', 'box' or 'mesh' member");

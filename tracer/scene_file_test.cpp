@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "tracer/obj_mesh.h"
 
 namespace hpsf {
 namespace {
@@ -74,6 +75,48 @@ TEST(SceneFile, ObjMeshesBecomeTriangles) {
   const Scene s = ParseScene(text, "s.json", ".");
   ASSERT_EQ(s.triangles.size(), 2u);
   EXPECT_EQ(s.triangles[0].p1, glm::vec3(3.0f, 0.0f, 0.0f));
+}
+
+// Found by fuzz_scene: a number beyond double's range made the JSON parser throw out_of_range, not bad input.
+TEST(SceneFile, NumberBeyondDoubleRangeIsAnInputError) {
+  const std::string text = std::string("{").append(kValidHeader).append(R"(, "sky": [1e400, 0, 0], "shapes": []})");
+  EXPECT_NE(ErrorOf([&] { ParseScene(text, "s.json", "."); }).find("s.json: not valid JSON: "), std::string::npos);
+}
+
+// Found by fuzz_scene: a name that is not a string escaped as nlohmann's type_error instead of bad input.
+TEST(SceneFile, NonStringNameIsAnInputError) {
+  const std::string text = std::string("{").append(kValidHeader).append(R"(, "name": 5,
+    "shapes": [{"material": "grey", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})");
+  EXPECT_NE(ErrorOf([&] { ParseScene(text, "s.json", "."); }).find("s.json: /name: expected a string"), std::string::npos);
+}
+
+// Found writing fuzz_scene's scene check (its search did not reach it in 180 s): a mesh's scale could carry finite
+// OBJ coordinates past float range, to infinite triangles.
+TEST(SceneFile, MeshScaledBeyondFloatRangeIsAnInputError) {
+  const std::string obj = WriteTemp("scaled.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string text = std::string("{").append(kValidHeader).append(R"(, "shapes": [{"material": "grey", "mesh": ")")
+                               .append(obj)
+                               .append(R"(", "scale": 1e300}]})");
+  EXPECT_NE(ErrorOf([&] { ParseScene(text, "s.json", "."); }).find("/shapes/0/scale: expected a scale and translation"),
+            std::string::npos);
+}
+
+// Found by fuzz_obj (UBSan): tinyobjloader converts a skin weight's joint id to int unchecked.
+TEST(SceneFile, ObjSkinWeightBeyondIntRangeIsAnInputError) {
+  const std::string obj = WriteTemp("skin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e38 1\nf 1 2 3\n");
+  EXPECT_NE(ErrorOf([&] { LoadObjTriangles(obj); }).find("skin.obj:4: skin weight value '1e38' lies beyond"), std::string::npos);
+}
+
+// Found by fuzz_obj (UBSan): a face index past 2^31 / 3 overflowed int in the missing-vertex check.
+TEST(SceneFile, ObjFaceIndexBeyondIntRangeIsAMissingVertex) {
+  const std::string obj = WriteTemp("big_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 1908428344\n");
+  EXPECT_NE(ErrorOf([&] { LoadObjTriangles(obj); }).find("face 1 of shape '' refers to a missing vertex"), std::string::npos);
+}
+
+// A lone carriage return ends a line for tinyobjloader, so the vertex check must see the line it starts.
+TEST(SceneFile, ObjNanVertexAfterCarriageReturnIsNamed) {
+  const std::string obj = WriteTemp("cr.obj", "v 0 0 0\rv 1 nan 0\r\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_NE(ErrorOf([&] { LoadObjTriangles(obj); }).find("cr.obj:2: vertex coordinate 2 is not a finite number"), std::string::npos);
 }
 
 TEST(SceneFile, UnknownNameIsNeitherFileNorBuiltin) {

@@ -132,22 +132,6 @@ std::string DescribeMemoryType(const vk::PhysicalDeviceMemoryProperties& memory,
 
 }  // namespace
 
-StagingPolicy ParseStagingPolicy(const std::string& text) {
-  if (text == "auto") return StagingPolicy::kAuto;
-  if (text == "always") return StagingPolicy::kAlways;
-  if (text == "never") return StagingPolicy::kNever;
-  throw ConfigError("--vk-staging", "'" + text + "' is not a staging policy; expected always, never or auto");
-}
-
-const char* ToString(StagingPolicy policy) {
-  switch (policy) {
-    case StagingPolicy::kAuto: return "auto";
-    case StagingPolicy::kAlways: return "always";
-    case StagingPolicy::kNever: return "never";
-  }
-  return "?";
-}
-
 std::string VulkanDeviceInfo::ToString() const {
   return "[ VulkanDevice name: '" + name + "' type: " + type + " driver: '" + driver_name + "' '" + driver_info +
          "' api: " + api_version + " subgroup_size: " + std::to_string(subgroup_size) +

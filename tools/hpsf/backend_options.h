@@ -14,19 +14,10 @@
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/crosscheck.h"
+#include "tools/hpsf/emulator_options.h"
 #include "vulkan/vulkan_filter.h"
 
 namespace hpsf {
-
-struct EmulatorFlags {
-  std::string mode = "fast";
-  std::string defect = "none";
-  EmulatorOptions options;
-  VulkanBackendOptions vulkan;  // --vk-device, --accumulate-spv
-};
-
-void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags);
-EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags);  // ConfigError naming the option
 
 // Backends this build has: reference, emulated, vulkan.
 // The emulator's options and the Vulkan backend's (--vk-device, --accumulate-spv).
