@@ -1,6 +1,7 @@
 # `hpsf fuzz ARGS` (a ;-list) must find a failure (exit 2) within its --runs, shrink it to at most MAX_RECORDS
 # records, and leave a repro bundle whose reproduce.sh (`hpsf crosscheck records.hpsfv ...`) fails again with
 # the same report, bit for bit.
+include(${CMAKE_CURRENT_LIST_DIR}/bundle_reproduces.cmake)
 set(dir ${OUT}/${NAME})
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
@@ -19,13 +20,4 @@ message("found at run ${run} after ${seconds} s: ${found} records, shrunk to ${s
 if(shrunk GREATER MAX_RECORDS)
   message(FATAL_ERROR "shrunk to ${shrunk} records, expected at most ${MAX_RECORDS}")
 endif()
-execute_process(COMMAND sh ${dir}/bundle/reproduce.sh RESULT_VARIABLE again)
-if(NOT again EQUAL 2)
-  message(FATAL_ERROR "reproduce.sh exited ${again}, expected 2")
-endif()
-file(READ ${dir}/bundle/report.json first)
-file(READ ${dir}/bundle/reproduced.json second)
-string(JSON same EQUAL "${first}" "${second}")
-if(NOT same)
-  message(FATAL_ERROR "the reproduced report differs from the fuzzer's")
-endif()
+hpsf_expect_bundle_reproduces(${dir}/bundle)
