@@ -7,14 +7,12 @@
 #include <memory>
 #include <utility>
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
 #include "core/huge_pages.h"
 #include "core/input_check.h"
+#include "core/parallel_for.h"
 #include "core/resolve.h"
 
 namespace hpsf {
@@ -22,8 +20,7 @@ namespace {
 
 // F's passes over the contributions on all cores (core has no thread pool of its own).
 void AllCores(std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 16),
-                    [&](const tbb::blocked_range<std::size_t>& range) { work(range.begin(), range.end()); });
+  ParallelFor(n, std::size_t(1) << 16, work);
 }
 
 class PhaseClock {
@@ -64,8 +61,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   ResizeOnHugePages(accepted, n);
   std::vector<glm::vec3> entering;
   ResizeOnHugePages(entering, n);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 4096), [&](const tbb::blocked_range<std::uint32_t>& range) {
-    for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
+  ParallelFor(n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
       const Record& r = batch.records[i];
       run.keys[i] = shared::ComputeKey(params, r);
       accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
@@ -133,8 +130,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
   const std::span<const std::uint64_t> fixed_words = std::as_const(memory).Words64(b.sums);
   const std::span<const std::uint32_t> float_words = std::as_const(memory).Words32(b.sums);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, config.capacity, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
-    for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
+  ParallelFor(config.capacity, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
       for (int c = 0; c < 3; ++c) {
         if (fixed) {
           table.fixed_sums[s][c] = fixed_words[std::size_t(s) * 3 + c];
@@ -156,10 +153,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.image = Image(batch.width, batch.height);
   const double unscale = std::ldexp(1.0, -table.fixed_point_bits);  // exact, as FromFixedPoint, without a call per sum
   const std::uint32_t spp = batch.samples_per_pixel;
-  const Tally tally = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, run.image.pixels.size(), 2048), Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0)},
-      [&](const tbb::blocked_range<std::size_t>& range, Tally tally) {
-        for (std::size_t pixel = range.begin(); pixel < range.end(); ++pixel) {
+  const Tally tally = ParallelReduce(
+      run.image.pixels.size(), 2048, Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0)},
+      [&](std::size_t begin, std::size_t end, Tally tally) {
+        for (std::size_t pixel = begin; pixel < end; ++pixel) {
           glm::dvec3 sum(0.0);
           for (std::uint32_t sample = 0; sample < spp; ++sample) {
             const std::size_t i = pixel * spp + sample;

@@ -8,11 +8,10 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
-#include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/parallel_for.h"
 #include "core/shared/rng.h"
 #include "core/tangent_frame.h"
 #include "tracer/embree_scene.h"
@@ -290,27 +289,27 @@ TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
   const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
   std::atomic<std::uint32_t> tiles_done{0};
   std::mutex stats_mutex;
-  tbb::parallel_for(tbb::blocked_range2d<std::uint32_t>(0, tiles_y, 1, 0, tiles_x, 1), [&](const auto& range) {
+  // One tile per task; the tiles' order does not change a record (each is a function of its pixel and sample).
+  ParallelFor(std::size_t(tiles_x) * tiles_y, 1, [&](std::size_t begin, std::size_t end) {
     TraceStats local;
-    for (std::uint32_t ty = range.rows().begin(); ty < range.rows().end(); ++ty) {
-      for (std::uint32_t tx = range.cols().begin(); tx < range.cols().end(); ++tx) {
-        for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
-          for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
-            const std::uint32_t pixel = y * options.width + x;
-            for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
-              batch.records[std::size_t(pixel) * options.samples_per_pixel + s] = tracer.TraceSample(pixel, s, local);
-            }
+    for (std::size_t tile = begin; tile < end; ++tile) {
+      const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
+      for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
+        for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
+          const std::uint32_t pixel = y * options.width + x;
+          for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
+            batch.records[std::size_t(pixel) * options.samples_per_pixel + s] = tracer.TraceSample(pixel, s, local);
           }
         }
-        ++tiles_done;
       }
+      ++tiles_done;
     }
     std::lock_guard lock(stats_mutex);
     result.stats.camera_rays += local.camera_rays;
     result.stats.bounce_rays += local.bounce_rays;
     result.stats.shadow_rays += local.shadow_rays;
     if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
-  });
+  }, threads);
   return result;
 }
 

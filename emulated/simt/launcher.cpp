@@ -2,14 +2,11 @@
 
 #include <algorithm>
 #include <deque>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-
+#include "core/parallel_for.h"
 #include "emulated/simt/kernel_fault.h"
 
 namespace hpsf::simt {
@@ -129,10 +126,8 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
 }
 
 void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads) {
-  std::optional<tbb::global_control> limit;
-  if (worker_threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(worker_threads));
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, threads, 1024), [&](const tbb::blocked_range<std::uint32_t>& range) {
-    for (std::uint32_t t = range.begin(); t < range.end(); ++t) {
+  ParallelFor(threads, 1024, [&](std::size_t begin, std::size_t end) {
+    for (auto t = std::uint32_t(begin); t < end; ++t) {
       ThreadContext context(t, memory, Mode::kFast);
       KernelTask task = kernel(context);
       try {
@@ -142,7 +137,7 @@ void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kerne
       }
       if (!task.Done()) throw std::logic_error("a kernel suspended in fast mode");
     }
-  });
+  }, worker_threads);
 }
 
 }  // namespace hpsf::simt
