@@ -1,4 +1,5 @@
-// Which backend filters a batch, with the emulator's options: shared by render, replay and crosscheck.
+// Which backend filters a batch and what it reports (the options come from emulator_options.h): shared by render,
+// replay and crosscheck.
 #ifndef HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 #define HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 
@@ -20,7 +21,6 @@
 namespace hpsf {
 
 // Backends this build has: reference, emulated, vulkan.
-// The emulator's options and the Vulkan backend's (--vk-device, --accumulate-spv).
 void CheckBackend(const std::string& backend);
 
 struct BackendOutput {
