@@ -22,7 +22,7 @@ printf '%-13s %8s %7s %7s %7s %9s\n' target seconds exec/s cov ft corpus
 for target in "${targets[@]}"; do
   [[ -x "$bin/$target" ]] || { echo "run-fuzzers: $bin/$target is missing: cmake --preset fuzz && cmake --build --preset fuzz" >&2; exit 2; }
   cp -r "tools/fuzz/corpus/$target" "$work/$target"
-  options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+  options=(-seed=1 -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
            -artifact_prefix="$crashes/$target-")
   if [[ -n "${dictionaries[$target]:-}" ]]; then
     for dictionary in ${dictionaries[$target]}; do cat "tools/fuzz/$dictionary"; done >"$work/$target.dict"

@@ -40,8 +40,9 @@ void CheckLines(const std::string& path) {
     if (!(tokens >> tag)) continue;
     if (tag == "vw") {
       for (std::string token; tokens >> token;) {
-        const double value = std::strtod(token.c_str(), nullptr);
-        if (!(std::abs(value) < 2147483648.0)) {
+        // tinyobjloader reads the value as a float first: 2147483647 rounds to 2^31, past int.
+        const float value = float(std::strtod(token.c_str(), nullptr));
+        if (!(std::abs(value) < 2147483648.0f)) {
           throw InputError(place + ": skin weight value '" + token + "' lies beyond the range of a joint id");
         }
       }

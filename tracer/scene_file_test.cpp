@@ -105,6 +105,10 @@ TEST(SceneFile, MeshScaledBeyondFloatRangeIsAnInputError) {
 TEST(SceneFile, ObjSkinWeightBeyondIntRangeIsAnInputError) {
   const std::string obj = WriteTemp("skin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e38 1\nf 1 2 3\n");
   EXPECT_NE(ErrorOf([&] { LoadObjTriangles(obj); }).find("skin.obj:4: skin weight value '1e38' lies beyond"), std::string::npos);
+  // Found by fuzz_obj in CI: tinyobjloader reads joint ids as floats, and 2147483647 rounds to 2^31.
+  const std::string rounded = WriteTemp("skin_rounded.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 2147483647 1\nf 1 2 3\n");
+  EXPECT_NE(ErrorOf([&] { LoadObjTriangles(rounded); }).find("skin_rounded.obj:4: skin weight value '2147483647' lies beyond"),
+            std::string::npos);
 }
 
 // Found by fuzz_obj (UBSan): a face index past 2^31 / 3 overflowed int in the missing-vertex check.
