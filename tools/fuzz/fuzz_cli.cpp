@@ -4,7 +4,9 @@
 // --schedule, --vk-staging, --inject-defect ...) and the trace options as the commands do, and whose callbacks run the
 // real resolvers (ResolveFilterConfig, ResolveEmulatorOptions, ParseDefect, ParseSize, CheckVarianceSamples).
 // Success, CLI::ParseError (help included) and hpsf::InputError are the outcomes; anything else (another
-// exception, a crash, a sanitizer report) is a bug.
+// exception, a crash, a sanitizer report) is a bug. Every command's own registration, diff, golden, fuzz and
+// device included, is run in options-only mode by command_options_tests (tools/hpsf/command_options_test.cpp),
+// which needs the whole tool; this target keeps the fuzz build free of Vulkan, Embree and OpenImageIO.
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -8,12 +8,21 @@
 
 namespace hpsf {
 
-RecordBatch LoadOrTraceBatch(const std::string& input, const std::string& size, TraceOptions& trace,
-                             std::uint32_t seed) {
-  if (std::filesystem::path(input).extension() == ".hpsfv") return ReadRecordFile(input);
+namespace {
+
+bool IsRecordFile(const std::string& input) { return std::filesystem::path(input).extension() == ".hpsfv"; }
+
+}  // namespace
+
+void ResolveTraceOptions(const std::string& input, const std::string& size, TraceOptions& trace, std::uint32_t seed) {
+  if (IsRecordFile(input)) return;
   ParseSize(size, trace);
   trace.seed = seed;
   trace.Validate();
+}
+
+RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace) {
+  if (IsRecordFile(input)) return ReadRecordFile(input);
   return TraceRecords(LoadScene(input), trace).batch;
 }
 

@@ -11,9 +11,12 @@
 
 namespace hpsf {
 
-// Bad input (a file, a scene, --size or a trace option) is an InputError or ConfigError naming it.
-RecordBatch LoadOrTraceBatch(const std::string& input, const std::string& size, TraceOptions& trace,
-                             std::uint32_t seed);
+// For a scene input, sets `trace`'s size from `size` and its seed, and checks it (ConfigError naming the option);
+// a record file is not traced, so its trace options are not checked.
+void ResolveTraceOptions(const std::string& input, const std::string& size, TraceOptions& trace, std::uint32_t seed);
+
+// `trace` as ResolveTraceOptions left it. A bad file or scene is an InputError naming it.
+RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace);
 
 }  // namespace hpsf
 

@@ -50,12 +50,15 @@ void WriteBundle(const CrosscheckOptions& o, const RecordBatch& batch, const Cro
             << " (records.hpsfv, report.json; reproduce.sh reruns the check and writes reproduced.json)\n";
 }
 
-int Run(CrosscheckOptions& o) {
+int Run(CrosscheckOptions& o, bool options_only) {
   const FilterConfig config = ResolveFilterConfig(o.filter);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
-  ParseDefect(o.emulator.defect);  // a bad name is bad input before any tracing
-  const RecordBatch batch = LoadOrTraceBatch(o.input, o.size, o.trace, config.seed);
-  const CrosscheckReport report = Crosscheck(batch, config, SplitList(o.backends), emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan);
+  // Bad names are bad input before any tracing; the Vulkan device opens at the first check.
+  Crosschecker checker(SplitList(o.backends), ParseDefect(o.emulator.defect), o.emulator.vulkan);
+  ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
+  if (options_only) return kExitOk;
+  const RecordBatch batch = LoadOrTraceBatch(o.input, o.trace);
+  const CrosscheckReport report = checker.Check(batch, config, emulator);
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {
@@ -77,7 +80,7 @@ int Run(CrosscheckOptions& o) {
 
 }  // namespace
 
-void AddCrosscheckCommand(CLI::App& app, int* exit_code) {
+void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<CrosscheckOptions>();
   CLI::App* c = app.add_subcommand("crosscheck", "Run the backends on one batch and judge them by the cross-check contract");
   c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
@@ -91,7 +94,7 @@ void AddCrosscheckCommand(CLI::App& app, int* exit_code) {
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
-  c->callback([o, exit_code] { *exit_code = Run(*o); });
+  c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });
   c->parse_complete_callback([o, c] {
     // Keep the given options for the bundle's command line.
     o->arguments.clear();

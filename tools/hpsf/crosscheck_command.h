@@ -5,10 +5,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/hpsf/command_context.h"
+
 namespace hpsf {
 
 // Sets *exit_code to 2 when the contract does not hold.
-void AddCrosscheckCommand(CLI::App& app, int* exit_code);
+void AddCrosscheckCommand(CLI::App& app, CommandContext& context);
 
 }  // namespace hpsf
 

@@ -39,7 +39,7 @@ void RunDevice(const DeviceOptions& options) {
 
 }  // namespace
 
-void AddDeviceCommand(CLI::App& app) {
+void AddDeviceCommand(CLI::App& app, CommandContext& context) {
   auto options = std::make_shared<DeviceOptions>();
   CLI::App* command = app.add_subcommand("device", "Open the Vulkan device hpsf would use and describe it");
   command->add_option("--vk-device", options->vk_device, "Use the device whose name contains this text");
@@ -49,7 +49,9 @@ void AddDeviceCommand(CLI::App& app) {
           "Staging buffers: always, never or auto")
       ->default_str("auto");
   command->add_flag("--json", options->json, "Print a JSON report");
-  command->callback([options] { RunDevice(*options); });
+  command->callback([options, &context] {
+    if (!context.options_only) RunDevice(*options);
+  });
 }
 
 }  // namespace hpsf

@@ -4,9 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/hpsf/command_context.h"
+
 namespace hpsf {
 
-void AddDeviceCommand(CLI::App& app);
+void AddDeviceCommand(CLI::App& app, CommandContext& context);
 
 }  // namespace hpsf
 

@@ -75,8 +75,9 @@ void PrintText(const DiffOptions& o, const ChannelImage& a, const ImageCompariso
   std::printf("%s\n", c.Explanation().c_str());
 }
 
-void Run(const DiffOptions& o, int* exit_code) {
+void Run(const DiffOptions& o, CommandContext& context) {
   const DiffThresholds thresholds = ResolveThresholds(o);
+  if (context.options_only) return;
   const auto read_start = std::chrono::steady_clock::now();
   const ChannelImage a = ReadChannelImage(o.a);
   const ChannelImage b = ReadChannelImage(o.b);
@@ -142,12 +143,12 @@ void Run(const DiffOptions& o, int* exit_code) {
     if (!o.heatmap.empty()) std::printf("wrote %s\n", o.heatmap.c_str());
     if (!o.html.empty()) std::printf("wrote %s (%.2f s)\n", o.html.c_str(), html_seconds);
   }
-  *exit_code = ExitCode(comparison.verdict);
+  context.exit_code = ExitCode(comparison.verdict);
 }
 
 }  // namespace
 
-void AddDiffCommand(CLI::App& app, int* exit_code) {
+void AddDiffCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<DiffOptions>();
   CLI::App* c = app.add_subcommand(
       "diff",
@@ -177,7 +178,7 @@ void AddDiffCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 0.5));
   c->add_flag("--json", o->json, "Print the report as JSON");
-  c->callback([o, exit_code] { Run(*o, exit_code); });
+  c->callback([o, &context] { Run(*o, context); });
 }
 
 }  // namespace hpsf

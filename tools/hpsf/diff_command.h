@@ -6,9 +6,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/hpsf/command_context.h"
+
 namespace hpsf {
 
-void AddDiffCommand(CLI::App& app, int* exit_code);
+void AddDiffCommand(CLI::App& app, CommandContext& context);
 
 }  // namespace hpsf
 

@@ -89,7 +89,7 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, 
   return j;
 }
 
-int Run(FuzzOptions& o) {
+int Run(FuzzOptions& o, bool options_only) {
   CheckBackend(o.backend);
   if (o.backend == "reference") throw ConfigError("--backend", "the reference is the oracle; fuzz emulated or vulkan");
   const Defect defect = ParseDefect(o.defect);
@@ -107,6 +107,7 @@ int Run(FuzzOptions& o) {
   if (o.max_records < 2 || o.max_records > 4096) throw ConfigError("--max-records", "must lie in [2, 4096]");
   if (o.seconds && !(*o.seconds > 0)) throw ConfigError("--time", "must be a positive number of seconds");
   if (!o.seconds && !o.runs) o.seconds = 60.0;
+  if (options_only) return kExitOk;
 
   const std::vector<std::string> backends = {"reference", o.backend};
   Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
@@ -167,7 +168,7 @@ int Run(FuzzOptions& o) {
 
 }  // namespace
 
-void AddFuzzCommand(CLI::App& app, int* exit_code) {
+void AddFuzzCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<FuzzOptions>();
   CLI::App* c = app.add_subcommand("fuzz", "Adversarial batches against a backend or your accumulate shader, judged by the "
                                            "table checker and the cross-check contract; a failure is shrunk to a repro bundle");
@@ -186,7 +187,7 @@ void AddFuzzCommand(CLI::App& app, int* exit_code) {
        "Vulkan: always, never or auto")
       ->default_str("auto");
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
-  c->callback([o, exit_code] { *exit_code = Run(*o); });
+  c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });
 }
 
 }  // namespace hpsf

@@ -268,7 +268,7 @@ void RunBless(const GoldenOptions& o) {
 
 }  // namespace
 
-void AddGoldenCommand(CLI::App& app, int* exit_code) {
+void AddGoldenCommand(CLI::App& app, CommandContext& context) {
   CLI::App* golden = app.add_subcommand("golden", "Golden images: check every case, or bless (rewrite) goldens");
   golden->require_subcommand(1);
   auto check = std::make_shared<GoldenOptions>();
@@ -281,14 +281,18 @@ void AddGoldenCommand(CLI::App& app, int* exit_code) {
   c->add_option("--manifest", check->manifest, "The manifest")->capture_default_str();
   c->add_option("--html", check->html, "Write one HTML report of every comparison here");
   c->add_flag("--json", check->json, "Print the report as JSON");
-  c->callback([check, exit_code] { RunCheck(*check, exit_code); });
+  c->callback([check, &context] {
+    if (!context.options_only) RunCheck(*check, &context.exit_code);
+  });
   auto bless = std::make_shared<GoldenOptions>();
   CLI::App* b = golden->add_subcommand("bless",
                                        "Render cases with their first backend and rewrite their goldens, "
                                        "saying what changed (the only writer of goldens)");
   b->add_option("cases", bless->cases, "Only these cases (default: all)");
   b->add_option("--manifest", bless->manifest, "The manifest")->capture_default_str();
-  b->callback([bless] { RunBless(*bless); });
+  b->callback([bless, &context] {
+    if (!context.options_only) RunBless(*bless);
+  });
 }
 
 }  // namespace hpsf

@@ -7,9 +7,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/hpsf/command_context.h"
+
 namespace hpsf {
 
-void AddGoldenCommand(CLI::App& app, int* exit_code);
+void AddGoldenCommand(CLI::App& app, CommandContext& context);
 
 }  // namespace hpsf
 

@@ -6,27 +6,13 @@
 
 #include "core/error.h"
 #include "emulated/simt/kernel_fault.h"
-#include "tools/hpsf/crosscheck_command.h"
-#include "tools/hpsf/device_command.h"
-#include "tools/hpsf/diff_command.h"
-#include "tools/hpsf/fuzz_command.h"
-#include "tools/hpsf/golden_command.h"
-#include "tools/hpsf/render_command.h"
-#include "tools/hpsf/stats_command.h"
+#include "tools/hpsf/commands.h"
 #include "vulkan/vulkan_device.h"
 
 int main(int argc, char** argv) {
   CLI::App app("hpsf: makes GPU hash tables for hashed path space filtering trustworthy", "hpsf");
-  app.require_subcommand(1);
-  hpsf::AddDeviceCommand(app);
-  hpsf::AddRenderCommand(app);
-  hpsf::AddReplayCommand(app);
-  int exit_code = hpsf::kExitOk;
-  hpsf::AddCrosscheckCommand(app, &exit_code);
-  hpsf::AddStatsCommand(app, &exit_code);
-  hpsf::AddDiffCommand(app, &exit_code);
-  hpsf::AddGoldenCommand(app, &exit_code);
-  hpsf::AddFuzzCommand(app, &exit_code);
+  hpsf::CommandContext context;
+  hpsf::AddCommands(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -42,5 +28,5 @@ int main(int argc, char** argv) {
     std::cerr << "hpsf: kernel fault: " << e.what() << "\n";
     return hpsf::kExitCheckFailed;
   }
-  return exit_code;
+  return context.exit_code;
 }

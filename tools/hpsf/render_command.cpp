@@ -34,7 +34,7 @@ std::function<void(std::uint32_t, std::uint32_t)> TerminalProgress() {
   return [](std::uint32_t done, std::uint32_t total) { std::fprintf(stderr, "\rtracing %3u%%", 100 * done / total); };
 }
 
-void RunRender(RenderOptions& o) {
+void RunRender(RenderOptions& o, bool options_only) {
   CheckBackend(o.backend);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ParseSize(o.size, o.trace);
@@ -42,6 +42,8 @@ void RunRender(RenderOptions& o) {
   o.trace.Validate();
   ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
   CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
+  const Defect defect = ParseDefect(o.emulator.defect);
+  if (options_only) return;
   const Scene scene = LoadScene(o.scene);
 
   const auto start = std::chrono::steady_clock::now();
@@ -51,7 +53,7 @@ void RunRender(RenderOptions& o) {
   const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
 
-  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output, emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan});
+  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output, emulator, defect, o.emulator.vulkan});
   report["version"] = 1;
   report["command"] = "render";
   report["scene"] = scene.name;
@@ -74,12 +76,14 @@ struct ReplayOptions {
   bool json = false;
 };
 
-void RunReplay(const ReplayOptions& o) {
+void RunReplay(const ReplayOptions& o, bool options_only) {
   CheckBackend(o.backend);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ResolveFilterConfig(o.filter);
+  const Defect defect = ParseDefect(o.emulator.defect);
+  if (options_only) return;
   const RecordBatch batch = ReadRecordFile(o.records);
-  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output, emulator, ParseDefect(o.emulator.defect), o.emulator.vulkan});
+  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output, emulator, defect, o.emulator.vulkan});
   report["version"] = 1;
   report["command"] = "replay";
   report["records_file"] = o.records;
@@ -88,7 +92,7 @@ void RunReplay(const ReplayOptions& o) {
 
 }  // namespace
 
-void AddRenderCommand(CLI::App& app) {
+void AddRenderCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* c = app.add_subcommand("render", "Trace a scene into sample records, filter them, write OUT.exr and OUT.png");
   c->add_option("scene", o->scene, "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
@@ -105,10 +109,10 @@ void AddRenderCommand(CLI::App& app) {
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
-  c->callback([o] { RunRender(*o); });
+  c->callback([o, &context] { RunRender(*o, context.options_only); });
 }
 
-void AddReplayCommand(CLI::App& app) {
+void AddReplayCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<ReplayOptions>();
   CLI::App* c = app.add_subcommand("replay", "Filter a recorded batch (.hpsfv) and write OUT.exr and OUT.png");
   c->add_option("records", o->records, "The .hpsfv file")->required();
@@ -117,7 +121,7 @@ void AddReplayCommand(CLI::App& app) {
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
-  c->callback([o] { RunReplay(*o); });
+  c->callback([o, &context] { RunReplay(*o, context.options_only); });
 }
 
 }  // namespace hpsf

@@ -4,10 +4,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/hpsf/command_context.h"
+
 namespace hpsf {
 
-void AddRenderCommand(CLI::App& app);
-void AddReplayCommand(CLI::App& app);
+void AddRenderCommand(CLI::App& app, CommandContext& context);
+void AddReplayCommand(CLI::App& app, CommandContext& context);
 
 }  // namespace hpsf
 

@@ -62,9 +62,11 @@ void PrintText(const TableStatistics& s, const std::string& input) {
   std::printf("%s\n", s.ExceedsTheory() ? "WARN: a measured rate exceeds its theory" : "every rate within its theory");
 }
 
-int Run(StatsOptions& o) {
+int Run(StatsOptions& o, bool options_only) {
   const FilterConfig config = ResolveFilterConfig(o.filter);
-  const RecordBatch batch = LoadOrTraceBatch(o.input, o.size, o.trace, config.seed);
+  ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
+  if (options_only) return kExitOk;
+  const RecordBatch batch = LoadOrTraceBatch(o.input, o.trace);
   const auto start = std::chrono::steady_clock::now();
   const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
   const std::vector<KeyResult> keys =
@@ -87,7 +89,7 @@ int Run(StatsOptions& o) {
 
 }  // namespace
 
-void AddStatsCommand(CLI::App& app, int* exit_code) {
+void AddStatsCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* c = app.add_subcommand("stats", "The figures that size a table for a scene: load, probes, failures, "
                                             "aliases, records per cell, jitter; each beside its theory");
@@ -101,7 +103,7 @@ void AddStatsCommand(CLI::App& app, int* exit_code) {
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   AddFilterOptions(*c, o->filter);
-  c->callback([o, exit_code] { *exit_code = Run(*o); });
+  c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });
 }
 
 }  // namespace hpsf

@@ -6,10 +6,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/hpsf/command_context.h"
+
 namespace hpsf {
 
 // Sets *exit_code to 1 when a rate exceeds its theory.
-void AddStatsCommand(CLI::App& app, int* exit_code);
+void AddStatsCommand(CLI::App& app, CommandContext& context);
 
 }  // namespace hpsf
 
