@@ -271,11 +271,12 @@ void TraceOptions::Validate() const {
   if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
 }
 
-TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
+TraceResult TraceRecords(const Scene& animated, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
   options.Validate();
   const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const Scene scene = animated.AtFrame(options.frame);
   const Tracer tracer(scene, options);
 
   TraceResult result;

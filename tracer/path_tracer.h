@@ -19,7 +19,7 @@ struct TraceOptions {
   std::uint32_t height = 256;
   std::uint32_t samples_per_pixel = 4;
   std::uint32_t seed = 1;
-  std::uint32_t frame = 0;
+  std::uint32_t frame = 0;  // in the counter RNG, and the time at which an animated scene is traced
   // Surface vertices per path, the series truncated after the last one's emission; -1: unbounded, ended by
   // Russian roulette.
   int max_depth = 8;

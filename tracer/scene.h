@@ -1,5 +1,6 @@
 // A scene as the tracer sees it: a pinhole camera, diffuse materials (albedo, two-sided emission), triangles
-// and an optional constant sky. Every shape of a scene file becomes triangles when it is loaded.
+// and an optional constant sky. Every shape of a scene file becomes triangles when it is loaded; a named shape
+// keeps its triangles' range, so keyframes (animation.h) can move it.
 #ifndef HPSF_TRACER_SCENE_H
 #define HPSF_TRACER_SCENE_H
 
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "tracer/animation.h"
 
 namespace hpsf {
 
@@ -30,14 +33,26 @@ struct Triangle {
   std::uint32_t material = 0;
 };
 
+struct NamedShape {
+  std::string name;
+  std::uint32_t first_triangle = 0;
+  std::uint32_t triangle_count = 0;
+};
+
 struct Scene {
   std::string name;
   Camera camera;
   std::vector<Material> materials;
   std::vector<Triangle> triangles;
   glm::vec3 sky{0.0f};  // radiance of rays that leave the scene
+  std::vector<NamedShape> shapes;
+  Animation animation;  // names only shapes in `shapes`
 
-  // Moves and scales everything, camera included: world = (local * scale) + translate.
+  // The scene as it stands at `frame`: the camera and the animated shapes moved to their interpolated keys, an
+  // animated emitter's radiance scaled (on a copy of its material). A static scene is returned as it is. An
+  // InputError if the camera's position and look_at meet at that frame.
+  Scene AtFrame(std::uint32_t frame) const;
+  // Moves and scales everything, camera and keyframes included: world = (local * scale) + translate.
   void Transform(double scale, glm::dvec3 translate);
   // The largest |coordinate| of any vertex or of the camera: the scale of float spacing in the scene.
   double Extent() const;

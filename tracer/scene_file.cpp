@@ -54,7 +54,20 @@ class SceneParser {
     }
     const json& shapes = Member(root, "", "shapes");
     Expect(shapes.is_array() && !shapes.empty(), "/shapes", "a non-empty array");
-    for (std::size_t i = 0; i < shapes.size(); ++i) ParseShape(shapes[i], "/shapes/" + std::to_string(i), by_name, scene);
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      const std::string pointer = "/shapes/" + std::to_string(i);
+      const std::uint32_t first = std::uint32_t(scene.triangles.size());
+      ParseShape(shapes[i], pointer, by_name, scene);
+      if (shapes[i].contains("name")) {
+        Expect(shapes[i]["name"].is_string(), pointer + "/name", "a string");
+        const std::string name = shapes[i]["name"].get<std::string>();
+        for (const NamedShape& other : scene.shapes) {
+          if (other.name == name) Fail(pointer + "/name", "duplicate shape name '" + name + "'");
+        }
+        scene.shapes.push_back({name, first, std::uint32_t(scene.triangles.size()) - first});
+      }
+    }
+    if (root.contains("animation")) scene.animation = ParseAnimation(root["animation"], scene);
     return scene;
   }
 
@@ -102,6 +115,90 @@ class SceneParser {
     Expect(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0, "/camera/fov_y_degrees", "an angle in (0, 180) degrees");
     Expect(c.look_at != c.position, "/camera/look_at", "a point other than the camera position");
     return c;
+  }
+
+  // A keyframe's frame: an integer in [0, 2^31).
+  std::uint32_t Frame(const json& key, const std::string& pointer) const {
+    const double f = Number(Member(key, pointer, "frame"), pointer + "/frame");
+    Expect(f >= 0.0 && f < 2147483648.0 && f == std::floor(f), pointer + "/frame", "a frame number, an integer in [0, 2^31)");
+    return std::uint32_t(f);
+  }
+  template <typename Key>
+  void ExpectIncreasing(const std::vector<Key>& keys, const std::string& pointer) const {
+    for (std::size_t i = 1; i < keys.size(); ++i) {
+      if (keys[i].frame <= keys[i - 1].frame) Fail(pointer + "/" + std::to_string(i) + "/frame", "frames must increase from key to key");
+    }
+  }
+  const json& Keys(const json& value, const std::string& pointer) const {
+    Expect(value.is_array() && !value.empty(), pointer, "a non-empty array of keyframes");
+    return value;
+  }
+
+  // "animation": {"camera": [{"frame", "position"?, "look_at"?}...], "shapes": [{"shape": NAME, "keys":
+  // [{"frame", "translate"?, "emission_scale"?}...]}...]}. What a key leaves out is the scene's own value.
+  Animation ParseAnimation(const json& j, const Scene& scene) const {
+    Expect(j.is_object(), "/animation", "an object");
+    for (const auto& [key, value] : j.items()) {
+      if (key != "camera" && key != "shapes") Fail("/animation/" + key, "not a member of an animation (camera, shapes)");
+    }
+    Animation animation;
+    if (j.contains("camera")) {
+      const json& keys = Keys(j["camera"], "/animation/camera");
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        const std::string pointer = "/animation/camera/" + std::to_string(i);
+        Expect(keys[i].is_object(), pointer, "a keyframe object");
+        CameraKey k{Frame(keys[i], pointer), scene.camera.position, scene.camera.look_at};
+        if (keys[i].contains("position")) k.position = Point(keys[i]["position"], pointer + "/position");
+        if (keys[i].contains("look_at")) k.look_at = Point(keys[i]["look_at"], pointer + "/look_at");
+        Expect(k.look_at != k.position, pointer + "/look_at", "a point other than the camera position");
+        animation.camera.push_back(k);
+      }
+      ExpectIncreasing(animation.camera, "/animation/camera");
+    }
+    if (j.contains("shapes")) {
+      const json& shapes = j["shapes"];
+      Expect(shapes.is_array(), "/animation/shapes", "an array");
+      for (std::size_t s = 0; s < shapes.size(); ++s) {
+        const std::string pointer = "/animation/shapes/" + std::to_string(s);
+        const json& name = Member(shapes[s], pointer, "shape");
+        Expect(name.is_string(), pointer + "/shape", "a shape's name");
+        const auto shape = std::find_if(scene.shapes.begin(), scene.shapes.end(),
+                                        [&](const NamedShape& n) { return n.name == name.get<std::string>(); });
+        if (shape == scene.shapes.end()) Fail(pointer + "/shape", "no shape named '" + name.get<std::string>() + "'");
+        for (const ShapeAnimation& other : animation.shapes) {
+          if (other.shape == shape->name) Fail(pointer + "/shape", "'" + shape->name + "' is animated twice");
+        }
+        const bool emits = shape->triangle_count > 0 &&
+                           scene.materials[scene.triangles[shape->first_triangle].material].IsEmissive();
+        ShapeAnimation a{shape->name, {}};
+        const json& keys = Keys(Member(shapes[s], pointer, "keys"), pointer + "/keys");
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+          const std::string key = pointer + "/keys/" + std::to_string(i);
+          Expect(keys[i].is_object(), key, "a keyframe object");
+          ShapeKey k{Frame(keys[i], key), glm::dvec3(0.0), 1.0};
+          if (keys[i].contains("translate")) {
+            k.translate = Point(keys[i]["translate"], key + "/translate");
+            // A frame between two keys lies between their positions, so checking the keys covers every frame.
+            for (std::uint32_t t = shape->first_triangle; t < shape->first_triangle + shape->triangle_count; ++t) {
+              const Triangle& tri = scene.triangles[t];
+              for (const glm::vec3& p : {tri.p0, tri.p1, tri.p2}) {
+                Expect(WithinFloatRange(glm::dvec3(p) + k.translate), key + "/translate",
+                       "a translation that keeps '" + shape->name + "' within float range");
+              }
+            }
+          }
+          if (keys[i].contains("emission_scale")) {
+            if (!emits) Fail(key + "/emission_scale", "'" + shape->name + "' does not emit");
+            k.emission_scale = Number(keys[i]["emission_scale"], key + "/emission_scale");
+            Expect(k.emission_scale >= 0.0 && k.emission_scale <= 1e6, key + "/emission_scale", "a scale in [0, 1e6]");
+          }
+          a.keys.push_back(k);
+        }
+        ExpectIncreasing(a.keys, pointer + "/keys");
+        animation.shapes.push_back(a);
+      }
+    }
+    return animation;
   }
 
   Material ParseMaterial(const json& j, const std::string& pointer) const {

@@ -2,7 +2,7 @@
 // then optionally a line "--- mesh.obj ---" and the OBJ's text, written as mesh.obj in the scratch directory that
 // relative mesh paths resolve against. Every input is a scene or an hpsf::InputError; a bug is a crash, a hang,
 // a sanitizer report, any other exception, or a scene with a non-finite coordinate (or one beyond float range)
-// in its camera or triangles. Inputs naming an absolute path or ".." are skipped: they would read the machine's
+// in its camera or triangles, at any frame of its animation. Inputs naming an absolute path or ".." are skipped: they would read the machine's
 // files (/dev/zero never ends), which hpsf rightly allows.
 #include <cmath>
 #include <cstdint>
@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -68,7 +69,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!parsed.is_discarded() && NamesOutsideFiles(parsed)) return 0;
   Scratch().Write("mesh.obj", obj_text);
   try {
-    CheckScene(ParseScene(json_text, "fuzz.json", Scratch().path().string()));
+    const Scene scene = ParseScene(json_text, "fuzz.json", Scratch().path().string());
+    CheckScene(scene);
+    // An animated scene at its keys, around them and far after the last: every frame a valid scene too.
+    std::vector<std::uint32_t> frames = {0, 0xffffffffu};
+    for (const CameraKey& k : scene.animation.camera) frames.insert(frames.end(), {k.frame, k.frame + 1});
+    for (const ShapeAnimation& a : scene.animation.shapes) {
+      for (const ShapeKey& k : a.keys) frames.insert(frames.end(), {k.frame, k.frame + 1});
+    }
+    if (!scene.animation.Static()) {
+      for (std::uint32_t frame : frames) CheckScene(scene.AtFrame(frame));
+    }
   } catch (const InputError&) {
   }
   return 0;

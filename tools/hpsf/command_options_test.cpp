@@ -162,26 +162,116 @@ std::vector<OptionName> OptionNames(const std::vector<std::string>& path) {
   return names;
 }
 
-const std::vector<std::string> kEdgeValues = {
-    "", "0", "1", "-1", "2", "7", "8", "32", "33", "64", "1023", "1024", "1025", "65536", "65537", "4294967295",
-    "4294967296", "-2147483649", "18446744073709551616", "1e400", "-1e400", "nan", "inf", "-inf", "0.5", "1e-300",
-    "-0", "0x0", "1x1", "64x48", "16384x16384", "16385x1", "4294967296x1", "x", "3x", "x3", "8x8x8", "cornell",
-    "furnace", "cornell-tiny", "a.hpsfv", "a.exr", "a.json", "fixed64", "float32", "both", "fast", "faithful",
-    "round-robin", "random:1", "pct:1:2", "pct:", "exhaustive", "none", "sign", "octahedral:0", "octahedral:24",
-    "on", "off", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13", "D1", "reference", "emulated", "vulkan",
-    "reference,emulated", "emulated,,vulkan", ",", "always", "never", "auto", "mse", "psnr", "ssim", "max",
-    "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help"};
+const std::vector<std::string> kEdgeValues = {"",
+                                              "0",
+                                              "1",
+                                              "-1",
+                                              "2",
+                                              "7",
+                                              "8",
+                                              "32",
+                                              "33",
+                                              "64",
+                                              "1023",
+                                              "1024",
+                                              "1025",
+                                              "65536",
+                                              "65537",
+                                              "4294967295",
+                                              "4294967296",
+                                              "-2147483649",
+                                              "18446744073709551616",
+                                              "1e400",
+                                              "-1e400",
+                                              "nan",
+                                              "inf",
+                                              "-inf",
+                                              "0.5",
+                                              "1e-300",
+                                              "-0",
+                                              "0x0",
+                                              "1x1",
+                                              "64x48",
+                                              "16384x16384",
+                                              "16385x1",
+                                              "4294967296x1",
+                                              "x",
+                                              "3x",
+                                              "x3",
+                                              "8x8x8",
+                                              "cornell",
+                                              "furnace",
+                                              "cornell-tiny",
+                                              "a.hpsfv",
+                                              "a.exr",
+                                              "a.json",
+                                              "fixed64",
+                                              "float32",
+                                              "both",
+                                              "fast",
+                                              "faithful",
+                                              "round-robin",
+                                              "random:1",
+                                              "pct:1:2",
+                                              "pct:",
+                                              "exhaustive",
+                                              "none",
+                                              "sign",
+                                              "octahedral:0",
+                                              "octahedral:24",
+                                              "on",
+                                              "off",
+                                              "D2",
+                                              "D3",
+                                              "D8",
+                                              "D8-unwrapped",
+                                              "D9",
+                                              "D13",
+                                              "D1",
+                                              "reference",
+                                              "emulated",
+                                              "vulkan",
+                                              "reference,emulated",
+                                              "emulated,,vulkan",
+                                              ",",
+                                              "always",
+                                              "never",
+                                              "auto",
+                                              "mse",
+                                              "psnr",
+                                              "ssim",
+                                              "max",
+                                              "percentile",
+                                              "fraction",
+                                              "--",
+                                              "-",
+                                              "-126",
+                                              "126",
+                                              "127",
+                                              "-127",
+                                              "--help"};
 
 // Numbers at the edges of each integer and float type, inside the shapes the resolvers split: WxH, NAME:N,
 // pct:SEED:DEPTH.
 std::vector<std::string> CompoundValues() {
-  const std::vector<std::string> numbers = {"0", "1", "-1", "65535", "65536", "2147483647", "2147483648",
-                                            "4294967296", "18446744073709551616", "99999999999999999999", "1e400",
-                                            "nan", "0.5", ""};
+  const std::vector<std::string> numbers = {"0",
+                                            "1",
+                                            "-1",
+                                            "65535",
+                                            "65536",
+                                            "2147483647",
+                                            "2147483648",
+                                            "4294967296",
+                                            "18446744073709551616",
+                                            "99999999999999999999",
+                                            "1e400",
+                                            "nan",
+                                            "0.5",
+                                            ""};
   std::vector<std::string> values;
   for (const std::string& n : numbers) {
-    for (const std::string& v : {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n,
-                                 "pct:" + n + ":2", "pct:1:" + n}) {
+    for (const std::string& v :
+         {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n}) {
       values.push_back(v);
     }
   }
@@ -193,29 +283,31 @@ rc::Gen<std::vector<std::string>> GenItem(const std::vector<OptionName>& names) 
   const auto value = rc::gen::oneOf(rc::gen::elementOf(kEdgeValues), rc::gen::elementOf(compound));
   const auto option = rc::gen::mapcat(rc::gen::elementOf(names), [value](const OptionName& o) {
     if (!o.takes_value) return rc::gen::just(std::vector<std::string>{o.name});
-    return rc::gen::map(value,
-                        [o](const std::string& value) { return std::vector<std::string>{o.name, value}; });
+    return rc::gen::map(value, [o](const std::string& value) { return std::vector<std::string>{o.name, value}; });
   });
   const auto stray = rc::gen::map(rc::gen::elementOf(kEdgeValues),
                                   [](const std::string& value) { return std::vector<std::string>{value}; });
   const auto arbitrary = rc::gen::map(
-      rc::gen::mapcat(rc::gen::inRange<std::size_t>(1, 6),
-                      [](std::size_t n) { return rc::gen::container<std::string>(n, rc::gen::inRange<char>(32, 127)); }),
+      rc::gen::mapcat(
+          rc::gen::inRange<std::size_t>(1, 6),
+          [](std::size_t n) { return rc::gen::container<std::string>(n, rc::gen::inRange<char>(32, 127)); }),
       [](const std::string& word) { return std::vector<std::string>{word}; });
   return rc::gen::weightedOneOf<std::vector<std::string>>({{12, option}, {2, stray}, {1, arbitrary}});
 }
 
 std::vector<std::string> RequiredArguments(const std::vector<std::string>& path) {
-  static const std::map<std::string, std::vector<std::string>> required = {
-      {"render", {"cornell", "-o", "o.exr"}}, {"replay", {"r.hpsfv", "-o", "o.exr"}}, {"crosscheck", {"cornell"}},
-      {"stats", {"furnace"}}, {"diff", {"a.exr", "b.exr"}}};
+  static const std::map<std::string, std::vector<std::string>> required = {{"render", {"cornell", "-o", "o.exr"}},
+                                                                           {"replay", {"r.hpsfv", "-o", "o.exr"}},
+                                                                           {"crosscheck", {"cornell"}},
+                                                                           {"stats", {"furnace"}},
+                                                                           {"diff", {"a.exr", "b.exr"}}};
   const auto given = required.find(path.back());
   return given == required.end() ? std::vector<std::string>{} : given->second;
 }
 
-const std::vector<std::vector<std::string>> kCommandPaths = {{"device"}, {"render"}, {"replay"}, {"crosscheck"},
-                                                            {"stats"}, {"diff"}, {"golden", "check"},
-                                                            {"golden", "bless"}, {"fuzz"}};
+const std::vector<std::vector<std::string>> kCommandPaths = {{"device"},          {"render"},          {"replay"},
+                                                             {"crosscheck"},      {"stats"},           {"diff"},
+                                                             {"golden", "check"}, {"golden", "bless"}, {"fuzz"}};
 
 // Every option of every command with every edge and compound value, one at a time after what the command
 // requires: each line parses or fails as bad input, and each option accepts some value (so its resolver runs).

@@ -39,6 +39,7 @@ void RunRender(RenderOptions& o, bool options_only) {
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ParseSize(o.size, o.trace);
   o.trace.seed = o.filter.config.seed;
+  o.filter.config.frame = o.trace.frame;  // the jitter's random numbers follow the frame too
   o.trace.Validate();
   ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
   CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
@@ -59,7 +60,7 @@ void RunRender(RenderOptions& o, bool options_only) {
   report["scene"] = scene.name;
   report["trace"] = {{"width", o.trace.width},       {"height", o.trace.height},
                      {"spp", o.trace.samples_per_pixel}, {"max_depth", o.trace.max_depth},
-                     {"filter_bounce", o.trace.filter_bounce}, {"threads", o.trace.threads}};
+                     {"filter_bounce", o.trace.filter_bounce}, {"threads", o.trace.threads}, {"frame", o.trace.frame}};
   report["rays"] = traced.stats.Rays();
   report["timings"]["trace_s"] = trace_seconds;
   report["rays_per_s"] = trace_seconds > 0.0 ? double(traced.stats.Rays()) / trace_seconds : 0.0;
@@ -105,6 +106,9 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
                 "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")->capture_default_str();
   c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")->capture_default_str();
+  c->add_option("--frame", o->trace.frame,
+                "Trace an animated scene at this frame (its keyframes, and the frame in every random number); "
+                "filtered on its own, without the frames before it")->capture_default_str();
   c->add_option("--dump-records", o->dump_records, "Also write the traced batch to FILE.hpsfv");
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
