@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/shared/fixed_point.h"
 #include "core/shared/float_bits.h"
 
 namespace hpsf {
@@ -85,16 +86,29 @@ void FilterConfig::Validate() const {
   if (fingerprint_bits < 8 || fingerprint_bits > 32) {
     throw ConfigError("--fingerprint-bits", "must lie in [8, 32]; got " + std::to_string(fingerprint_bits));
   }
+  if (fixed_point_bits &&
+      (*fixed_point_bits < shared::kFixedPointBitsMin || *fixed_point_bits > shared::kFixedPointBitsMax)) {
+    throw ConfigError("--fixed-point-bits", "must lie in [" + std::to_string(shared::kFixedPointBitsMin) + ", " +
+                                                std::to_string(shared::kFixedPointBitsMax) + "]; got " +
+                                                std::to_string(*fixed_point_bits));
+  }
+  if (frames < 1 || frames > kMaxFrames) {
+    throw ConfigError("--frames", "must lie in [1, " + std::to_string(kMaxFrames) + "]; got " + std::to_string(frames));
+  }
 }
 
 std::string FilterConfig::ToString() const {
-  return "[ FilterConfig filter_width_px: " + FormatFloat(filter_width_px) + " jitter_scale: " + FormatFloat(jitter_scale) +
-         " normal: " + normal.ToString() + " normal_in_index: " + (normal_in_index ? "true" : "false") +
-         " lod: " + (lod ? "on" : "off") + " cell_size: " + FormatFloat(cell_size) + " level: [" +
-         std::to_string(level_min) + ", " + std::to_string(level_max) + "] accum: " + hpsf::ToString(accumulation) +
+  return "[ FilterConfig filter_width_px: " + FormatFloat(filter_width_px) +
+         " jitter_scale: " + FormatFloat(jitter_scale) + " normal: " + normal.ToString() +
+         " normal_in_index: " + (normal_in_index ? "true" : "false") + " lod: " + (lod ? "on" : "off") +
+         " cell_size: " + FormatFloat(cell_size) + " level: [" + std::to_string(level_min) + ", " +
+         std::to_string(level_max) + "] accum: " + hpsf::ToString(accumulation) +
          " capacity: " + std::to_string(capacity) + " probe_limit: " + std::to_string(probe_limit) +
          " fingerprint_bits: " + std::to_string(fingerprint_bits) + " seed: " + std::to_string(seed) +
-         " frame: " + std::to_string(frame) + " ]";
+         " frame: " + std::to_string(frame) +
+         // Only when set, so single-frame configs read as they always have (golden metadata holds them).
+         (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
+         (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) + " ]";
 }
 
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {

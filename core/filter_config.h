@@ -3,6 +3,7 @@
 #define HPSF_CORE_FILTER_CONFIG_H
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/shared/key_params.h"
@@ -23,6 +24,8 @@ NormalKey ParseNormalKey(const std::string& text);
 Accumulation ParseAccumulation(const std::string& text);
 std::string ToString(Accumulation accumulation);
 
+inline constexpr std::uint32_t kMaxFrames = 1u << 20;  // --frames
+
 struct FilterConfig {
   float filter_width_px = 4.0f;     // --filter-width: a cell spans this many pixels at a primary hit
   float jitter_scale = 1.0f;        // --jitter: amplitude in units of the cell size; 0 turns jitter off
@@ -37,7 +40,11 @@ struct FilterConfig {
   std::uint32_t probe_limit = 16;                      // --probe-limit: slots tried before a probe failure
   std::uint32_t fingerprint_bits = 32;                 // --fingerprint-bits: 8..32
   std::uint32_t seed = 1;                              // --seed
-  std::uint32_t frame = 0;
+  std::uint32_t frame = 0;                             // in every random number of the key path (the jitter)
+  // --fixed-point-bits: F of fixed64 for every frame; unset, the first frame of a table chooses it, leaving room
+  // for `frames` frames like it (core/fixed_point_scale.h).
+  std::optional<int> fixed_point_bits;
+  std::uint32_t frames = 1;  // --frames: how many frames one table integrates (core/backend.h)
 
   // Throws ConfigError for the first invalid option.
   void Validate() const;

@@ -32,7 +32,8 @@ struct FilterStats {
   std::uint64_t cells = 0;
   std::uint64_t max_records_per_cell = 0;
   double mean_records_per_cell = 0.0;
-  int fixed_point_bits = 0;  // F of fixed64 for this batch
+  int fixed_point_bits = 0;             // F of fixed64 for this batch
+  std::uint64_t fixed_point_wraps = 0;  // fixed64 adds whose cell sum wrapped (a sequence outgrew its F)
 };
 
 struct FilterResult {

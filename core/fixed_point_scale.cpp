@@ -35,16 +35,18 @@ unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int chan
   return sum;
 }
 
-int ChooseFixedPointBits(std::span<const Record> records) {
+int ChooseFixedPointBits(std::span<const Record> records, std::uint32_t frames) {
   std::vector<glm::vec3> contributions;
   contributions.reserve(records.size());
   for (const Record& r : records) {
     if (EntersTable(r)) contributions.push_back(glm::vec3(r.contribution));
   }
-  return ChooseFixedPointBitsOf(contributions);
+  return ChooseFixedPointBitsOf(contributions, {}, frames);
 }
 
-int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner) {
+int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner, std::uint32_t frames) {
+  if (frames == 0) throw ConfigError("--frames", "must be at least 1");
+  const std::uint64_t limit = (std::uint64_t(1) << 63) / frames;  // every channel's sum stays below it
   const RangeRunner run = runner ? runner : RangeRunner([](std::size_t n, const auto& work) { work(0, n); });
   std::mutex merge;
   glm::dvec3 total(0.0);  // only the starting estimate: its rounding order does not change the answer
@@ -58,7 +60,6 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
   // channels in one pass per range, the running sums in registers; ranges add up in 128 bits.
   auto fits = [&](int f) {
     const double scale = std::ldexp(1.0, f);
-    constexpr std::uint64_t kLimit = std::uint64_t(1) << 63;
     std::atomic<bool> overflow{false};
     unsigned __int128 x_total = 0, y_total = 0, z_total = 0;
     run(contributions.size(), [&](std::size_t begin, std::size_t end) {
@@ -73,7 +74,7 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
         x += static_cast<std::uint64_t>(cx);  // both terms below 2^63: no wrap
         y += static_cast<std::uint64_t>(cy);
         z += static_cast<std::uint64_t>(cz);
-        if ((x | y | z) >= kLimit) {
+        if (x >= limit || y >= limit || z >= limit) {
           overflow = true;
           return;
         }
@@ -83,14 +84,15 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
       y_total += y;
       z_total += z;
     });
-    return !overflow && x_total < kLimit && y_total < kLimit && z_total < kLimit;
+    return !overflow && x_total < limit && y_total < limit && z_total < limit;
   };
   // Start from the estimate sum(ceil(c 2^F)) <= 2^F sum(c) + n, then step to the exact answer: usually one or
   // two passes instead of a binary search over all 253 values.
   const double largest = std::max({total.x, total.y, total.z});
   int f = shared::kFixedPointBitsMax;
-  if (largest > 0.0) {
-    const double room = 0x1p63 - double(contributions.size()) - 1.0;
+  const double room = double(limit) - double(contributions.size()) - 1.0;
+  if (largest > 0.0 && room <= 0.0) f = shared::kFixedPointBitsMin;  // many frames of many records: search upward
+  if (largest > 0.0 && room > 0.0) {
     f = static_cast<int>(std::clamp(std::floor(std::log2(room / largest)), double(shared::kFixedPointBitsMin),
                                     double(shared::kFixedPointBitsMax)));
   }

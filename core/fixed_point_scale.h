@@ -19,11 +19,15 @@ namespace hpsf {
 // thread pool (it depends on glm alone), so a backend passes its own; empty runs one range on the caller.
 using RangeRunner = std::function<void(std::size_t n, const std::function<void(std::size_t begin, std::size_t end)>& work)>;
 
-int ChooseFixedPointBits(std::span<const Record> records);
+int ChooseFixedPointBits(std::span<const Record> records, std::uint32_t frames = 1);
 // The same choice from the contributions of the records that enter the table; a backend that has already
 // checked its records passes those, with zero in place of a record that does not enter (zero adds nothing).
 // The sums are integers, so F does not depend on how the runner splits the work.
-int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner = {});
+// frames > 1: a table integrated over that many frames like this one (issue 14) keeps the first frame's F, so
+// the first frame's sums must stay below 2^63 / frames instead: frames alike never overflow, and a later,
+// brighter frame that does is counted by the kernels' wrap check.
+int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner = {},
+                           std::uint32_t frames = 1);
 
 // The channel total bound of the choice above, exact: sum of ceil(c * 2^F) over accepted vertex records.
 // Saturates at 2^127 instead of wrapping.

@@ -1,5 +1,6 @@
 #include "emulated/emulated_filter.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <chrono>
@@ -44,7 +45,7 @@ void EmulatorOptions::Validate() const {
 }
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
-                           AccumulateKernelFn accumulate) {
+                           AccumulateKernelFn accumulate, const HashTableDump* previous) {
   CheckBatchShape(batch);
   config.Validate();
   options.Validate();
@@ -76,7 +77,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.probe_limit = config.probe_limit;
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
-  table.fixed_point_bits = ChooseFixedPointBitsOf(entering, AllCores);
+  table.fixed_point_bits = previous                  ? previous->fixed_point_bits
+                           : config.fixed_point_bits ? *config.fixed_point_bits
+                                                     : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
@@ -97,6 +100,22 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   b.counts = memory.Allocate64("counts", config.capacity);
   b.placements = memory.Allocate32("placements", n);
   b.wraps = memory.Allocate64("wraps", 1);
+  if (previous) {
+    if (previous->capacity != config.capacity || previous->accumulation != config.accumulation) {
+      throw ConfigError("--capacity", "the previous frame's table has another shape; start a new sequence");
+    }
+    std::copy(previous->tags.begin(), previous->tags.end(), memory.Words32(b.tags).begin());
+    std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
+    if (fixed) {
+      const std::span<std::uint64_t> sums = memory.Words64(b.sums);
+      for (std::size_t s = 0; s < config.capacity; ++s) std::copy_n(previous->fixed_sums[s].begin(), 3, &sums[s * 3]);
+    } else {
+      const std::span<std::uint32_t> sums = memory.Words32(b.sums);
+      for (std::size_t s = 0; s < config.capacity; ++s) {
+        for (int c = 0; c < 3; ++c) sums[s * 3 + c] = std::bit_cast<std::uint32_t>(previous->float_sums[s][c]);
+      }
+    }
+  }
 
   run.timings.clear = clock.Lap();
   const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
@@ -186,6 +205,5 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.timings.resolve = clock.Lap();
   return run;
 }
-
 
 }  // namespace hpsf

@@ -50,8 +50,10 @@ struct EmulatedRun : HashedRun {
 // The accumulate kernel to run; tests pass broken variants of it (DESIGN.md, "Known defects").
 using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const AccumulateArgs&);
 
+// previous: the table after the frames before this one in a sequence (core/backend.h); the device table starts
+// as it, and F is its F. Null: the table starts empty and F is chosen for this batch (and config.frames).
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
-                           AccumulateKernelFn kernel = AccumulateKernel);
+                           AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr);
 
 }  // namespace hpsf
 

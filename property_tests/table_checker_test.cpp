@@ -41,8 +41,9 @@ RecordBatch GeneratedBatch(std::uint32_t seed, std::uint32_t count) {
   return batch;
 }
 
-std::vector<TableViolation> Check(const EmulatedRun& run, const RecordBatch& batch) {
-  return CheckTable({run.table, batch.records, run.keys, run.placements});
+std::vector<TableViolation> Check(const EmulatedRun& run, const RecordBatch& batch,
+                                  const HashTableDump* before = nullptr) {
+  return CheckTable({run.table, batch.records, run.keys, run.placements, before});
 }
 
 bool Aliased(const EmulatedRun& run) {
@@ -91,16 +92,17 @@ struct Fixture {
   RecordBatch batch = GeneratedBatch(7, 300);
   FilterConfig config;
   EmulatedRun run;
+  std::optional<HashTableDump> before;  // the table before this frame, when a plant gives one
 
   // The invariants the checker reports, each once: a plant must leave exactly one.
   std::set<TableInvariant> Invariants() const {
     std::set<TableInvariant> invariants;
-    for (const TableViolation& v : Check(run, batch)) invariants.insert(v.invariant);
+    for (const TableViolation& v : Check(run, batch, before ? &*before : nullptr)) invariants.insert(v.invariant);
     return invariants;
   }
   std::string Reported() const {
     std::string text;
-    for (const TableViolation& v : Check(run, batch)) text += "\n  " + v.ToString();
+    for (const TableViolation& v : Check(run, batch, before ? &*before : nullptr)) text += "\n  " + v.ToString();
     return text.empty() ? " nothing" : text;
   }
 
@@ -338,6 +340,19 @@ void PlantOrphanTag(Fixture& f) {
   f.run.table.tags[s] = f.UnusedTag();
 }
 
+// Over frames: the table before this frame had claimed a slot that is empty after it (an eviction without a policy
+// that allows it, or a table cleared between frames). The slot held no count or sum, so only its tag tells.
+void PlantTagLostAcrossFrames(Fixture& f) {
+  const std::uint32_t s = f.EmptySlot();
+  ASSERT_NE(s, kNotPlaced);
+  HashTableDump before = f.run.table;
+  std::fill(before.tags.begin(), before.tags.end(), kEmptyTag);
+  std::fill(before.counts.begin(), before.counts.end(), 0);
+  std::fill(before.fixed_sums.begin(), before.fixed_sums.end(), std::array<std::uint64_t, 3>{});
+  before.tags[s] = f.UnusedTag();
+  f.before = before;
+}
+
 // The per-slot checks imply the total wherever records sit on tagged slots. A fingerprint of 0 (core never
 // makes one: 0 marks an empty slot) lets a record sit, unseen by them, on a slot whose tag and count stayed 0:
 // only the total sees the missing add. The record's add is taken out of its old slot, which keeps company.
@@ -382,6 +397,7 @@ const IsolatedCase kIsolatedCases[] = {
     {"EmptySlotWithASum", TableInvariant::kEmptySlotNotZero, kRoomy, kFixed64, PlantEmptySlotWithASum},
     {"OrphanTag", TableInvariant::kOrphanTag, kRoomy, kFixed64, PlantOrphanTag},
     {"RecordOnAnUntaggedSlot", TableInvariant::kTotalMismatch, kRoomy, kFixed64, PlantRecordOnAnUntaggedSlot},
+    {"TagLostAcrossFrames", TableInvariant::kTagChangedAcrossFrames, kRoomy, kFixed64, PlantTagLostAcrossFrames},
 };
 
 class IsolatedViolation : public ::testing::TestWithParam<IsolatedCase> {};

@@ -13,7 +13,7 @@
 #include "core/shared/fixed_point.h"
 
 namespace hpsf {
-FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config) {
+FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous) {
   CheckBatchShape(batch);
   config.Validate();
   const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
@@ -22,12 +22,18 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
   FilterResult result;
   FilterStats& stats = result.stats;
   stats.records = batch.records.size();
-  stats.fixed_point_bits = ChooseFixedPointBits(batch.records);
+  stats.fixed_point_bits = previous                  ? previous->stats.fixed_point_bits
+                           : config.fixed_point_bits ? *config.fixed_point_bits
+                                                     : ChooseFixedPointBits(batch.records, config.frames);
   const float scale = shared::PowerOfTwo(stats.fixed_point_bits);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   if (!fixed) RequireFloat32Range(stats.fixed_point_bits);
 
   std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
+  if (previous) {
+    result.cells = previous->cells;
+    for (std::size_t c = 0; c < result.cells.size(); ++c) cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
+  }
   result.placement.assign(batch.records.size(), kNoCell);
   std::vector<KeyResult> keys(batch.records.size());
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
@@ -53,7 +59,9 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
     TableCell& cell = result.cells[it->second];
     for (int c = 0; c < 3; ++c) {
       if (fixed) {
-        cell.fixed_sum[c] += shared::ToFixedPoint(r.contribution[c], scale);
+        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], scale);
+        cell.fixed_sum[c] += add;
+        stats.fixed_point_wraps += cell.fixed_sum[c] < add;  // only a sequence brighter than its F allowed
       } else {
         cell.float_sum[c] += r.contribution[c];
       }
@@ -72,7 +80,9 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
     stats.max_records_per_cell = std::max(stats.max_records_per_cell, cell.count);
   }
   stats.cells = result.cells.size();
-  stats.mean_records_per_cell = stats.cells ? double(stats.records_with_vertex - stats.unkeyable) / double(stats.cells) : 0.0;
+  std::uint64_t in_cells = 0;  // every frame's, in a sequence
+  for (const TableCell& cell : result.cells) in_cells += cell.count;
+  stats.mean_records_per_cell = stats.cells ? double(in_cells) / double(stats.cells) : 0.0;
 
   std::vector<std::optional<glm::dvec3>> cell_average(batch.records.size());
   for (std::size_t i = 0; i < batch.records.size(); ++i) {

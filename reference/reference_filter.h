@@ -10,7 +10,11 @@
 
 namespace hpsf {
 
-FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config);
+// previous: the result of the frames before this one in a sequence (core/backend.h), whose cells this frame adds
+// to and whose F it keeps; null for a table of this batch alone. The result's placement and per-record counts are
+// this frame's; its cells are the whole table.
+FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config,
+                             const FilterResult* previous = nullptr);
 
 // Plain path tracing from the same batch: each record's own radiance_before + throughput * contribution.
 Image UnfilteredImage(const RecordBatch& batch);

@@ -106,6 +106,12 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> resolve[2];
   DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels;
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
+  struct TableShape {
+    std::uint32_t capacity;
+    Accumulation accumulation;
+    int fixed_point_bits;
+  };
+  std::optional<TableShape> table;  // what the device table holds after a Run
 
   ComputeProgram& Accumulate(Accumulation mode) {
     const int m = mode == Accumulation::kFixed64 ? 0 : 1;
@@ -131,15 +137,35 @@ struct VulkanFilter::Impl {
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv)
-    : impl_(new Impl{device.impl(), accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
-                     accumulate_spv.empty() ? "built-in" : accumulate_spv, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}) {}
+    : impl_(new Impl{device.impl(),
+                     accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
+                     accumulate_spv.empty() ? "built-in" : accumulate_spv,
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {}}) {}
 
 VulkanFilter::~VulkanFilter() = default;
 
-VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config) {
+VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table) {
   CheckBatchShape(batch);
   config.Validate();
   Impl& p = *impl_;
+  if (keep_table &&
+      !(p.table && p.table->capacity == config.capacity && p.table->accumulation == config.accumulation)) {
+    throw ConfigError("--capacity", "no device table of this shape to carry on from; start a new sequence");
+  }
+  const int kept_fixed_point_bits = keep_table ? p.table->fixed_point_bits : 0;
+  p.table.reset();  // until this run has written a whole table
   const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   const vk::DeviceSize storage_range = p.device.physical.getProperties().limits.maxStorageBufferRange;
@@ -189,7 +215,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.upload_ms = MillisecondsSince(start);
   run.timings.upload_copy_ms = upload.Submit();
   run.timings.upload_bytes = upload.bytes();
-  table.fixed_point_bits = ChooseFixedPointBitsOf(entering, AllCores);  // the host's pre-pass
+  table.fixed_point_bits = keep_table                ? kept_fixed_point_bits
+                           : config.fixed_point_bits ? *config.fixed_point_bits
+                                                     : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
   // Accumulate: clear the table, then 16 records per invocation.
@@ -200,7 +228,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                       {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
                        fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32}};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
-    for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts, &p.stats}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
+    cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
+    if (!keep_table) {
+      for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
+    }
     const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared, nullptr, nullptr);
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *accumulate.pipeline);
@@ -258,6 +289,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   run.timings.read_back_ms = MillisecondsSince(start);
   CountProbes(run);
+  p.table = Impl::TableShape{config.capacity, config.accumulation, table.fixed_point_bits};
   return run;
 }
 

@@ -49,7 +49,10 @@ class VulkanFilter {
   VulkanFilter& operator=(const VulkanFilter&) = delete;
 
   // Throws ConfigError when the table or the batch exceeds what the device can bind.
-  VulkanRun Run(const RecordBatch& batch, const FilterConfig& config);
+  // keep_table: the frame adds to the device table the previous Run left, and keeps its F (a sequence of frames,
+  // core/backend.h); a ConfigError when there is none of this shape. Else the table starts empty and F is chosen
+  // for this batch (and config.frames).
+  VulkanRun Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table = false);
 
  private:
   struct Impl;

@@ -1,6 +1,9 @@
 // The table checker (DESIGN.md, "The table checker and the cross-check contract"): judges a hashed backend from
 // its final tags, sums and counts and each record's key and placement alone, without knowing the insertion
 // order. Every violation names the invariant, the slot and the records involved.
+// Over frames (issue 14), it judges one frame from the table before it, the frame's records and placements and
+// the table after: with temporal integration and no eviction, a claimed slot keeps its tag, and each slot's
+// count and sums grow by exactly what the frame placed there.
 #ifndef HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
 #define HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
 
@@ -26,6 +29,7 @@ enum class TableInvariant {
   kEmptySlotNotZero,            // tag 0 with a count or sum
   kOrphanTag,                   // a non-zero tag that no placed record carries
   kTotalMismatch,               // the table total differs from the placed contributions
+  kTagChangedAcrossFrames,      // a slot claimed before the frame holds another tag, or none, after it
 };
 const char* ToString(TableInvariant invariant);
 
@@ -42,6 +46,8 @@ struct TableCheckInput {
   std::span<const Record> records;
   std::span<const KeyResult> keys;            // per record, from core
   std::span<const std::uint32_t> placements;  // per record
+  // The table before this frame, of the same shape and F; null: the frame started from an empty table.
+  const HashTableDump* before = nullptr;
 };
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& input);

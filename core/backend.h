@@ -1,0 +1,57 @@
+// DESIGN.md's one interface of a backend (issue 14): a backend owns its table from frame to frame. Reset empties
+// it; FilterFrame adds one frame's records to it and resolves that frame against it. This is temporal
+// integration (Binder et al. §3.4.1): a cell's sums and count are those of every frame since Reset, so its average
+// weighs old and new samples by their counts, alpha = N_old / (N_old + N_new).
+//
+// F, the fraction bits of fixed64, is chosen by the first frame for config.frames frames like it (or given by
+// config.fixed_point_bits) and kept: sums of different F cannot be added. Nothing that shapes the table or the
+// keys may change within a sequence, only the frame number (a ConfigError names what changed).
+//
+// Each backend's own results (the reference's cells, a hashed backend's table dump, keys and placements) come
+// from its concrete class: reference/reference_backend.h, emulated/emulated_backend.h, vulkan/vulkan_backend.h.
+#ifndef HPSF_CORE_BACKEND_H
+#define HPSF_CORE_BACKEND_H
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/filter_config.h"
+#include "core/image.h"
+#include "core/record.h"
+
+namespace hpsf {
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+
+  // "reference", "emulated" or "vulkan".
+  virtual std::string Name() const = 0;
+
+  // Forgets the table: the next frame starts a sequence with an empty one.
+  void Reset();
+
+  // Filters one frame's records into the table and returns the frame's image.
+  const Image& FilterFrame(const RecordBatch& batch, const FilterConfig& config);
+
+  // Frames filtered since Reset.
+  std::uint32_t frames_filtered() const { return frames_filtered_; }
+
+ protected:
+  // first: the table is empty (the first frame of a sequence); else the frame adds to the table and keeps F.
+  virtual const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) = 0;
+  virtual void ForgetTable() = 0;
+
+ private:
+  std::optional<FilterConfig> sequence_;  // the first frame's config, frame number aside
+  std::uint32_t frames_filtered_ = 0;
+};
+
+// Throws ConfigError naming the first option in which `next` differs from `first` other than the frame number: a
+// table cannot carry on across such a change.
+void CheckSameSequence(const FilterConfig& first, const FilterConfig& next);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_BACKEND_H

@@ -1,0 +1,34 @@
+// The emulated backend behind the Backend interface (core/backend.h): the table dumped after each frame is the
+// device table the next frame's launch starts from.
+#ifndef HPSF_EMULATED_EMULATED_BACKEND_H
+#define HPSF_EMULATED_EMULATED_BACKEND_H
+
+#include <optional>
+#include <string>
+
+#include "core/backend.h"
+#include "emulated/emulated_filter.h"
+
+namespace hpsf {
+
+class EmulatedBackend : public Backend {
+ public:
+  explicit EmulatedBackend(const EmulatorOptions& options, AccumulateKernelFn kernel = AccumulateKernel)
+      : options_(options), kernel_(kernel) {}
+  std::string Name() const override { return "emulated"; }
+  // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
+  const EmulatedRun& run() const { return *run_; }
+
+ protected:
+  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) override;
+  void ForgetTable() override { run_.reset(); }
+
+ private:
+  EmulatorOptions options_;
+  AccumulateKernelFn kernel_;
+  std::optional<EmulatedRun> run_;
+};
+
+}  // namespace hpsf
+
+#endif  // HPSF_EMULATED_EMULATED_BACKEND_H

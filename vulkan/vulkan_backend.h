@@ -1,0 +1,38 @@
+// The Vulkan backend behind the Backend interface (core/backend.h): the table stays in device memory from frame
+// to frame; each frame's table is read back for the checks.
+#ifndef HPSF_VULKAN_VULKAN_BACKEND_H
+#define HPSF_VULKAN_VULKAN_BACKEND_H
+
+#include <optional>
+#include <string>
+
+#include "core/backend.h"
+#include "vulkan/vulkan_device.h"
+#include "vulkan/vulkan_filter.h"
+
+namespace hpsf {
+
+class VulkanBackend : public Backend {
+ public:
+  // accumulate_spv: a user's accumulate shader, as VulkanFilter takes it. The device must outlive the backend.
+  explicit VulkanBackend(VulkanDevice& device, const std::string& accumulate_spv = "")
+      : filter_(device, accumulate_spv) {}
+  std::string Name() const override { return "vulkan"; }
+  // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
+  const VulkanRun& run() const { return *run_; }
+
+ protected:
+  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) override {
+    run_ = filter_.Run(batch, config, !first);
+    return run_->image;
+  }
+  void ForgetTable() override { run_.reset(); }
+
+ private:
+  VulkanFilter filter_;
+  std::optional<VulkanRun> run_;
+};
+
+}  // namespace hpsf
+
+#endif  // HPSF_VULKAN_VULKAN_BACKEND_H
