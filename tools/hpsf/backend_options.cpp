@@ -4,7 +4,10 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "emulated/emulated_backend.h"
+#include "reference/reference_backend.h"
 #include "tools/hpsf/filter_options.h"
+#include "vulkan/vulkan_backend.h"
 
 namespace hpsf {
 
@@ -77,24 +80,36 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
             {"read_back_gb_per_s", GigabytesPerSecond(run.timings.read_back_bytes, run.timings.ReadBackMs())}}}};
 }
 
-BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
-                         const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {
+BackendInstance MakeBackend(const std::string& backend, const EmulatorOptions& emulator, Defect defect,
+                            const VulkanBackendOptions& vulkan) {
   CheckBackend(backend);
-  BackendOutput out;
+  BackendInstance instance;
+  instance.emulator = emulator;
   if (backend == "reference") {
-    out.reference = ReferenceFilter(batch, config);
+    instance.backend = std::make_unique<ReferenceBackend>();
+  } else if (backend == "emulated") {
+    instance.backend = std::make_unique<EmulatedBackend>(emulator, KernelWithDefect(defect));
+  } else {
+    instance.device = std::make_unique<VulkanDevice>(vulkan.device_filter, vulkan.staging);
+    instance.backend = std::make_unique<VulkanBackend>(*instance.device, vulkan.accumulate_spv);
+  }
+  return instance;
+}
+
+BackendOutput LastFrameOutput(const BackendInstance& instance) {
+  BackendOutput out;
+  if (const auto* reference = dynamic_cast<const ReferenceBackend*>(instance.backend.get())) {
+    out.reference = reference->result();
     out.image = out.reference->image;
     out.stats = ToJson(out.reference->stats);
-  } else if (backend == "emulated") {
-    out.emulated = EmulatedFilter(batch, config, emulator, KernelWithDefect(defect));
+  } else if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(instance.backend.get())) {
+    out.emulated = emulated->run();
     out.image = out.emulated->image;
-    out.stats = ToJson(*out.emulated, emulator);
+    out.stats = ToJson(*out.emulated, instance.emulator);
   } else {
-    VulkanDevice device(vulkan.device_filter, vulkan.staging);
-    VulkanFilter filter(device, vulkan.accumulate_spv);
-    out.vulkan = filter.Run(batch, config);
+    out.vulkan = dynamic_cast<const VulkanBackend&>(*instance.backend).run();
     out.image = out.vulkan->image;
-    out.stats = ToJson(*out.vulkan, device.info());
+    out.stats = ToJson(*out.vulkan, instance.device->info());
   }
   return out;
 }

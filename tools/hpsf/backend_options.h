@@ -3,11 +3,14 @@
 #ifndef HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 #define HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 
+#include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/backend.h"
 #include "core/filter_config.h"
 #include "core/image.h"
 #include "core/record.h"
@@ -31,8 +34,18 @@ struct BackendOutput {
   std::optional<VulkanRun> vulkan;
 };
 
-BackendOutput RunBackend(const std::string& backend, const RecordBatch& batch, const FilterConfig& config,
-                         const EmulatorOptions& emulator, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
+// A backend (core/backend.h) with what it needs kept alive: the Vulkan device, which the backend uses.
+struct BackendInstance {
+  std::unique_ptr<VulkanDevice> device;  // declared first: destroyed after the backend
+  std::unique_ptr<Backend> backend;
+  EmulatorOptions emulator;
+};
+
+BackendInstance MakeBackend(const std::string& backend, const EmulatorOptions& emulator, Defect defect = Defect::kNone,
+                            const VulkanBackendOptions& vulkan = {});
+
+// The last frame the backend filtered, as render and replay report it.
+BackendOutput LastFrameOutput(const BackendInstance& instance);
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
 

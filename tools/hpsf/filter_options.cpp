@@ -1,5 +1,8 @@
 #include "tools/hpsf/filter_options.h"
 
+#include <charconv>
+#include <system_error>
+
 #include "core/error.h"
 
 namespace hpsf {
@@ -22,6 +25,10 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command.add_option("--capacity", c.capacity, "Hash table slots (a power of two)")->capture_default_str();
   command.add_option("--probe-limit", c.probe_limit, "Slots probed before a probe failure")->capture_default_str();
   command.add_option("--fingerprint-bits", c.fingerprint_bits, "Fingerprint width, 8..32")->capture_default_str();
+  command
+      .add_option("--fixed-point-bits", o.fixed_point_bits,
+                  "F, fixed64's fraction bits, in [-126, 126]; auto: the largest the first frame's totals allow")
+      ->capture_default_str();
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {
@@ -30,6 +37,15 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   config.accumulation = ParseAccumulation(o.accumulation);
   if (o.lod != "on" && o.lod != "off") throw ConfigError("--lod", "expected on or off; got '" + o.lod + "'");
   config.lod = o.lod == "on";
+  if (o.fixed_point_bits != "auto") {
+    int bits = 0;
+    const char* end = o.fixed_point_bits.data() + o.fixed_point_bits.size();
+    const auto [stop, error] = std::from_chars(o.fixed_point_bits.data(), end, bits);
+    if (error != std::errc() || stop != end) {
+      throw ConfigError("--fixed-point-bits", "expected auto or an integer; got '" + o.fixed_point_bits + "'");
+    }
+    config.fixed_point_bits = bits;
+  }
   config.Validate();
   return config;
 }
@@ -42,11 +58,22 @@ void CheckVarianceSamples(const FilterOptions& o, std::uint32_t samples_per_pixe
 }
 
 nlohmann::json ToJson(const FilterConfig& c) {
-  return {{"filter_width_px", c.filter_width_px}, {"jitter", c.jitter_scale},         {"normal", c.normal.ToString()},
-          {"normal_in_index", c.normal_in_index}, {"lod", c.lod},                     {"cell_size", c.cell_size},
-          {"level_min", c.level_min},             {"level_max", c.level_max},         {"accum", ToString(c.accumulation)},
-          {"capacity", c.capacity},               {"probe_limit", c.probe_limit},     {"fingerprint_bits", c.fingerprint_bits},
-          {"seed", c.seed},                       {"frame", c.frame}};
+  return {{"filter_width_px", c.filter_width_px},
+          {"jitter", c.jitter_scale},
+          {"normal", c.normal.ToString()},
+          {"normal_in_index", c.normal_in_index},
+          {"lod", c.lod},
+          {"cell_size", c.cell_size},
+          {"level_min", c.level_min},
+          {"level_max", c.level_max},
+          {"accum", ToString(c.accumulation)},
+          {"capacity", c.capacity},
+          {"probe_limit", c.probe_limit},
+          {"fingerprint_bits", c.fingerprint_bits},
+          {"seed", c.seed},
+          {"frame", c.frame},
+          {"frames", c.frames},
+          {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }
 
 nlohmann::json ToJson(const FilterStats& s) {
@@ -59,7 +86,8 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"cells", s.cells},
           {"mean_records_per_cell", s.mean_records_per_cell},
           {"max_records_per_cell", s.max_records_per_cell},
-          {"fixed_point_bits", s.fixed_point_bits}};
+          {"fixed_point_bits", s.fixed_point_bits},
+          {"fixed64_wraps", s.fixed_point_wraps}};
 }
 
 }  // namespace hpsf

@@ -19,6 +19,7 @@ struct FilterOptions {
   std::string normal = "sign";
   std::string lod = "on";
   std::string accumulation = "fixed64";
+  std::string fixed_point_bits = "auto";
   bool no_filter = false;
   bool variance = false;  // also write each pixel's variance (tools/checks/pixel_variance.h)
 };

@@ -41,13 +41,13 @@ std::string Digits(const glm::dvec3& v) {
 
 }  // namespace
 
-nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request) {
-  CheckBackend(request.backend);
-  const FilterConfig config = ResolveFilterConfig(options);
+nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch, const FilterConfig& config,
+                              const FilterOptions& options, const OutputRequest& request) {
   CheckVarianceSamples(options, batch.samples_per_pixel, "the batch of " + request.scene);
   nlohmann::json report;
   const auto filter_start = std::chrono::steady_clock::now();
-  const BackendOutput result = RunBackend(request.backend, batch, config, request.emulator, request.defect, request.vulkan);
+  backend.backend->FilterFrame(batch, config);
+  const BackendOutput result = LastFrameOutput(backend);
   const double filter_seconds = SecondsSince(filter_start);
   const Image image = options.no_filter ? UnfilteredImage(batch) : result.image;
   // A Vulkan run has no emulated part: its F is in its own table (reading the empty emulated one wrote garbage).

@@ -1,4 +1,4 @@
-// The back half of `hpsf render` and `hpsf replay`: filter a batch with the chosen backend (or not at all),
+// The back half of `hpsf render` and `hpsf replay`: filter a frame's batch with the chosen backend (or not at all),
 // write the EXR and its PNG preview, and return the report's filter part.
 #ifndef HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
 #define HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
@@ -17,12 +17,12 @@ struct OutputRequest {
   std::string scene;    // name recorded in the metadata
   std::string backend;  // reference, emulated or vulkan
   std::string output;   // OUT.exr
-  EmulatorOptions emulator;
-  Defect defect = Defect::kNone;
-  VulkanBackendOptions vulkan;
 };
 
-nlohmann::json FilterAndWrite(const RecordBatch& batch, const FilterOptions& options, const OutputRequest& request);
+// config: ResolveFilterConfig(options) with the frame set; the frame goes into the backend's table, which keeps
+// the frames before it (core/backend.h).
+nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch, const FilterConfig& config,
+                              const FilterOptions& options, const OutputRequest& request);
 
 // Prints the report as JSON, or a short human summary.
 void PrintReport(const nlohmann::json& report, bool as_json);

@@ -95,6 +95,37 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
   return png.string();
 }
 
+std::string CopyImageFiles(const std::string& from_exr, const std::string& to_exr) {
+  namespace fs = std::filesystem;
+  const fs::path to(to_exr);
+  if (to.extension() != ".exr") throw InputError(to_exr + ": the output must be an .exr file");
+  std::error_code created;
+  if (!to.parent_path().empty()) fs::create_directories(to.parent_path(), created);
+  const std::string hidden_stem = std::string(".").append(to.stem().string());
+  std::vector<fs::path> placed;
+  try {
+    for (const char* extension : {".exr", ".png"}) {
+      const fs::path from = fs::path(from_exr).replace_extension(extension);
+      const fs::path target = fs::path(to).replace_extension(extension);
+      const fs::path temporary = to.parent_path() / (hidden_stem + ".partial" + extension);
+      std::error_code failed;
+      fs::copy_file(from, temporary, fs::copy_options::overwrite_existing, failed);
+      if (!failed) fs::rename(temporary, target, failed);
+      if (failed) {
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+        throw InputError(target.string() + ": cannot write the copy of " + from.string() + ": " + failed.message());
+      }
+      placed.push_back(target);
+    }
+  } catch (...) {
+    std::error_code ignored;
+    for (const fs::path& p : placed) fs::remove(p, ignored);
+    throw;
+  }
+  return to_exr;
+}
+
 Image ReadExr(const std::string& path, std::map<std::string, std::string>* metadata) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path + ": cannot read the image: " + OIIO::geterror());

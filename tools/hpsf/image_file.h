@@ -16,6 +16,10 @@ namespace hpsf {
 std::string WriteImageFiles(const std::string& exr_path, const Image& image,
                             const std::map<std::string, std::string>& metadata, const Image* variance = nullptr);
 
+// Copies an EXR written by WriteImageFiles and its preview to `to_exr` (and its .png), under temporary names
+// renamed into place, as WriteImageFiles writes; returns to_exr.
+std::string CopyImageFiles(const std::string& from_exr, const std::string& to_exr);
+
 // Reads an EXR written by hpsf (tests, diffs).
 Image ReadExr(const std::string& path, std::map<std::string, std::string>* metadata = nullptr);
 

@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "core/error.h"
 #include "core/record_file.h"
 #include "tools/hpsf/filter_output.h"
+#include "tools/hpsf/image_file.h"
 #include "tools/hpsf/image_size.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
@@ -22,6 +24,8 @@ struct RenderOptions {
   std::string backend = "reference";
   std::string size = "256x256";
   std::string dump_records;
+  std::uint32_t frames = 1;
+  std::string frame_out;
   TraceOptions trace;
   FilterOptions filter;
   EmulatorFlags emulator;
@@ -34,33 +38,92 @@ std::function<void(std::uint32_t, std::uint32_t)> TerminalProgress() {
   return [](std::uint32_t done, std::uint32_t total) { std::fprintf(stderr, "\rtracing %3u%%", 100 * done / total); };
 }
 
+// --frame-out's pattern: one "{frame}", replaced by the frame number padded to four digits; an .exr name.
+constexpr const char* kFramePlaceholder = "{frame}";
+
+void CheckFramePattern(const std::string& pattern) {
+  const std::size_t at = pattern.find(kFramePlaceholder);
+  if (at == std::string::npos || pattern.find(kFramePlaceholder, at + 1) != std::string::npos) {
+    throw ConfigError("--frame-out", "needs exactly one {frame} in '" + pattern + "', e.g. out/frame-{frame}.exr");
+  }
+  if (pattern.size() < 4 || pattern.compare(pattern.size() - 4, 4, ".exr") != 0) {
+    throw ConfigError("--frame-out", "must name .exr files; got '" + pattern + "'");
+  }
+}
+
+std::string FramePath(const std::string& pattern, std::uint32_t frame) {
+  char number[16];
+  std::snprintf(number, sizeof number, "%04u", frame);
+  std::string path = pattern;
+  return path.replace(path.find(kFramePlaceholder), std::string(kFramePlaceholder).size(), number);
+}
+
 void RunRender(RenderOptions& o, bool options_only) {
   CheckBackend(o.backend);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ParseSize(o.size, o.trace);
   o.trace.seed = o.filter.config.seed;
-  o.filter.config.frame = o.trace.frame;  // the jitter's random numbers follow the frame too
+  o.filter.config.frames = o.frames;
   o.trace.Validate();
-  ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
+  FilterConfig config = ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
   CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
+  if (std::uint64_t(o.trace.frame) + o.frames - 1 > 0xFFFFFFFFu) {
+    throw ConfigError("--frames", "frames " + std::to_string(o.trace.frame) + " + " + std::to_string(o.frames) +
+                                      " run past the last frame number, 2^32 - 1");
+  }
+  if (!o.frame_out.empty()) CheckFramePattern(o.frame_out);
   const Defect defect = ParseDefect(o.emulator.defect);
   if (options_only) return;
   const Scene scene = LoadScene(o.scene);
 
-  const auto start = std::chrono::steady_clock::now();
-  const auto progress = TerminalProgress();
-  TraceResult traced = TraceRecords(scene, o.trace, progress);
-  if (progress) std::fprintf(stderr, "\r              \r");
-  const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
-
-  nlohmann::json report = FilterAndWrite(traced.batch, o.filter, {scene.name, o.backend, o.output, emulator, defect, o.emulator.vulkan});
+  // Frame after frame through one backend, whose table carries over (core/backend.h); the last frame goes to -o,
+  // each one to --frame-out's file when given.
+  BackendInstance backend = MakeBackend(o.backend, emulator, defect, o.emulator.vulkan);
+  const std::uint32_t first = o.trace.frame;
+  nlohmann::json report, per_frame = nlohmann::json::array();
+  TraceResult traced;
+  double trace_seconds = 0.0;
+  for (std::uint32_t k = 0; k < o.frames; ++k) {
+    o.trace.frame = first + k;
+    config.frame = o.trace.frame;  // the jitter's random numbers follow the frame too
+    const auto start = std::chrono::steady_clock::now();
+    const auto progress = TerminalProgress();
+    traced = TraceRecords(scene, o.trace, progress);
+    if (progress) std::fprintf(stderr, "\r              \r");
+    trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const bool last = k + 1 == o.frames;
+    if (last && !o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
+    nlohmann::json frame = {{"frame", o.trace.frame}, {"trace_s", trace_seconds}};
+    if (last) {
+      report = FilterAndWrite(backend, traced.batch, config, o.filter, {scene.name, o.backend, o.output});
+      // The last frame's files under --frame-out's name too: the same image, not filtered a second time.
+      if (!o.frame_out.empty()) frame["output"] = CopyImageFiles(o.output, FramePath(o.frame_out, o.trace.frame));
+      frame["filter_s"] = report["timings"]["filter_s"];
+    } else if (!o.frame_out.empty()) {
+      const nlohmann::json written = FilterAndWrite(backend, traced.batch, config, o.filter,
+                                                    {scene.name, o.backend, FramePath(o.frame_out, o.trace.frame)});
+      frame["output"] = written["output"];
+      frame["filter_s"] = written["timings"]["filter_s"];
+    } else {
+      const auto filter_start = std::chrono::steady_clock::now();
+      backend.backend->FilterFrame(traced.batch, config);
+      frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
+    }
+    per_frame.push_back(frame);
+  }
   report["version"] = 1;
   report["command"] = "render";
   report["scene"] = scene.name;
-  report["trace"] = {{"width", o.trace.width},       {"height", o.trace.height},
-                     {"spp", o.trace.samples_per_pixel}, {"max_depth", o.trace.max_depth},
-                     {"filter_bounce", o.trace.filter_bounce}, {"threads", o.trace.threads}, {"frame", o.trace.frame}};
+  report["trace"] = {{"width", o.trace.width},
+                     {"height", o.trace.height},
+                     {"spp", o.trace.samples_per_pixel},
+                     {"max_depth", o.trace.max_depth},
+                     {"filter_bounce", o.trace.filter_bounce},
+                     {"threads", o.trace.threads},
+                     {"frame", o.trace.frame},
+                     {"first_frame", first},
+                     {"frames", o.frames}};
+  if (o.frames > 1) report["frames"] = per_frame;
   report["rays"] = traced.stats.Rays();
   report["timings"]["trace_s"] = trace_seconds;
   report["rays_per_s"] = trace_seconds > 0.0 ? double(traced.stats.Rays()) / trace_seconds : 0.0;
@@ -84,7 +147,9 @@ void RunReplay(const ReplayOptions& o, bool options_only) {
   const Defect defect = ParseDefect(o.emulator.defect);
   if (options_only) return;
   const RecordBatch batch = ReadRecordFile(o.records);
-  nlohmann::json report = FilterAndWrite(batch, o.filter, {o.records, o.backend, o.output, emulator, defect, o.emulator.vulkan});
+  BackendInstance backend = MakeBackend(o.backend, emulator, defect, o.emulator.vulkan);
+  nlohmann::json report =
+      FilterAndWrite(backend, batch, ResolveFilterConfig(o.filter), o.filter, {o.records, o.backend, o.output});
   report["version"] = 1;
   report["command"] = "replay";
   report["records_file"] = o.records;
@@ -108,7 +173,14 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")->capture_default_str();
   c->add_option("--frame", o->trace.frame,
                 "Trace an animated scene at this frame (its keyframes, and the frame in every random number); "
-                "filtered on its own, without the frames before it")->capture_default_str();
+                "the first of --frames")
+      ->capture_default_str();
+  c->add_option("--frames", o->frames,
+                "Trace and filter this many frames, from --frame on, through one table kept from frame to frame "
+                "(temporal integration); -o gets the last")
+      ->capture_default_str();
+  c->add_option("--frame-out", o->frame_out,
+                "Also write every frame, to PATTERN with {frame} for its number: out/f-{frame}.exr");
   c->add_option("--dump-records", o->dump_records, "Also write the traced batch to FILE.hpsfv");
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);

@@ -1,0 +1,60 @@
+# hpsf render --frames K: every backend traces and filters K frames through one table; --frame-out writes each
+# frame, -o the last (the same file bytes as the last frame's); the JSON report lists the frames. The last frame
+# of a sequence is not the frame filtered alone (its table holds the frames before it). Bad patterns exit 3 and
+# write nothing.
+set(dir ${OUT}/frames)
+file(REMOVE_RECURSE ${dir})
+set(common render ${SCENE} --size 24x24 --spp 2 --frames 3 --json)
+foreach(backend reference emulated vulkan)
+  execute_process(COMMAND ${HPSF} ${common} --backend ${backend} --frame-out ${dir}/${backend}-{frame}.exr
+                          -o ${dir}/${backend}-last.exr
+                  RESULT_VARIABLE code OUTPUT_VARIABLE report ERROR_VARIABLE errors)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${backend}: exit ${code}\n${errors}")
+  endif()
+  foreach(frame 0000 0001 0002)
+    foreach(extension exr png)
+      if(NOT EXISTS ${dir}/${backend}-${frame}.${extension})
+        message(FATAL_ERROR "${backend}: no ${backend}-${frame}.${extension}")
+      endif()
+    endforeach()
+  endforeach()
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${dir}/${backend}-last.exr ${dir}/${backend}-0002.exr
+                  RESULT_VARIABLE differ)
+  if(NOT differ EQUAL 0)
+    message(FATAL_ERROR "${backend}: -o differs from the last frame's file")
+  endif()
+  string(JSON frames LENGTH "${report}" frames)
+  string(JSON last GET "${report}" trace frame)
+  if(NOT frames EQUAL 3 OR NOT last EQUAL 2)
+    message(FATAL_ERROR "${backend}: the report lists ${frames} frames, the last ${last}")
+  endif()
+  # The same frame alone: another image, since the sequence's table also holds frames 0 and 1.
+  execute_process(COMMAND ${HPSF} render ${SCENE} --size 24x24 --spp 2 --frame 2 --backend ${backend} -o ${dir}/${backend}-alone.exr
+                  RESULT_VARIABLE code)
+  execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/${backend}-alone.exr ${dir}/${backend}-last.exr
+                  RESULT_VARIABLE same OUTPUT_QUIET ERROR_QUIET)
+  if(NOT code EQUAL 0 OR same EQUAL 0)
+    message(FATAL_ERROR "${backend}: frame 2 of the sequence has the pixels of frame 2 alone (exit ${code})")
+  endif()
+endforeach()
+# The three backends' last frames: the same pixels (fixed64, an uncrowded table).
+foreach(backend emulated vulkan)
+  execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/reference-last.exr ${dir}/${backend}-last.exr
+                  RESULT_VARIABLE differ OUTPUT_VARIABLE idiff_report)
+  if(NOT differ EQUAL 0)
+    message(FATAL_ERROR "${backend}'s last frame differs from the reference's:\n${idiff_report}")
+  endif()
+endforeach()
+
+foreach(bad "${dir}/bad.exr" "${dir}/bad-{frame}-{frame}.exr" "${dir}/bad-{frame}.png")
+  execute_process(COMMAND ${HPSF} ${common} --frame-out ${bad} -o ${dir}/bad-last.exr
+                  RESULT_VARIABLE code ERROR_VARIABLE errors)
+  if(NOT code EQUAL 3 OR NOT errors MATCHES "--frame-out")
+    message(FATAL_ERROR "--frame-out ${bad}: exit ${code}, '${errors}'")
+  endif()
+endforeach()
+file(GLOB left ${dir}/bad*)
+if(left)
+  message(FATAL_ERROR "bad input left files behind: ${left}")
+endif()
