@@ -41,6 +41,7 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.seed == next.seed, "--seed");
   require(first.fixed_point_bits == next.fixed_point_bits, "--fixed-point-bits");
   require(first.frames == next.frames, "--frames");
+  require(first.eviction == next.eviction, "--eviction");
 }
 
 }  // namespace hpsf

@@ -95,6 +95,10 @@ void FilterConfig::Validate() const {
   if (frames < 1 || frames > kMaxFrames) {
     throw ConfigError("--frames", "must lie in [1, " + std::to_string(kMaxFrames) + "]; got " + std::to_string(frames));
   }
+  if (ParseEviction(eviction.ToString()) != eviction) {
+    throw ConfigError("--eviction", "is not a policy: " + eviction.ToString() + " with " +
+                                        std::to_string(eviction.unseen_frames) + " frames unseen");
+  }
 }
 
 std::string FilterConfig::ToString() const {
@@ -108,7 +112,8 @@ std::string FilterConfig::ToString() const {
          " frame: " + std::to_string(frame) +
          // Only when set, so single-frame configs read as they always have (golden metadata holds them).
          (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
-         (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) + " ]";
+         (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) +
+         (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) + " ]";
 }
 
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {

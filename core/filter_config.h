@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/eviction.h"
 #include "core/shared/key_params.h"
 
 namespace hpsf {
@@ -45,6 +46,7 @@ struct FilterConfig {
   // for `frames` frames like it (core/fixed_point_scale.h).
   std::optional<int> fixed_point_bits;
   std::uint32_t frames = 1;  // --frames: how many frames one table integrates (core/backend.h)
+  Eviction eviction;         // --eviction: which cells the table forgets after each frame (core/eviction.h)
 
   // Throws ConfigError for the first invalid option.
   void Validate() const;

@@ -20,6 +20,7 @@ struct TableCell {
   std::array<std::uint64_t, 3> fixed_sum{};  // fixed64: exact sums with F fraction bits
   std::array<float, 3> float_sum{};          // float32: sums in record order
   std::uint64_t count = 0;
+  std::uint32_t last_seen = 0;  // the last frame a record was added to the cell (core/eviction.h)
 };
 
 struct FilterStats {
@@ -34,6 +35,7 @@ struct FilterStats {
   double mean_records_per_cell = 0.0;
   int fixed_point_bits = 0;             // F of fixed64 for this batch
   std::uint64_t fixed_point_wraps = 0;  // fixed64 adds whose cell sum wrapped (a sequence outgrew its F)
+  std::uint64_t cells_evicted = 0;      // cells the frame's eviction removed (core/eviction.h)
 };
 
 struct FilterResult {

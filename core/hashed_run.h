@@ -20,6 +20,8 @@ struct HashedRun {
   std::uint64_t probe_failures = 0;
   std::uint64_t wraps = 0;                   // fixed64 adds whose sum wrapped
   std::vector<std::uint64_t> probe_lengths;  // [k]: records placed after probing k + 1 slots
+  std::uint64_t evicted = 0;                 // live slots this frame's eviction made tombstones
+  std::uint64_t tombstones = 0;              // tombstones left after the frame (core/hash_table.h)
 };
 
 // Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).

@@ -32,6 +32,7 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
       }
     }
     co_await ctx.AtomicAdd(b.counts, slot, 1);
+    if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
     co_await ctx.Store(b.placements, i, slot);
     co_return;
   }

@@ -1,7 +1,9 @@
 // The accumulate pass of DESIGN.md, "The algorithm", as an emulator kernel: one thread per record; bounded
 // linear probing from slot0; a slot whose tag equals the fingerprint is joined, an empty one is claimed with a
 // compare-and-swap; each channel is added atomically, then the count; the record's slot is stored. No slot
-// within the probe limit is a probe failure. fixed64 adds also report wrap (new < old).
+// within the probe limit is a probe failure. fixed64 adds also report wrap (new < old). With eviction, the slot's
+// last-seen frame is stored after the adds (every writer stores the same frame). A tombstone (core/hash_table.h)
+// is a slot like any other: its tag is joined or passed, never claimed by another fingerprint.
 #ifndef HPSF_EMULATED_ACCUMULATE_KERNEL_H
 #define HPSF_EMULATED_ACCUMULATE_KERNEL_H
 
@@ -22,6 +24,7 @@ struct TableBuffers {
   std::uint32_t counts;       // 64-bit
   std::uint32_t placements;   // 32-bit, one per record
   std::uint32_t wraps;        // 64-bit, one word: fixed64 adds that wrapped
+  std::uint32_t last_seen;    // 32-bit per slot, with eviction only: the last frame a record was added
 };
 
 struct AccumulateArgs {
@@ -33,6 +36,8 @@ struct AccumulateArgs {
   std::uint32_t fingerprint_bits = 32;  // the keys' fingerprints are reduced already; broken kernels reduce their own
   Accumulation accumulation = Accumulation::kFixed64;
   float fixed_point_scale = 1.0f;  // 2^F
+  bool track_last_seen = false;    // with eviction: store `frame` into buffers.last_seen of every slot added to
+  std::uint32_t frame = 0;
   TableBuffers buffers{};
 };
 

@@ -61,6 +61,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     } else {
       co_await ctx.AtomicAdd(b.counts, slot, 1);
     }
+    if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
     co_await ctx.Store(b.placements, i, slot);
     placed = true;
     if (defect != Defect::kD2AddsAgain) co_return;  // D2: keeps probing and adds again (Meijer Algorithm 4)
@@ -76,6 +77,13 @@ simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mu
 simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
 
 }  // namespace
+
+simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args) {
+  const std::uint32_t slot = ctx.Thread();
+  if (co_await ctx.Load(args.buffers.tags, slot) == kEmptyTag) co_return;
+  if (co_await ctx.Load(args.buffers.counts, slot) != 0) co_return;
+  co_await ctx.Store(args.buffers.tags, slot, kEmptyTag);  // the one change: no look at the live slots after it
+}
 
 Defect ParseDefect(const std::string& text) {
   if (text == "none") return Defect::kNone;

@@ -25,6 +25,11 @@ Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);
 
+// D7 of DESIGN.md, in the eviction pass (emulated/eviction_kernels.h): the reclaim empties every tombstone, so an
+// eviction leaves a hole that a live cell's key probed past; its next lookup claims the hole and splits the cell.
+// Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
+simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
+
 }  // namespace hpsf
 
 #endif  // HPSF_EMULATED_DEFECT_INJECTION_H

@@ -5,7 +5,7 @@
 namespace hpsf {
 
 const Image& EmulatedBackend::FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) {
-  EmulatedRun next = EmulatedFilter(batch, config, options_, kernel_, first ? nullptr : &run_->table);
+  EmulatedRun next = EmulatedFilter(batch, config, options_, kernel_, first ? nullptr : &run_->table, reclaim_);
   run_ = std::move(next);
   return run_->image;
 }

@@ -13,8 +13,9 @@ namespace hpsf {
 
 class EmulatedBackend : public Backend {
  public:
-  explicit EmulatedBackend(const EmulatorOptions& options, AccumulateKernelFn kernel = AccumulateKernel)
-      : options_(options), kernel_(kernel) {}
+  explicit EmulatedBackend(const EmulatorOptions& options, AccumulateKernelFn kernel = AccumulateKernel,
+                           ReclaimKernelFn reclaim = ReclaimKernel)
+      : options_(options), kernel_(kernel), reclaim_(reclaim) {}
   std::string Name() const override { return "emulated"; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
   const EmulatedRun& run() const { return *run_; }
@@ -26,6 +27,7 @@ class EmulatedBackend : public Backend {
  private:
   EmulatorOptions options_;
   AccumulateKernelFn kernel_;
+  ReclaimKernelFn reclaim_;
   std::optional<EmulatedRun> run_;
 };
 

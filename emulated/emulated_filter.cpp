@@ -45,7 +45,7 @@ void EmulatorOptions::Validate() const {
 }
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
-                           AccumulateKernelFn accumulate, const HashTableDump* previous) {
+                           AccumulateKernelFn accumulate, const HashTableDump* previous, ReclaimKernelFn reclaim) {
   CheckBatchShape(batch);
   config.Validate();
   options.Validate();
@@ -100,12 +100,20 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   b.counts = memory.Allocate64("counts", config.capacity);
   b.placements = memory.Allocate32("placements", n);
   b.wraps = memory.Allocate64("wraps", 1);
+  const bool evicting = config.eviction.enabled();
+  if (evicting) {
+    b.last_seen = memory.Allocate32("last_seen", config.capacity);
+    args.track_last_seen = true;
+    args.frame = config.frame;
+  }
   if (previous) {
     if (previous->capacity != config.capacity || previous->accumulation != config.accumulation) {
       throw ConfigError("--capacity", "the previous frame's table has another shape; start a new sequence");
     }
     std::copy(previous->tags.begin(), previous->tags.end(), memory.Words32(b.tags).begin());
     std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
+    if (evicting)
+      std::copy(previous->last_seen.begin(), previous->last_seen.end(), memory.Words32(b.last_seen).begin());
     if (fixed) {
       const std::span<std::uint64_t> sums = memory.Words64(b.sums);
       for (std::size_t s = 0; s < config.capacity; ++s) std::copy_n(previous->fixed_sums[s].begin(), 3, &sums[s * 3]);
@@ -137,6 +145,29 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
 
   run.timings.accumulate = clock.Lap();
+  if (evicting) {
+    EvictionArgs eviction{config.capacity,
+                          config.probe_limit,
+                          config.frame,
+                          config.eviction,
+                          config.accumulation,
+                          b,
+                          memory.Allocate64("evicted", 1)};
+    // One thread per slot. Faithful mode schedules them by the run's policy; an exhaustive search drives only the
+    // accumulate launch, so the eviction launches then take round-robin.
+    const auto launch_per_slot = [&](const simt::Kernel& kernel) {
+      if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, config.capacity, kernel, options.threads);
+      const std::uint32_t warps = (config.capacity + options.warp_size - 1) / options.warp_size;
+      const std::string policy = options.schedule_instance ? "round-robin" : options.schedule;
+      const auto schedule = simt::MakeSchedule(policy, warps, std::uint64_t(warps) * (2 * config.probe_limit + 8));
+      simt::LaunchFaithful(memory, config.capacity, options.warp_size, kernel, *schedule, {});
+    };
+    launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
+    launch_per_slot([&](simt::ThreadContext& ctx) { return reclaim(ctx, eviction); });
+    run.evicted = memory.Words64(eviction.evicted)[0];
+    table.last_seen = memory.TakeWords32(b.last_seen);
+  }
+  run.timings.eviction = clock.Lap();
   // The dump: the final state of the device buffers, moved out where the layouts agree.
   table.tags = memory.TakeWords32(b.tags);
   table.counts = memory.TakeWords64(b.counts);
@@ -201,6 +232,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
         return a;
       });
   run.probe_failures = tally.probe_failures;
+  if (evicting) {
+    for (std::size_t s = 0; s < config.capacity; ++s)
+      run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
+  }
   run.probe_lengths = tally.probe_lengths;
   run.timings.resolve = clock.Lap();
   return run;

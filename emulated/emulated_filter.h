@@ -15,6 +15,7 @@
 #include "core/key_batch.h"
 #include "core/record.h"
 #include "emulated/accumulate_kernel.h"
+#include "emulated/eviction_kernels.h"
 #include "emulated/simt/launcher.h"
 
 namespace hpsf {
@@ -36,6 +37,7 @@ struct EmulatedTimings {
   double fixed_point = 0;  // the choice of F
   double clear = 0;        // allocating and zeroing the table
   double accumulate = 0;   // the accumulate launch
+  double eviction = 0;     // the evict and reclaim launches; 0 without eviction
   double read_back = 0;    // the dump of the table
   double resolve = 0;      // averages, pixels and the probe statistics, all cores
 };
@@ -52,8 +54,11 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 
 // previous: the table after the frames before this one in a sequence (core/backend.h); the device table starts
 // as it, and F is its F. Null: the table starts empty and F is chosen for this batch (and config.frames).
+// With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow the accumulate, with `reclaim`
+// as the reclaim kernel; the run's table is the state after them.
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
-                           AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr);
+                           AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr,
+                           ReclaimKernelFn reclaim = ReclaimKernel);
 
 }  // namespace hpsf
 

@@ -42,8 +42,8 @@ RecordBatch GeneratedBatch(std::uint32_t seed, std::uint32_t count) {
 }
 
 std::vector<TableViolation> Check(const EmulatedRun& run, const RecordBatch& batch,
-                                  const HashTableDump* before = nullptr) {
-  return CheckTable({run.table, batch.records, run.keys, run.placements, before});
+                                  const HashTableDump* before = nullptr, const FilterConfig& config = {}) {
+  return CheckTable({run.table, batch.records, run.keys, run.placements, before, config.eviction, config.frame});
 }
 
 bool Aliased(const EmulatedRun& run) {
@@ -97,12 +97,14 @@ struct Fixture {
   // The invariants the checker reports, each once: a plant must leave exactly one.
   std::set<TableInvariant> Invariants() const {
     std::set<TableInvariant> invariants;
-    for (const TableViolation& v : Check(run, batch, before ? &*before : nullptr)) invariants.insert(v.invariant);
+    for (const TableViolation& v : Check(run, batch, before ? &*before : nullptr, config))
+      invariants.insert(v.invariant);
     return invariants;
   }
   std::string Reported() const {
     std::string text;
-    for (const TableViolation& v : Check(run, batch, before ? &*before : nullptr)) text += "\n  " + v.ToString();
+    for (const TableViolation& v : Check(run, batch, before ? &*before : nullptr, config))
+      text += "\n  " + v.ToString();
     return text.empty() ? " nothing" : text;
   }
 
@@ -366,6 +368,67 @@ void PlantRecordOnAnUntaggedSlot(Fixture& f) {
   f.run.placements[i] = s;
 }
 
+// Over frames with strict eviction: the fixture's table becomes frame 0's, and frame 1 keeps the vertex of every
+// third record only, so the cells left without one are evicted. Some become tombstones kept before a live slot,
+// others are reclaimed.
+void EvictingSecondFrame(Fixture& f) {
+  f.config.frames = 2;
+  f.config.eviction = ParseEviction("strict");
+  const EmulatedRun first = EmulatedFilter(f.batch, f.config, EmulatorOptions{});
+  for (std::size_t i = 0; i < f.batch.records.size(); ++i) {
+    if (i % 3 != 0) f.batch.records[i].path.z &= ~shared::kRecordHasVertex;
+  }
+  f.config.frame = 1;
+  f.run = EmulatedFilter(f.batch, f.config, EmulatorOptions{}, AccumulateKernel, &first.table);
+  f.before = first.table;
+  ASSERT_TRUE(f.Invariants().empty()) << f.Reported();
+  ASSERT_GT(f.run.evicted, 0u);
+}
+bool Tombstone(const HashTableDump& table, std::uint32_t s) {
+  return table.tags[s] != kEmptyTag && table.counts[s] == 0;
+}
+
+// An evicted slot whose count and sums came back: the policy evicts it (strict: untouched this frame).
+void PlantEvictedEstimateBack(Fixture& f) {
+  EvictingSecondFrame(f);
+  const std::uint32_t s = f.FindSlot([&](std::uint32_t s) { return Tombstone(f.run.table, s); });
+  ASSERT_NE(s, kNotPlaced);
+  f.run.table.counts[s] = f.before->counts[s];
+  f.run.table.fixed_sums[s] = f.before->fixed_sums[s];
+}
+
+// A slot this frame touched that still names an earlier frame as its last.
+void PlantStaleLastSeen(Fixture& f) {
+  EvictingSecondFrame(f);
+  const std::uint32_t s = f.FindSlot([&](std::uint32_t s) { return f.run.table.counts[s] > f.before->counts[s]; });
+  ASSERT_NE(s, kNotPlaced);
+  f.run.table.last_seen[s] = 0;
+}
+
+// D7: a tombstone kept before a live slot emptied. One no record of this frame probed past, so only the tombstone
+// check sees the hole (a record that did would also report its empty earlier slot).
+void PlantHoleBeforeALiveSlot(Fixture& f) {
+  EvictingSecondFrame(f);
+  const std::uint32_t s = f.FindSlot([&](std::uint32_t s) {
+    if (!Tombstone(f.run.table, s)) return false;
+    for (std::uint32_t i = 0; i < f.batch.records.size(); ++i) {
+      if (f.ProbedPast(i, s)) return false;
+    }
+    return true;
+  });
+  ASSERT_NE(s, kNotPlaced);
+  f.run.table.tags[s] = kEmptyTag;
+}
+
+// A tombstone the reclaim emptied, given its tag back: nothing needs it, and kept ones fill the table for good.
+void PlantUnneededTombstone(Fixture& f) {
+  EvictingSecondFrame(f);
+  const std::uint32_t s =
+      f.FindSlot([&](std::uint32_t s) { return f.before->tags[s] != kEmptyTag && f.run.table.tags[s] == kEmptyTag; });
+  ASSERT_NE(s, kNotPlaced);
+  f.run.table.tags[s] = f.before->tags[s];
+}
+
 struct IsolatedCase {
   const char* name;
   TableInvariant invariant;
@@ -398,6 +461,10 @@ const IsolatedCase kIsolatedCases[] = {
     {"OrphanTag", TableInvariant::kOrphanTag, kRoomy, kFixed64, PlantOrphanTag},
     {"RecordOnAnUntaggedSlot", TableInvariant::kTotalMismatch, kRoomy, kFixed64, PlantRecordOnAnUntaggedSlot},
     {"TagLostAcrossFrames", TableInvariant::kTagChangedAcrossFrames, kRoomy, kFixed64, PlantTagLostAcrossFrames},
+    {"EvictedEstimateBack", TableInvariant::kEvictionPolicy, kRoomy, kFixed64, PlantEvictedEstimateBack},
+    {"StaleLastSeen", TableInvariant::kLastSeenWrong, kRoomy, kFixed64, PlantStaleLastSeen},
+    {"HoleBeforeALiveSlot", TableInvariant::kHoleBeforeLiveSlot, kRoomy, kFixed64, PlantHoleBeforeALiveSlot},
+    {"UnneededTombstone", TableInvariant::kTombstoneKept, kRoomy, kFixed64, PlantUnneededTombstone},
 };
 
 class IsolatedViolation : public ::testing::TestWithParam<IsolatedCase> {};

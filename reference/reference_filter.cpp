@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
@@ -13,6 +15,27 @@
 #include "core/shared/fixed_point.h"
 
 namespace hpsf {
+namespace {
+
+// The exact map forgets evicted cells outright: no tombstones, which only a hashed table needs. The frame's
+// records keep their cells, which no policy evicts, renumbered.
+void EvictCells(const FilterConfig& config, FilterResult& result) {
+  std::vector<std::uint32_t> renumbered(result.cells.size(), kNoCell);
+  std::vector<TableCell> kept;
+  for (std::size_t c = 0; c < result.cells.size(); ++c) {
+    if (config.eviction.Evicts(config.frame, result.cells[c].last_seen)) continue;
+    renumbered[c] = static_cast<std::uint32_t>(kept.size());
+    kept.push_back(result.cells[c]);
+  }
+  result.stats.cells_evicted = result.cells.size() - kept.size();
+  result.cells = std::move(kept);
+  for (std::uint32_t& cell : result.placement) {
+    if (cell != kNoCell) cell = renumbered[cell];
+  }
+}
+
+}  // namespace
+
 FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous) {
   CheckBatchShape(batch);
   config.Validate();
@@ -67,8 +90,10 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
       }
     }
     ++cell.count;
+    cell.last_seen = config.frame;
     result.placement[i] = it->second;
   }
+  if (config.eviction.enabled()) EvictCells(config, result);
 
   std::vector<glm::dvec3> averages(result.cells.size());
   for (std::size_t c = 0; c < result.cells.size(); ++c) {

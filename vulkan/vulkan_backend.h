@@ -14,9 +14,10 @@ namespace hpsf {
 
 class VulkanBackend : public Backend {
  public:
-  // accumulate_spv: a user's accumulate shader, as VulkanFilter takes it. The device must outlive the backend.
-  explicit VulkanBackend(VulkanDevice& device, const std::string& accumulate_spv = "")
-      : filter_(device, accumulate_spv) {}
+  // accumulate_spv, eviction_spv: a user's shaders, as VulkanFilter takes them. The device must outlive the backend.
+  explicit VulkanBackend(VulkanDevice& device, const std::string& accumulate_spv = "",
+                         const std::string& eviction_spv = "")
+      : filter_(device, accumulate_spv, eviction_spv) {}
   std::string Name() const override { return "vulkan"; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
   const VulkanRun& run() const { return *run_; }

@@ -20,6 +20,7 @@
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/table_params.h"
+#include "eviction_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
 #include "vulkan/vulkan_internal.h"
@@ -46,7 +47,18 @@ struct AccumulatePush {
   KeyParams key;
   shared::TableParams table;
 };
-static_assert(sizeof(AccumulatePush) == 80, "push constants of table_interface.glsl");
+static_assert(sizeof(AccumulatePush) == 96, "push constants of table_interface.glsl");
+
+struct EvictionPush {
+  std::uint32_t capacity;
+  std::uint32_t probe_limit;
+  std::uint32_t frame;
+  std::uint32_t unseen_frames;
+  std::uint32_t sum_words_per_slot;
+  std::uint32_t pass;  // 0 evict, 1 reclaim
+};
+static_assert(sizeof(EvictionPush) == 24, "push constants of eviction.comp");
+constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct ResolvePush {
   double unscale;
@@ -58,9 +70,13 @@ struct ResolvePush {
 static_assert(sizeof(ResolvePush) == 24, "push constants of resolve.glsl");
 
 // The stable interface: binding i of table_interface.glsl.
-constexpr BindingKind kAccumulateBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                               BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                               BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
+constexpr BindingKind kAccumulateBindings[] = {
+    BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kEvictionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                             BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 
@@ -102,9 +118,11 @@ struct VulkanFilter::Impl {
   VulkanDevice::Impl& device;
   std::vector<std::uint32_t> custom_accumulate;
   std::string accumulate_name;
+  std::vector<std::uint32_t> custom_eviction;
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
   std::optional<ComputeProgram> resolve[2];
-  DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels;
+  std::optional<ComputeProgram> eviction;
+  DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted;
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
   struct TableShape {
     std::uint32_t capacity;
@@ -131,15 +149,28 @@ struct VulkanFilter::Impl {
     }
     return *resolve[m];
   }
+  ComputeProgram& Eviction() {
+    if (!eviction) {
+      const std::span<const std::uint32_t> spirv = custom_eviction.empty()
+                                                       ? std::span<const std::uint32_t>(eviction_spv)
+                                                       : std::span<const std::uint32_t>(custom_eviction);
+      eviction = vulkan_internal::CreateComputeProgram(device, spirv, kEvictionBindings, sizeof(EvictionPush));
+    }
+    return *eviction;
+  }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
     if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateDeviceBuffer(device, bytes);
   }
 };
 
-VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv)
+VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv)
     : impl_(new Impl{device.impl(),
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
+                     eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
+                     {},
+                     {},
+                     {},
                      {},
                      {},
                      {},
@@ -199,6 +230,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.stats, 8);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
+  const bool evicting = config.eviction.enabled();
+  p.Ensure(p.last_seen, vk::DeviceSize(config.capacity) * 4);  // bound always (binding 8), written with eviction only
+  p.Ensure(p.evicted, 8);
   vulkan_internal::Transfer upload(p.device, p.staging);
   auto* records = static_cast<Record*>(upload.Upload(p.records, batch.records.size() * sizeof(Record)));
   auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
@@ -222,15 +256,18 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
-  DeviceBuffer* const accumulate_buffers[] = {&p.records, &p.keys, &p.tags, &p.sums, &p.counts, &p.placements, &p.stats, &p.accepted};
+  DeviceBuffer* const accumulate_buffers[] = {&p.records,    &p.keys,  &p.tags,     &p.sums,     &p.counts,
+                                              &p.placements, &p.stats, &p.accepted, &p.last_seen};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
-  AccumulatePush push{MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
-                      {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
-                       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32}};
+  AccumulatePush push{
+      MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
+      {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
+       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, evicting ? 1u : 0u, 0, 0}};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
     if (!keep_table) {
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
+      if (evicting) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
     }
     const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared, nullptr, nullptr);
@@ -239,6 +276,35 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(vulkan_internal::WorkgroupsFor(n, kAccumulateRecordsPerWorkgroup), 1, 1);
   });
+
+  // Eviction: evict, then reclaim, one invocation per slot (eviction.comp). The frame's resolve reads only slots
+  // the frame touched, which no policy evicts, so it may follow.
+  if (evicting) {
+    ComputeProgram& eviction = p.Eviction();
+    DeviceBuffer* const eviction_buffers[] = {&p.tags, &p.sums, &p.counts, &p.last_seen, &p.evicted};
+    vulkan_internal::BindBuffers(p.device, eviction, eviction_buffers);
+    EvictionPush eviction_push{
+        config.capacity, config.probe_limit, config.frame, config.eviction.unseen_frames, fixed ? 6u : 3u, 0};
+    run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+      cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
+      const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite,
+                                      vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared,
+                         nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *eviction.pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *eviction.layout, 0, *eviction.set, nullptr);
+      for (std::uint32_t pass : {0u, 1u}) {
+        eviction_push.pass = pass;
+        cb.pushConstants<EvictionPush>(*eviction.layout, vk::ShaderStageFlagBits::eCompute, 0, eviction_push);
+        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kEvictionSlotsPerWorkgroup), 1, 1);
+        // The reclaim reads the counts the evict pass wrote.
+        const vk::MemoryBarrier evicted(vk::AccessFlagBits::eShaderWrite,
+                                        vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+        cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                           evicted, nullptr, nullptr);
+      }
+    });
+  }
 
   // Resolve: a separate pass, 16 pixels per invocation.
   ComputeProgram& resolve = p.Resolve(config.accumulation);
@@ -265,6 +331,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_counts = download.Download(p.counts, std::size_t(config.capacity) * 8);
   const void* from_sums = download.Download(p.sums, sum_bytes);
   const void* from_stats = download.Download(p.stats, 8);
+  const void* from_last_seen = evicting ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
+  const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
   run.timings.read_back_copy_ms = download.Submit();
   run.timings.read_back_bytes = download.bytes();
   start = std::chrono::steady_clock::now();
@@ -287,6 +355,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                sum_bytes},
                        CopyOut{&run.wraps, from_stats, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
+  if (evicting) {
+    ResizeOnHugePages(table.last_seen, config.capacity);
+    ParallelCopy({table.last_seen.data(), from_last_seen, std::size_t(config.capacity) * 4});
+    std::memcpy(&run.evicted, from_evicted, 8);
+    for (std::size_t s = 0; s < config.capacity; ++s)
+      run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
+  }
   run.timings.read_back_ms = MillisecondsSince(start);
   CountProbes(run);
   p.table = Impl::TableShape{config.capacity, config.accumulation, table.fixed_point_bits};

@@ -25,11 +25,12 @@ struct VulkanTimings {
   double upload_copy_ms = 0;     // device: staging to device copies (0 when mapped)
   double accumulate_ms = 0;      // device: clearing the table and the accumulate dispatch (keys included)
   double resolve_ms = 0;         // device: the resolve dispatch
+  double eviction_ms = 0;        // device: the evict and reclaim dispatches; 0 without eviction
   double read_back_copy_ms = 0;  // device: device to staging copies (0 when mapped)
   double read_back_ms = 0;       // host: image, table, keys and placements out of mapped or staging memory
   std::uint64_t upload_bytes = 0;
   std::uint64_t read_back_bytes = 0;
-  double FilterMs() const { return accumulate_ms + resolve_ms; }
+  double FilterMs() const { return accumulate_ms + eviction_ms + resolve_ms; }
   double UploadMs() const { return upload_ms + upload_copy_ms; }
   double ReadBackMs() const { return read_back_copy_ms + read_back_ms; }
 };
@@ -43,7 +44,9 @@ class VulkanFilter {
  public:
   // accumulate_spv: the path of a user's accumulate shader (SPIR-V) to run in place of the built-in one,
   // through the same bindings; empty for the built-in shaders. InputError naming the file when it is not SPIR-V.
-  explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "");
+  // eviction_spv: likewise for the eviction pass (eviction.comp's bindings and push constants).
+  explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "",
+                        const std::string& eviction_spv = "");
   ~VulkanFilter();
   VulkanFilter(const VulkanFilter&) = delete;
   VulkanFilter& operator=(const VulkanFilter&) = delete;

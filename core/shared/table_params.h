@@ -1,6 +1,6 @@
 // The part of a filter run that the accumulate pass reads besides the key parameters: the table's shape and
-// the fixed-point scale, one block of 32-bit scalars shared by C++ and GLSL (after KeyParams in the
-// accumulate shader's push constants).
+// the fixed-point scale and the frame state, one block of 32-bit scalars shared by C++ and GLSL (after KeyParams
+// in the accumulate shader's push constants).
 #ifndef HPSF_CORE_SHARED_TABLE_PARAMS_H
 #define HPSF_CORE_SHARED_TABLE_PARAMS_H
 
@@ -20,6 +20,11 @@ struct TableParams {
   uint probe_limit;         // slots probed from slot0, wrapping at capacity
   float fixed_point_scale;  // 2^F, fixed64 only
   uint accumulation;        // kAccumulateFixed64 or kAccumulateFloat32
+  // The frame state (issue 14): with eviction, a slot a record is added to stores `frame` as its last-seen frame.
+  uint frame;
+  uint track_last_seen;  // 1 with eviction, else 0 (the last-seen buffer is then not written)
+  uint reserved0;
+  uint reserved1;
 };
 
 HPSF_SHARED_END

@@ -1,5 +1,6 @@
 #include "tools/checks/table_checker.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/input_check.h"
@@ -33,6 +34,14 @@ const char* ToString(TableInvariant invariant) {
     case TableInvariant::kTotalMismatch: return "table total differs from the placed contributions";
     case TableInvariant::kTagChangedAcrossFrames:
       return "slot claimed in an earlier frame lost its tag";
+    case TableInvariant::kEvictionPolicy:
+      return "eviction differs from the policy";
+    case TableInvariant::kLastSeenWrong:
+      return "last-seen frame wrong";
+    case TableInvariant::kHoleBeforeLiveSlot:
+      return "tombstone emptied before a live slot that may need it";
+    case TableInvariant::kTombstoneKept:
+      return "tombstone kept that no live slot needs";
   }
   return "?";
 }
@@ -61,6 +70,10 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     violations.push_back({invariant, slot, std::move(records), std::move(detail)});
   };
 
+  // The tags the frame's lookups saw: with eviction, a tombstone the reclaim emptied after them still held its tag
+  // (whether the reclaim was right to empty it is the tombstone check's question below).
+  const bool evicting = in.eviction.enabled();
+  auto window_tag = [&](std::uint32_t s) { return evicting && t.tags[s] == kEmptyTag ? tag_before(s) : t.tags[s]; };
   std::vector<std::vector<std::uint32_t>> placed(t.capacity);
   for (std::uint32_t i = 0; i < in.records.size(); ++i) {
     const KeyResult& key = in.keys[i];
@@ -73,8 +86,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (slot == kProbeFailure) {
       for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
         const std::uint32_t s = (key.slot0 + probe) & mask;
-        if (t.tags[s] == kEmptyTag || t.tags[s] == key.fingerprint) {
-          violate(TableInvariant::kFailureWindowNotFull, s, {i}, "tag " + std::to_string(t.tags[s]) + " at probe " + std::to_string(probe));
+        if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint) {
+          violate(TableInvariant::kFailureWindowNotFull, s, {i},
+                  "tag " + std::to_string(window_tag(s)) + " at probe " + std::to_string(probe));
           break;
         }
       }
@@ -94,42 +108,103 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     }
     for (std::uint32_t probe = 0; probe < std::min(distance, t.probe_limit); ++probe) {
       const std::uint32_t s = (key.slot0 + probe) & mask;
-      if (t.tags[s] == kEmptyTag || t.tags[s] == key.fingerprint) {
-        violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i}, "tag " + std::to_string(t.tags[s]) + " before slot " + std::to_string(slot));
+      if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint) {
+        violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
+                "tag " + std::to_string(window_tag(s)) + " before slot " + std::to_string(slot));
         break;
       }
     }
     placed[slot].push_back(i);
   }
 
+  // Eviction: the state the policy leaves between the evict and the reclaim passes (the snapshot), from the table
+  // before, this frame's placements and the last-seen frames alone.
+  const Eviction& eviction = in.eviction;
+  if (evicting && (t.last_seen.size() != t.capacity || (before && before->last_seen.size() != t.capacity))) {
+    violate(TableInvariant::kLastSeenWrong, 0xFFFFFFFFu, {}, "a table without a last-seen frame per slot");
+    return violations;
+  }
+  auto last_seen_before = [&](std::uint32_t s) { return before && evicting ? before->last_seen[s] : 0u; };
+  auto evicted_now = [&](std::uint32_t s) {
+    return evicting && placed[s].empty() && tag_before(s) != kEmptyTag && count_before(s) > 0 &&
+           eviction.Evicts(in.frame, last_seen_before(s));
+  };
+  auto snapshot_tag = [&](std::uint32_t s) { return placed[s].empty() ? tag_before(s) : t.tags[s]; };
+  auto snapshot_live = [&](std::uint32_t s) {
+    return snapshot_tag(s) != kEmptyTag && (!placed[s].empty() || (count_before(s) > 0 && !evicted_now(s)));
+  };
+  // A tombstone is kept exactly when a live slot follows it within the probe limit with no empty slot between.
+  auto live_slot_after = [&](std::uint32_t s) -> std::uint32_t {
+    for (std::uint32_t distance = 1; distance < std::min(t.probe_limit, t.capacity); ++distance) {
+      const std::uint32_t next = (s + distance) & mask;
+      if (snapshot_tag(next) == kEmptyTag) break;
+      if (snapshot_live(next)) return next;
+    }
+    return 0xFFFFFFFFu;
+  };
+
   // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
-  // what it held before the frame plus what the frame placed there.
+  // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
   std::array<unsigned __int128, 3> table_total{}, placed_total{};
   std::uint64_t total_count = 0, count_total_before = 0;
+  auto sums_are_zero = [&](std::uint32_t s) {
+    return fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
+  };
   for (std::uint32_t s = 0; s < t.capacity; ++s) {
     const std::vector<std::uint32_t>& here = placed[s];
-    if (tag_before(s) != kEmptyTag && t.tags[s] != tag_before(s)) {
+    if (evicting && t.last_seen[s] != (here.empty() ? last_seen_before(s) : in.frame)) {
+      violate(TableInvariant::kLastSeenWrong, s, here,
+              "last seen " + std::to_string(t.last_seen[s]) + ", frame " + std::to_string(in.frame) +
+                  (here.empty() ? ", untouched, before " + std::to_string(last_seen_before(s)) : ", touched"));
+    }
+    if (evicting && snapshot_tag(s) != kEmptyTag && !snapshot_live(s)) {
+      const std::uint32_t live = live_slot_after(s);
+      const SlotTag expected = live != 0xFFFFFFFFu ? snapshot_tag(s) : kEmptyTag;
+      if (t.tags[s] != expected) {
+        const TableInvariant invariant = t.tags[s] == kEmptyTag         ? TableInvariant::kHoleBeforeLiveSlot
+                                         : t.tags[s] == snapshot_tag(s) ? TableInvariant::kTombstoneKept
+                                                                        : TableInvariant::kTagChangedAcrossFrames;
+        violate(
+            invariant, s, here,
+            "tombstone of tag " + std::to_string(snapshot_tag(s)) + ", tag " + std::to_string(t.tags[s]) + " after; " +
+                (live != 0xFFFFFFFFu ? "live slot " + std::to_string(live) + " after it" : "no live slot after it"));
+      }
+    } else if (tag_before(s) != kEmptyTag && t.tags[s] != tag_before(s)) {
       violate(TableInvariant::kTagChangedAcrossFrames, s, here,
               "tag " + std::to_string(tag_before(s)) + " before the frame, " + std::to_string(t.tags[s]) + " after");
     }
-    count_total_before += count_before(s);
-    for (int c = 0; c < 3; ++c) placed_total[c] += fixed_before(s, c);
+    const bool evicted_by_policy = evicted_now(s);
+    const bool looks_evicted = t.counts[s] == 0 && sums_are_zero(s);
+    if (evicting && here.empty() && tag_before(s) != kEmptyTag && count_before(s) > 0 &&
+        evicted_by_policy != looks_evicted) {
+      violate(TableInvariant::kEvictionPolicy, s, {},
+              "last seen in frame " + std::to_string(last_seen_before(s)) + ", policy " + eviction.ToString() +
+                  " after frame " + std::to_string(in.frame) +
+                  (evicted_by_policy ? " evicts it, but it holds count " + std::to_string(t.counts[s])
+                                     : " keeps it, but it was emptied"));
+      continue;  // reported once: its count and sums are the policy's question, not the accumulate's
+    }
+    const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s);
+    auto fixed_base = [&](int c) -> std::uint64_t { return evicted_by_policy ? 0 : fixed_before(s, c); };
+    auto float_base = [&](int c) -> float { return evicted_by_policy ? 0.0f : float_before(s, c); };
+    count_total_before += base_count;
+    for (int c = 0; c < 3; ++c) placed_total[c] += fixed_base(c);
     if (t.tags[s] == kEmptyTag) {
-      const bool sums_zero = fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
-      if (t.counts[s] != 0 || !sums_zero) violate(TableInvariant::kEmptySlotNotZero, s, here, "count " + std::to_string(t.counts[s]));
+      if (t.counts[s] != 0 || !sums_are_zero(s))
+        violate(TableInvariant::kEmptySlotNotZero, s, here, "count " + std::to_string(t.counts[s]));
       continue;
     }
     if (here.empty() && tag_before(s) == kEmptyTag)
       violate(TableInvariant::kOrphanTag, s, {}, "tag " + std::to_string(t.tags[s]));
-    if (t.counts[s] != count_before(s) + here.size()) {
+    if (t.counts[s] != base_count + here.size()) {
       violate(TableInvariant::kCountMismatch, s, here,
-              "count " + std::to_string(t.counts[s]) + ", before " + std::to_string(count_before(s)) + " + placed " +
+              "count " + std::to_string(t.counts[s]) + ", before " + std::to_string(base_count) + " + placed " +
                   std::to_string(here.size()));
     }
     total_count += t.counts[s];
     for (int c = 0; c < 3; ++c) {
-      unsigned __int128 exact = fixed_before(s, c);
-      double exact_float = double(float_before(s, c)), magnitude = std::abs(exact_float);
+      unsigned __int128 exact = fixed_base(c);
+      double exact_float = double(float_base(c)), magnitude = std::abs(exact_float);
       for (std::uint32_t i : here) {
         const float v = in.records[i].contribution[c];
         exact += shared::ToFixedPoint(v, scale);
@@ -138,7 +213,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       }
       if (fixed) {
         table_total[c] += t.fixed_sums[s][c];
-        placed_total[c] += exact - fixed_before(s, c);
+        placed_total[c] += exact - fixed_base(c);
         if (exact != t.fixed_sums[s][c]) {
           violate(TableInvariant::kSumMismatch, s, here, "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) +
                                                               ", exact " + std::to_string(std::uint64_t(exact)));
@@ -146,7 +221,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       } else {
         // Float atomics are not promised to round to nearest: u = 2^-23, gamma(k) = k u / (1 - k u), over the k
         // adds after the first term (the sum before the frame counts as one when there is one).
-        const std::size_t terms = here.size() + (count_before(s) > 0 ? 1 : 0);
+        const std::size_t terms = here.size() + (base_count > 0 ? 1 : 0);
         const double k = double(terms > 0 ? terms - 1 : 0), u = 0x1p-23;
         const double bound = k * u / (1.0 - k * u) * magnitude;
         if (!(std::abs(double(t.float_sums[s][c]) - exact_float) <= bound)) {

@@ -3,7 +3,11 @@
 // order. Every violation names the invariant, the slot and the records involved.
 // Over frames (issue 14), it judges one frame from the table before it, the frame's records and placements and
 // the table after: with temporal integration and no eviction, a claimed slot keeps its tag, and each slot's
-// count and sums grow by exactly what the frame placed there.
+// count and sums grow by exactly what the frame placed there. With eviction (core/eviction.h) the table after is
+// the state after the eviction pass: a slot the frame touched is never evicted and its last-seen frame is this
+// one; a live slot the policy evicts is a tombstone with zero count and sums (no evicted estimate comes back)
+// and one it keeps is unchanged; a tombstone stays exactly when a live slot lies after it within the probe limit
+// with no empty slot between, the rule that leaves no hole on any live slot's probe path (D7).
 #ifndef HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
 #define HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
 
@@ -12,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/eviction.h"
 #include "core/hash_table.h"
 #include "core/key_batch.h"
 #include "core/record.h"
@@ -30,6 +35,10 @@ enum class TableInvariant {
   kOrphanTag,                   // a non-zero tag that no placed record carries
   kTotalMismatch,               // the table total differs from the placed contributions
   kTagChangedAcrossFrames,      // a slot claimed before the frame holds another tag, or none, after it
+  kEvictionPolicy,              // a slot the policy evicts still live, or one it keeps evicted
+  kLastSeenWrong,               // a slot's last-seen frame is not this frame (touched) or its earlier one
+  kHoleBeforeLiveSlot,          // a tombstone emptied though a live slot after it may have probed past it (D7)
+  kTombstoneKept,               // a tombstone kept though no live slot after it can need it (the table fills)
 };
 const char* ToString(TableInvariant invariant);
 
@@ -48,6 +57,8 @@ struct TableCheckInput {
   std::span<const std::uint32_t> placements;  // per record
   // The table before this frame, of the same shape and F; null: the frame started from an empty table.
   const HashTableDump* before = nullptr;
+  Eviction eviction = {};   // the sequence's policy; the tables then carry last_seen
+  std::uint32_t frame = 0;  // this frame's number
 };
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& input);

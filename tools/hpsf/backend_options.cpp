@@ -33,10 +33,14 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"fixed64_wraps", run.wraps},
                       {"slots_used", SlotsUsed(run.table)},
                       {"probe_lengths", run.probe_lengths},
-                      {"fixed_point_bits", run.table.fixed_point_bits}};
+                      {"fixed_point_bits", run.table.fixed_point_bits},
+                      {"evicted", run.evicted},
+                      {"tombstones", run.tombstones}};
   const EmulatedTimings& t = run.timings;
-  j["timings_ms"] = {{"keys", 1e3 * t.keys},           {"fixed_point", 1e3 * t.fixed_point}, {"clear", 1e3 * t.clear},
-                     {"accumulate", 1e3 * t.accumulate}, {"read_back", 1e3 * t.read_back},     {"resolve", 1e3 * t.resolve}};
+  j["timings_ms"] = {{"keys", 1e3 * t.keys},         {"fixed_point", 1e3 * t.fixed_point},
+                     {"clear", 1e3 * t.clear},       {"accumulate", 1e3 * t.accumulate},
+                     {"eviction", 1e3 * t.eviction}, {"read_back", 1e3 * t.read_back},
+                     {"resolve", 1e3 * t.resolve}};
   if (options.mode == simt::Mode::kFaithful) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.launch.trace_hash));
@@ -63,12 +67,15 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
           {"slots_used", SlotsUsed(run.table)},
           {"probe_lengths", run.probe_lengths},
           {"fixed_point_bits", run.table.fixed_point_bits},
+          {"evicted", run.evicted},
+          {"tombstones", run.tombstones},
           {"memory", device.memory},
           {"staged", device.staged},
           {"timings_ms",
            {{"upload", run.timings.upload_ms},
             {"upload_copy", run.timings.upload_copy_ms},
             {"accumulate", run.timings.accumulate_ms},
+            {"eviction", run.timings.eviction_ms},
             {"resolve", run.timings.resolve_ms},
             {"filter", run.timings.FilterMs()},
             {"read_back_copy", run.timings.read_back_copy_ms},

@@ -29,6 +29,11 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
       .add_option("--fixed-point-bits", o.fixed_point_bits,
                   "F, fixed64's fraction bits, in [-126, 126]; auto: the largest the first frame's totals allow")
       ->capture_default_str();
+  command
+      .add_option("--eviction", o.eviction,
+                  "Cells a table kept across frames forgets after each frame: none, strict (not touched this frame) "
+                  "or stale:N (not touched for N frames)")
+      ->capture_default_str();
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {
@@ -46,6 +51,7 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     }
     config.fixed_point_bits = bits;
   }
+  config.eviction = ParseEviction(o.eviction);
   config.Validate();
   return config;
 }
@@ -73,6 +79,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"seed", c.seed},
           {"frame", c.frame},
           {"frames", c.frames},
+          {"eviction", c.eviction.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }
 
@@ -87,7 +94,8 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"mean_records_per_cell", s.mean_records_per_cell},
           {"max_records_per_cell", s.max_records_per_cell},
           {"fixed_point_bits", s.fixed_point_bits},
-          {"fixed64_wraps", s.fixed_point_wraps}};
+          {"fixed64_wraps", s.fixed_point_wraps},
+          {"cells_evicted", s.cells_evicted}};
 }
 
 }  // namespace hpsf

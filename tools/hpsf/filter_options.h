@@ -20,6 +20,7 @@ struct FilterOptions {
   std::string lod = "on";
   std::string accumulation = "fixed64";
   std::string fixed_point_bits = "auto";
+  std::string eviction = "none";
   bool no_filter = false;
   bool variance = false;  // also write each pixel's variance (tools/checks/pixel_variance.h)
 };

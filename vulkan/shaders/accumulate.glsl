@@ -1,7 +1,8 @@
 // The accumulate pass of DESIGN.md, "The algorithm", record by record: the key from core/shared, then
 // bounded linear probing from slot0; a slot whose tag is the fingerprint is joined, an empty one claimed with
 // atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
-// reports wrap from the add's return value. accumulate_fixed64.comp and accumulate_float32.comp define the
+// reports wrap from the add's return value. With eviction, the slot's last-seen frame is stored after the adds;
+// a tombstone (an evicted slot that keeps its tag) is joined or passed like any slot, never claimed. accumulate_fixed64.comp and accumulate_float32.comp define the
 // sums type and include this.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
@@ -71,6 +72,7 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
       // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
       if (tag != 0u && tag != fingerprint) continue;
       AddToSlot(slot, r, t.fixed_point_scale);
+      if (t.track_last_seen != 0u) last_seen[slot] = t.frame;  // every writer stores the same frame
       placement = slot;
 #if !defined(HPSF_DEFECT_D2)  // D2 keeps probing after a match and adds again (Meijer Algorithm 4)
       break;

@@ -9,7 +9,9 @@
 //   5 placements  uint[n]: slot, kPlacementProbeFailure or kPlacementNotPlaced                write
 //   6 stats       uint64_t wraps: fixed64 adds whose sum wrapped, zeroed                      atomics
 //   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
-// Push constants: KeyParams (64 bytes), then TableParams (16 bytes).
+//   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
+// Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state).
+// A shader written against the first 8 bindings and 16 bytes of TableParams still runs without eviction.
 // The includer defines HPSF_SUMS_TYPE (uint64_t or float).
 #define HPSF_RECORDS_BINDING 0
 #include "record_texels.glsl"
@@ -21,6 +23,7 @@ layout(std430, binding = 4) buffer Counts { uint64_t counts[]; };
 layout(std430, binding = 5) writeonly buffer Placements { uint placements[]; };
 layout(std430, binding = 6) buffer Stats { uint64_t wraps; };
 layout(std430, binding = 7) readonly buffer Accepted { uint accepted[]; };
+layout(std430, binding = 8) writeonly buffer LastSeen { uint last_seen[]; };
 layout(push_constant) uniform Params {
   KeyParams params;
   TableParams table;

@@ -1,0 +1,278 @@
+// Eviction across frames (core/eviction.h, issue 14) on all three backends: frame by frame, the hashed tables
+// (emulated fast and faithful, Vulkan mapped and staged) evict what the exact map evicts and resolve the same image
+// bit for bit, and the table checker passes them from the table before each frame; tombstones keep every live cell
+// reachable, and the reclaim that empties every tombstone (D7, in the emulator and as a shader) is caught by the
+// checker and the contract; the furnace keeps its light with every policy.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/backend.h"
+#include "core/error.h"
+#include "core/eviction.h"
+#include "emulated/defect_injection.h"
+#include "emulated/emulated_backend.h"
+#include "property_tests/vulkan_test_devices.h"
+#include "reference/reference_backend.h"
+#include "reference/reference_filter.h"
+#include "tools/checks/table_checker.h"
+#include "tracer/path_tracer.h"
+#include "tracer/scene_file.h"
+#include "vulkan/vulkan_backend.h"
+
+namespace hpsf::testing {
+namespace {
+
+using Key = std::array<std::uint32_t, 6>;
+
+constexpr std::uint32_t kSize = 24;
+constexpr std::uint32_t kSpp = 2;
+
+std::vector<RecordBatch> TraceFrames(const Scene& scene, std::uint32_t frames) {
+  std::vector<RecordBatch> batches;
+  for (std::uint32_t frame = 0; frame < frames; ++frame) {
+    TraceOptions trace;
+    trace.width = trace.height = kSize;
+    trace.samples_per_pixel = kSpp;
+    trace.frame = frame;
+    batches.push_back(TraceRecords(scene, trace).batch);
+  }
+  return batches;
+}
+
+struct HashedBackend {
+  std::string name;
+  std::unique_ptr<Backend> backend;
+};
+
+// Emulated fast and faithful (warps of 8, a random schedule), Vulkan mapped and staged; `d7` gives each the reclaim
+// that empties every tombstone.
+std::vector<HashedBackend> HashedBackends(bool d7 = false) {
+  std::vector<HashedBackend> backends;
+  const ReclaimKernelFn reclaim = d7 ? D7ReclaimEveryTombstone : ReclaimKernel;
+  backends.push_back(
+      {"emulated fast", std::make_unique<EmulatedBackend>(EmulatorOptions{}, AccumulateKernel, reclaim)});
+  EmulatorOptions faithful;
+  faithful.mode = simt::Mode::kFaithful;
+  faithful.warp_size = 8;
+  faithful.schedule = "random:7";
+  backends.push_back({"emulated faithful", std::make_unique<EmulatedBackend>(faithful, AccumulateKernel, reclaim)});
+  const std::string eviction_spv = d7 ? HPSF_SHADER_VARIANT_DIR "/eviction_D7.spv" : "";
+  for (const StagingPolicy staging : kStagingPolicies) {
+    backends.push_back({std::string("vulkan, staging ") + ToString(staging),
+                        std::make_unique<VulkanBackend>(TestDevice(staging), "", eviction_spv)});
+  }
+  return backends;
+}
+
+const HashedRun& RunOf(const Backend& backend) {
+  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(&backend)) return emulated->run();
+  return dynamic_cast<const VulkanBackend&>(backend).run();
+}
+
+std::uint64_t LiveSlots(const HashTableDump& table) {
+  std::uint64_t live = 0;
+  for (std::size_t s = 0; s < table.capacity; ++s) live += table.tags[s] != kEmptyTag && table.counts[s] > 0;
+  return live;
+}
+
+TEST(Eviction, ParsesItsPoliciesAndNamesABadOne) {
+  EXPECT_EQ(ParseEviction("none"), (Eviction{EvictionPolicy::kNone, 0}));
+  EXPECT_EQ(ParseEviction("strict"), (Eviction{EvictionPolicy::kStrict, 1}));
+  EXPECT_EQ(ParseEviction("stale:3"), (Eviction{EvictionPolicy::kStale, 3}));
+  for (const char* bad : {"stale", "stale:0", "stale:-1", "stale:1048577", "stale:2x", "lru", ""}) {
+    try {
+      ParseEviction(bad);
+      ADD_FAILURE() << bad << " parsed";
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("--eviction: ", 0), 0u) << e.what();
+    }
+  }
+  const Eviction stale{EvictionPolicy::kStale, 3};
+  EXPECT_FALSE(stale.Evicts(5, 3));
+  EXPECT_TRUE(stale.Evicts(6, 3));
+  EXPECT_FALSE(Eviction{}.Evicts(1000, 0));
+  EXPECT_TRUE((Eviction{EvictionPolicy::kStrict, 1}).Evicts(4, 3));
+  EXPECT_FALSE((Eviction{EvictionPolicy::kStrict, 1}).Evicts(4, 4));
+}
+
+// The animated Cornell box (camera, light and cube move): each frame sees cells the last did not, so both policies
+// evict, leave tombstones before live cells and reclaim others.
+TEST(Eviction, TheHashedTableEvictsWhatTheExactMapEvictsFrameByFrame) {
+  constexpr std::uint32_t kFrames = 6;
+  const std::vector<RecordBatch> frames = TraceFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), kFrames);
+  for (const char* policy : {"strict", "stale:2"}) {
+    for (HashedBackend& hashed : HashedBackends()) {
+      const std::string name = hashed.name + ", " + policy;
+      FilterConfig config;
+      config.capacity = 1u << 12;
+      config.frames = kFrames;
+      config.eviction = ParseEviction(policy);
+      ReferenceBackend reference;
+      std::optional<HashTableDump> before;
+      std::uint64_t evicted = 0, tombstones = 0, reclaimed = 0;
+      for (std::uint32_t k = 0; k < kFrames; ++k) {
+        config.frame = k;
+        const std::string what = name + ", frame " + std::to_string(k);
+        const Image& expected = reference.FilterFrame(frames[k], config);
+        const Image& image = hashed.backend->FilterFrame(frames[k], config);
+        const HashedRun& run = RunOf(*hashed.backend);
+        const std::vector<TableViolation> violations = CheckTable(
+            {run.table, frames[k].records, run.keys, run.placements, before ? &*before : nullptr, config.eviction, k});
+        EXPECT_TRUE(violations.empty()) << what << ": " << violations.front().ToString();
+        ASSERT_EQ(run.probe_failures, 0u) << what;
+        EXPECT_EQ(run.evicted, reference.result().stats.cells_evicted) << what;
+        EXPECT_EQ(LiveSlots(run.table), reference.result().cells.size()) << what << ": live slots against cells";
+        EXPECT_TRUE(image.pixels == expected.pixels) << what << ": image differs from the reference's";
+        evicted += run.evicted;
+        tombstones += run.tombstones;
+        if (before) {
+          for (std::size_t s = 0; s < config.capacity; ++s) {
+            reclaimed += before->tags[s] != kEmptyTag && before->counts[s] == 0 && run.table.tags[s] == kEmptyTag;
+          }
+        }
+        before = run.table;
+      }
+      // The oracle is fed: cells were evicted, tombstones were kept before live cells, and some were reclaimed.
+      EXPECT_GT(evicted, 100u) << name;
+      EXPECT_GT(tombstones, 0u) << name;
+      EXPECT_GT(reclaimed + (evicted - tombstones), 0u) << name;
+    }
+  }
+}
+
+// Two cells with one slot0 in a table of 4: A claims slot0 in frame 0, B probes past it to slot0 + 1 in frame 1,
+// and strict eviction makes A a tombstone after frame 1, before live B. The right reclaim keeps it; D7's reclaim
+// empties it, which the checker sees after frame 1, and in frame 2 B's lookup claims the hole and splits its
+// cell, which the comparison with the reference sees.
+TEST(Eviction, D7AHoleBeforeALiveCellIsCaughtByTheCheckerAndTheContract) {
+  const RecordBatch traced = TraceFrames(LoadScene("cornell"), 1)[0];
+  FilterConfig config;
+  config.capacity = 4;
+  config.probe_limit = 4;
+  config.jitter_scale = 0.0f;  // a record's key is the same in every frame
+  config.frames = 3;
+  config.eviction = ParseEviction("strict");
+  const EmulatedRun keyed = EmulatedFilter(traced, config, EmulatorOptions{});
+  std::map<Key, std::vector<std::uint32_t>> records_of;
+  for (std::uint32_t i = 0; i < keyed.keys.size(); ++i) {
+    if (keyed.placements[i] >= config.capacity && keyed.placements[i] != kProbeFailure) continue;
+    const shared::KeyWords& w = keyed.keys[i].words;
+    records_of[{w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra}].push_back(i);
+  }
+  std::optional<Key> a, b;
+  for (auto i = records_of.begin(); i != records_of.end() && !b; ++i) {
+    for (auto j = std::next(i); j != records_of.end(); ++j) {
+      const KeyResult& ki = keyed.keys[i->second[0]];
+      const KeyResult& kj = keyed.keys[j->second[0]];
+      if (ki.slot0 == kj.slot0 && ki.fingerprint != kj.fingerprint) {
+        a = i->first, b = j->first;
+        break;
+      }
+    }
+  }
+  ASSERT_TRUE(a && b) << "no two cells share a slot0 among " << records_of.size();
+  // A frame holding only one cell's records: the others keep their pixels but lose their vertex.
+  auto only = [&](const Key& key) {
+    RecordBatch batch = traced;
+    std::vector<bool> keep(batch.records.size(), false);
+    for (std::uint32_t i : records_of[key]) keep[i] = true;
+    for (std::size_t i = 0; i < batch.records.size(); ++i) {
+      if (!keep[i]) batch.records[i].path.z &= ~shared::kRecordHasVertex;
+    }
+    return batch;
+  };
+  // Frame 2: B's records again, twice as bright, so B's cell over frames 1 and 2 averages otherwise than frame 2's
+  // records alone (a cell split by D7's hole).
+  RecordBatch brighter = only(*b);
+  for (std::uint32_t i : records_of[*b]) brighter.records[i].contribution *= glm::vec4(2.0f, 2.0f, 2.0f, 1.0f);
+  const std::vector<RecordBatch> frames = {only(*a), only(*b), brighter};
+  const std::uint32_t slot0 = keyed.keys[records_of[*a][0]].slot0;
+
+  struct Outcome {
+    std::map<TableInvariant, int> violations;  // over all frames
+    bool image_differs = false;                // from the reference's, in some frame
+  };
+  auto run_sequence = [&](Backend& hashed) {
+    Outcome outcome;
+    ReferenceBackend reference;
+    std::optional<HashTableDump> before;
+    for (std::uint32_t k = 0; k < frames.size(); ++k) {
+      config.frame = k;
+      const Image& expected = reference.FilterFrame(frames[k], config);
+      outcome.image_differs |= hashed.FilterFrame(frames[k], config).pixels != expected.pixels;
+      const HashedRun& run = RunOf(hashed);
+      if (k == 1) {
+        EXPECT_EQ(run.placements[records_of[*b][0]], (slot0 + 1) % 4) << "B probed past A";
+      }
+      for (const TableViolation& v : CheckTable({run.table, frames[k].records, run.keys, run.placements,
+                                                 before ? &*before : nullptr, config.eviction, k})) {
+        ++outcome.violations[v.invariant];
+      }
+      before = run.table;
+    }
+    return outcome;
+  };
+  for (HashedBackend& hashed : HashedBackends()) {
+    const Outcome right = run_sequence(*hashed.backend);
+    EXPECT_TRUE(right.violations.empty()) << hashed.name;
+    EXPECT_FALSE(right.image_differs) << hashed.name;
+  }
+  for (HashedBackend& hashed : HashedBackends(true)) {
+    Outcome d7 = run_sequence(*hashed.backend);
+    EXPECT_GT(d7.violations[TableInvariant::kHoleBeforeLiveSlot], 0) << hashed.name << ": the checker misses D7's hole";
+    EXPECT_TRUE(d7.image_differs) << hashed.name << ": the contract misses D7's split cell";
+  }
+}
+
+double MeanRadiance(const Image& image) {
+  double sum = 0;
+  for (const glm::vec3& p : image.pixels) sum += double(p.x) + p.y + p.z;
+  return sum / (3.0 * double(image.pixels.size()));
+}
+
+// The furnace's radiance is the same everywhere: with a moving camera over 16 frames, every policy keeps the
+// light on every backend, frame by frame: each frame's filtered mean stays within 1% of the same records'
+// unfiltered mean (plain path tracing), and no pixel is poisoned. Measured: at most 0.52% on every backend and
+// policy, none included (the filter's own noise at 24 x 24 x 2 spp). A frame that read evicted cells (0 / 0) would
+// be NaN; one whose table forgot the light would fall by its share of the records.
+TEST(Eviction, TheFurnaceKeepsItsLightOver16FramesOfAMovingCamera) {
+  constexpr std::uint32_t kFrames = 16;
+  Scene furnace = LoadScene("furnace");
+  furnace.animation.camera = {{0, {-0.4, 0.0, -0.9}, {-0.4, 0.0, 1.0}}, {15, {0.4, 0.2, -0.9}, {0.4, 0.2, 1.0}}};
+  const std::vector<RecordBatch> frames = TraceFrames(furnace, kFrames);
+  for (const char* policy : {"none", "strict", "stale:4"}) {
+    FilterConfig config;
+    config.capacity = 1u << 12;
+    config.frames = kFrames;
+    config.eviction = ParseEviction(policy);
+    std::vector<HashedBackend> backends = HashedBackends();
+    backends.push_back({"reference", std::make_unique<ReferenceBackend>()});
+    for (HashedBackend& b : backends) {
+      double worst = 0;
+      for (std::uint32_t k = 0; k < kFrames; ++k) {
+        config.frame = k;
+        const double filtered = MeanRadiance(b.backend->FilterFrame(frames[k], config));
+        ASSERT_TRUE(std::isfinite(filtered)) << b.name << ", " << policy << ", frame " << k;
+        const double unfiltered = MeanRadiance(UnfilteredImage(frames[k]));
+        ASSERT_GT(unfiltered, 1.9) << "the furnace's light";
+        worst = std::max(worst, std::abs(filtered / unfiltered - 1.0));
+      }
+      EXPECT_LT(worst, 0.01) << b.name << ", " << policy;
+      std::printf("%s, %s: worst |filtered / unfiltered - 1| over %u frames %.2e\n", b.name.c_str(), policy, kFrames,
+                  worst);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hpsf::testing
