@@ -25,7 +25,6 @@ constexpr std::uint32_t kPixelU = 0, kPixelV = 1, kLightPick = 2, kLightU = 3, k
 constexpr std::uint32_t kTile = 16;
 constexpr int kRouletteStart = 4;
 
-double MaxAbs(glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 double MaxComponent(glm::dvec3 v) { return std::max({v.x, v.y, v.z}); }
 
 // Emitting triangles, picked in proportion to their area.

@@ -10,8 +10,6 @@ namespace {
 
 glm::vec3 Apply(glm::vec3 p, double scale, glm::dvec3 translate) { return glm::vec3(glm::dvec3(p) * scale + translate); }
 
-double MaxAbs(glm::dvec3 p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); }
-
 }  // namespace
 
 void Scene::Transform(double scale, glm::dvec3 translate) {

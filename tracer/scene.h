@@ -4,6 +4,8 @@
 #ifndef HPSF_TRACER_SCENE_H
 #define HPSF_TRACER_SCENE_H
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,6 +15,9 @@
 #include "tracer/animation.h"
 
 namespace hpsf {
+
+// The L-infinity norm: the scale that float spacing and the scene's extent are measured in.
+inline double MaxAbs(glm::dvec3 p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); }
 
 struct Camera {
   glm::dvec3 position{0.0};

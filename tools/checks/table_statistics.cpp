@@ -59,7 +59,7 @@ std::vector<std::uint32_t> SortedWith(std::span<const std::uint32_t> values, std
   return all;
 }
 
-nlohmann::json ToJson(const RateFigure& f) {
+nlohmann::json RateJson(const RateFigure& f) {
   return {{"events", f.events}, {"trials", f.trials},     {"rate", f.Rate()},
           {"theory", f.theory}, {"interval", {f.low, f.high}}, {"exceeds_theory", f.ExceedsTheory()}};
 }
@@ -187,10 +187,10 @@ nlohmann::json TableStatistics::ToJson() const {
                       {"extrapolated_alias_rate_32", extrapolated_alias_rate_32},
                       {"exceeds_theory", ExceedsTheory()}};
   for (const ProbeLimitFigure& f : probe_limits) {
-    j["probe_failures"].push_back({{"probe_limit", f.probe_limit}, {"failures", hpsf::ToJson(f.failures)}});
+    j["probe_failures"].push_back({{"probe_limit", f.probe_limit}, {"failures", RateJson(f.failures)}});
   }
   for (const AliasFigure& f : fingerprints) {
-    j["aliases"].push_back({{"fingerprint_bits", f.fingerprint_bits}, {"aliases", hpsf::ToJson(f.aliases)}});
+    j["aliases"].push_back({{"fingerprint_bits", f.fingerprint_bits}, {"aliases", RateJson(f.aliases)}});
   }
   for (const JitterVerdict& v : jitter) {
     j["jitter"].push_back({{"test", ToString(v.test)},

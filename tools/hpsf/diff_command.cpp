@@ -12,6 +12,7 @@
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
+#include "tools/hpsf/seconds_since.h"
 
 namespace hpsf {
 namespace {
@@ -29,10 +30,6 @@ struct DiffOptions {
   double alpha = 0.01;
   bool json = false;
 };
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // --fail and --warn default only for the default metric (max: any difference warns, above 1e-6 fails); every
 // other metric has its own scale, so its --fail must be given, and --warn defaults to it (no warning band).

@@ -8,14 +8,11 @@
 #include "core/error.h"
 #include "tools/checks/pixel_variance.h"
 #include "tools/hpsf/image_file.h"
+#include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/version.h"
 
 namespace hpsf {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The hashed backend's run, emulated or Vulkan.
 const HashedRun& Hashed(const BackendOutput& result) {

@@ -18,6 +18,7 @@
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"
+#include "tools/hpsf/seconds_since.h"
 
 namespace hpsf {
 namespace {
@@ -36,8 +37,6 @@ struct FuzzOptions {
   std::string repro_dir = "hpsf-fuzz-repro";
   bool json = false;
 };
-
-double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 struct Failure {
   std::uint64_t run = 0;

@@ -16,6 +16,7 @@
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
+#include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/subprocess.h"
 
 namespace hpsf {
@@ -58,10 +59,6 @@ struct CheckOutcome {
   std::vector<std::string> artifacts;
   double seconds = 0.0;
 };
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::vector<const GoldenCase*> Select(const GoldenManifest& manifest, const std::vector<std::string>& names) {
   std::vector<const GoldenCase*> selected;

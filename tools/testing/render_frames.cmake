@@ -4,7 +4,7 @@
 # write nothing.
 set(dir ${OUT}/frames)
 file(REMOVE_RECURSE ${dir})
-set(common render ${SCENE} --size 24x24 --spp 2 --frames 3 --json)
+set(common render ${SCENE} --size 24x24 --spp 2 --frames 3 --capacity 16384 --json)
 foreach(backend reference emulated vulkan)
   execute_process(COMMAND ${HPSF} ${common} --backend ${backend} --frame-out ${dir}/${backend}-{frame}.exr
                           -o ${dir}/${backend}-last.exr
@@ -30,7 +30,7 @@ foreach(backend reference emulated vulkan)
     message(FATAL_ERROR "${backend}: the report lists ${frames} frames, the last ${last}")
   endif()
   # The same frame alone: another image, since the sequence's table also holds frames 0 and 1.
-  execute_process(COMMAND ${HPSF} render ${SCENE} --size 24x24 --spp 2 --frame 2 --backend ${backend} -o ${dir}/${backend}-alone.exr
+  execute_process(COMMAND ${HPSF} render ${SCENE} --size 24x24 --spp 2 --capacity 16384 --frame 2 --backend ${backend} -o ${dir}/${backend}-alone.exr
                   RESULT_VARIABLE code)
   execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/${backend}-alone.exr ${dir}/${backend}-last.exr
                   RESULT_VARIABLE same OUTPUT_QUIET ERROR_QUIET)
