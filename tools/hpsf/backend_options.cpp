@@ -103,6 +103,18 @@ BackendInstance MakeBackend(const std::string& backend, const EmulatorOptions& e
   return instance;
 }
 
+nlohmann::json LastFrameEviction(const BackendInstance& instance) {
+  if (const auto* reference = dynamic_cast<const ReferenceBackend*>(instance.backend.get())) {
+    return {{"cells_evicted", reference->result().stats.cells_evicted}};
+  }
+  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(instance.backend.get())) {
+    const EmulatedRun& run = emulated->run();
+    return {{"evicted", run.evicted}, {"tombstones", run.tombstones}, {"eviction_s", run.timings.eviction}};
+  }
+  const VulkanRun& run = dynamic_cast<const VulkanBackend&>(*instance.backend).run();
+  return {{"evicted", run.evicted}, {"tombstones", run.tombstones}, {"eviction_s", run.timings.eviction_ms / 1e3}};
+}
+
 BackendOutput LastFrameOutput(const BackendInstance& instance) {
   BackendOutput out;
   if (const auto* reference = dynamic_cast<const ReferenceBackend*>(instance.backend.get())) {

@@ -47,6 +47,10 @@ BackendInstance MakeBackend(const std::string& backend, const EmulatorOptions& e
 // The last frame the backend filtered, as render and replay report it.
 BackendOutput LastFrameOutput(const BackendInstance& instance);
 
+// The last frame's eviction, for a report's per-frame entry: cells_evicted (reference), or evicted, tombstones
+// and eviction_s, the evict and reclaim passes' time (hashed backends).
+nlohmann::json LastFrameEviction(const BackendInstance& instance);
+
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
 
 }  // namespace hpsf

@@ -109,6 +109,7 @@ void RunRender(RenderOptions& o, bool options_only) {
       backend.backend->FilterFrame(traced.batch, config);
       frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
     }
+    if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
     per_frame.push_back(frame);
   }
   report["version"] = 1;

@@ -1,7 +1,7 @@
 # hpsf render --frames K: every backend traces and filters K frames through one table; --frame-out writes each
 # frame, -o the last (the same file bytes as the last frame's); the JSON report lists the frames. The last frame
-# of a sequence is not the frame filtered alone (its table holds the frames before it). Bad patterns exit 3 and
-# write nothing.
+# of a sequence is not the frame filtered alone (its table holds the frames before it). With --eviction, each
+# frame's entry reports its eviction, the same count on every backend. Bad patterns exit 3 and write nothing.
 set(dir ${OUT}/frames)
 file(REMOVE_RECURSE ${dir})
 set(common render ${SCENE} --size 24x24 --spp 2 --frames 3 --capacity 16384 --json)
@@ -44,6 +44,33 @@ foreach(backend emulated vulkan)
                   RESULT_VARIABLE differ OUTPUT_VARIABLE idiff_report)
   if(NOT differ EQUAL 0)
     message(FATAL_ERROR "${backend}'s last frame differs from the reference's:\n${idiff_report}")
+  endif()
+endforeach()
+
+# --eviction strict: each frame's entry gives its eviction; every backend evicts the same number of cells.
+foreach(backend reference emulated vulkan)
+  execute_process(COMMAND ${HPSF} ${common} --backend ${backend} --eviction strict -o ${dir}/${backend}-strict.exr
+                  RESULT_VARIABLE code OUTPUT_VARIABLE report ERROR_VARIABLE errors)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${backend} --eviction strict: exit ${code}\n${errors}")
+  endif()
+  set(counts)
+  foreach(frame 0 1 2)
+    if(backend STREQUAL "reference")
+      string(JSON evicted GET "${report}" frames ${frame} eviction cells_evicted)
+    else()
+      string(JSON evicted GET "${report}" frames ${frame} eviction evicted)
+      string(JSON seconds GET "${report}" frames ${frame} eviction eviction_s)
+    endif()
+    list(APPEND counts ${evicted})
+  endforeach()
+  if(backend STREQUAL "reference")
+    set(reference_counts "${counts}")
+    if(counts STREQUAL "0;0;0")
+      message(FATAL_ERROR "the animated scene evicted nothing over 3 frames")
+    endif()
+  elseif(NOT counts STREQUAL reference_counts)
+    message(FATAL_ERROR "${backend} evicted ${counts} cells per frame, the reference ${reference_counts}")
   endif()
 endforeach()
 
