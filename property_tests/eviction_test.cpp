@@ -21,6 +21,7 @@
 #include "core/eviction.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
+#include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
@@ -38,15 +39,7 @@ constexpr std::uint32_t kSize = 24;
 constexpr std::uint32_t kSpp = 2;
 
 std::vector<RecordBatch> TraceFrames(const Scene& scene, std::uint32_t frames) {
-  std::vector<RecordBatch> batches;
-  for (std::uint32_t frame = 0; frame < frames; ++frame) {
-    TraceOptions trace;
-    trace.width = trace.height = kSize;
-    trace.samples_per_pixel = kSpp;
-    trace.frame = frame;
-    batches.push_back(TraceRecords(scene, trace).batch);
-  }
-  return batches;
+  return TracedFrames(scene, kSize, kSpp, frames);
 }
 
 struct HashedBackend {

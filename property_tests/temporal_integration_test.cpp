@@ -41,15 +41,7 @@ constexpr std::uint32_t kSize = 24;
 constexpr std::uint32_t kSpp = 2;
 
 std::vector<RecordBatch> TraceFrames(const std::string& scene) {
-  std::vector<RecordBatch> frames;
-  for (std::uint32_t frame = 0; frame < kFrames; ++frame) {
-    TraceOptions trace;
-    trace.width = trace.height = kSize;
-    trace.samples_per_pixel = kSpp;
-    trace.frame = frame;
-    frames.push_back(TraceRecords(LoadScene(scene), trace).batch);
-  }
-  return frames;
+  return TracedFrames(LoadScene(scene), kSize, kSpp, kFrames);
 }
 
 // All frames' records as one frame: each pixel's samples of frame 0, then of frame 1, ...; the image size (and so

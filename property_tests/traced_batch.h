@@ -1,10 +1,11 @@
-// A small traced batch of a built-in scene, as the property tests feed the backends: default tracer options but
-// the size and samples per pixel.
+// Small traced batches, as the property tests feed the backends: default tracer options but the size, the
+// samples per pixel and the frame.
 #ifndef HPSF_PROPERTY_TESTS_TRACED_BATCH_H
 #define HPSF_PROPERTY_TESTS_TRACED_BATCH_H
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/record.h"
 #include "tracer/path_tracer.h"
@@ -17,6 +18,20 @@ inline RecordBatch TracedBatch(const std::string& scene, std::uint32_t size, std
   trace.width = trace.height = size;
   trace.samples_per_pixel = spp;
   return TraceRecords(LoadScene(scene), trace).batch;
+}
+
+// Frames 0 to frames - 1 of a scene: its keyframes, and the frame in every random number.
+inline std::vector<RecordBatch> TracedFrames(const Scene& scene, std::uint32_t size, std::uint32_t spp,
+                                             std::uint32_t frames) {
+  std::vector<RecordBatch> batches;
+  for (std::uint32_t frame = 0; frame < frames; ++frame) {
+    TraceOptions trace;
+    trace.width = trace.height = size;
+    trace.samples_per_pixel = spp;
+    trace.frame = frame;
+    batches.push_back(TraceRecords(scene, trace).batch);
+  }
+  return batches;
 }
 
 }  // namespace hpsf::testing
