@@ -146,12 +146,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
 
   run.timings.accumulate = clock.Lap();
   if (evicting) {
-    EvictionArgs eviction{config.capacity,
-                          config.probe_limit,
-                          config.frame,
-                          config.eviction,
-                          config.accumulation,
-                          b,
+    EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b,
                           memory.Allocate64("evicted", 1)};
     // One thread per slot. Faithful mode schedules them by the run's policy; an exhaustive search drives only the
     // accumulate launch, so the eviction launches then take round-robin.

@@ -15,7 +15,6 @@
 #include <cstdint>
 
 #include "core/eviction.h"
-#include "core/filter_config.h"
 #include "emulated/accumulate_kernel.h"
 #include "emulated/simt/kernel_task.h"
 
@@ -26,7 +25,6 @@ struct EvictionArgs {
   std::uint32_t probe_limit = 0;
   std::uint32_t frame = 0;
   Eviction eviction;
-  Accumulation accumulation = Accumulation::kFixed64;
   TableBuffers buffers{};
   std::uint32_t evicted = 0;  // 64-bit, one word: slots made tombstones
 };
