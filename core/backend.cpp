@@ -42,6 +42,7 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.fixed_point_bits == next.fixed_point_bits, "--fixed-point-bits");
   require(first.frames == next.frames, "--frames");
   require(first.eviction == next.eviction, "--eviction");
+  require(first.temporal == next.temporal, "--temporal");
 }
 
 }  // namespace hpsf

@@ -99,6 +99,9 @@ void FilterConfig::Validate() const {
     throw ConfigError("--eviction", "is not a policy: " + eviction.ToString() + " with " +
                                         std::to_string(eviction.unseen_frames) + " frames unseen");
   }
+  if (ParseTemporal(temporal.ToString()) != temporal) {
+    throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
+  }
 }
 
 std::string FilterConfig::ToString() const {
@@ -113,7 +116,8 @@ std::string FilterConfig::ToString() const {
          // Only when set, so single-frame configs read as they always have (golden metadata holds them).
          (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
          (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) +
-         (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) + " ]";
+         (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) +
+         (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) + " ]";
 }
 
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {

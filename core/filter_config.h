@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/eviction.h"
+#include "core/temporal.h"
 #include "core/shared/key_params.h"
 
 namespace hpsf {
@@ -47,6 +48,7 @@ struct FilterConfig {
   std::optional<int> fixed_point_bits;
   std::uint32_t frames = 1;  // --frames: how many frames one table integrates (core/backend.h)
   Eviction eviction;         // --eviction: which cells the table forgets after each frame (core/eviction.h)
+  Temporal temporal;         // --temporal: how a cell blends its history with a frame (core/temporal.h)
 
   // Throws ConfigError for the first invalid option.
   void Validate() const;

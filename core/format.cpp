@@ -13,6 +13,12 @@ std::string FormatFloat(float x) {
   return std::string(buffer, result.ptr);
 }
 
+std::string FormatDouble(double x) {
+  char buffer[32];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+
 std::string FormatHex(unsigned int bits) {
   char buffer[16];
   std::snprintf(buffer, sizeof buffer, "0x%08x", bits);

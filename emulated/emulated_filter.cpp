@@ -15,6 +15,8 @@
 #include "core/input_check.h"
 #include "core/parallel_for.h"
 #include "core/resolve.h"
+#include "core/temporal.h"
+#include "emulated/temporal_kernel.h"
 
 namespace hpsf {
 namespace {
@@ -106,22 +108,34 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     args.track_last_seen = true;
     args.frame = config.frame;
   }
+  // The double buffer (emulated/temporal_kernel.h): the table before the frame, which the blend reads.
+  const bool blending = previous && config.temporal.blends();
+  TemporalArgs temporal{config.capacity, fixed, MakeTemporalParams(config.temporal), b, 0, 0};
+  if (blending) {
+    temporal.previous_sums = fixed ? memory.Allocate64("previous_sums", std::size_t(config.capacity) * 3)
+                                   : memory.Allocate32("previous_sums", std::size_t(config.capacity) * 3);
+    temporal.previous_counts = memory.Allocate64("previous_counts", config.capacity);
+  }
   if (previous) {
     if (previous->capacity != config.capacity || previous->accumulation != config.accumulation) {
       throw ConfigError("--capacity", "the previous frame's table has another shape; start a new sequence");
     }
     std::copy(previous->tags.begin(), previous->tags.end(), memory.Words32(b.tags).begin());
     std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
+    if (blending)
+      std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(temporal.previous_counts).begin());
     if (evicting)
       std::copy(previous->last_seen.begin(), previous->last_seen.end(), memory.Words32(b.last_seen).begin());
     if (fixed) {
       const std::span<std::uint64_t> sums = memory.Words64(b.sums);
       for (std::size_t s = 0; s < config.capacity; ++s) std::copy_n(previous->fixed_sums[s].begin(), 3, &sums[s * 3]);
+      if (blending) std::copy(sums.begin(), sums.end(), memory.Words64(temporal.previous_sums).begin());
     } else {
       const std::span<std::uint32_t> sums = memory.Words32(b.sums);
       for (std::size_t s = 0; s < config.capacity; ++s) {
         for (int c = 0; c < 3; ++c) sums[s * 3 + c] = std::bit_cast<std::uint32_t>(previous->float_sums[s][c]);
       }
+      if (blending) std::copy(sums.begin(), sums.end(), memory.Words32(temporal.previous_sums).begin());
     }
   }
 
@@ -145,18 +159,20 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
 
   run.timings.accumulate = clock.Lap();
+  // The passes after the accumulate run one thread per slot. Faithful mode schedules them by the run's policy; an
+  // exhaustive search drives only the accumulate launch, so they then take round-robin.
+  const auto launch_per_slot = [&](const simt::Kernel& kernel) {
+    if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, config.capacity, kernel, options.threads);
+    const std::uint32_t warps = (config.capacity + options.warp_size - 1) / options.warp_size;
+    const std::string policy = options.schedule_instance ? "round-robin" : options.schedule;
+    const auto schedule = simt::MakeSchedule(policy, warps, std::uint64_t(warps) * (2 * config.probe_limit + 8));
+    simt::LaunchFaithful(memory, config.capacity, options.warp_size, kernel, *schedule, {});
+  };
+  if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
+  run.timings.temporal = clock.Lap();
   if (evicting) {
     EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b,
                           memory.Allocate64("evicted", 1)};
-    // One thread per slot. Faithful mode schedules them by the run's policy; an exhaustive search drives only the
-    // accumulate launch, so the eviction launches then take round-robin.
-    const auto launch_per_slot = [&](const simt::Kernel& kernel) {
-      if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, config.capacity, kernel, options.threads);
-      const std::uint32_t warps = (config.capacity + options.warp_size - 1) / options.warp_size;
-      const std::string policy = options.schedule_instance ? "round-robin" : options.schedule;
-      const auto schedule = simt::MakeSchedule(policy, warps, std::uint64_t(warps) * (2 * config.probe_limit + 8));
-      simt::LaunchFaithful(memory, config.capacity, options.warp_size, kernel, *schedule, {});
-    };
     launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
     launch_per_slot([&](simt::ThreadContext& ctx) { return reclaim(ctx, eviction); });
     run.evicted = memory.Words64(eviction.evicted)[0];

@@ -37,6 +37,7 @@ struct EmulatedTimings {
   double fixed_point = 0;  // the choice of F
   double clear = 0;        // allocating and zeroing the table
   double accumulate = 0;   // the accumulate launch
+  double temporal = 0;     // the temporal blend launch; 0 when integrating
   double eviction = 0;     // the evict and reclaim launches; 0 without eviction
   double read_back = 0;    // the dump of the table
   double resolve = 0;      // averages, pixels and the probe statistics, all cores
@@ -54,7 +55,8 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 
 // previous: the table after the frames before this one in a sequence (core/backend.h); the device table starts
 // as it, and F is its F. Null: the table starts empty and F is chosen for this batch (and config.frames).
-// With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow the accumulate, with `reclaim`
+// With a blending config.temporal and a previous table, the temporal launch (emulated/temporal_kernel.h) follows
+// the accumulate. With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow the accumulate, with `reclaim`
 // as the reclaim kernel; the run's table is the state after them.
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr,

@@ -21,6 +21,7 @@
 #include "core/eviction.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
+#include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
@@ -40,36 +41,6 @@ constexpr std::uint32_t kSpp = 2;
 
 std::vector<RecordBatch> TraceFrames(const Scene& scene, std::uint32_t frames) {
   return TracedFrames(scene, kSize, kSpp, frames);
-}
-
-struct HashedBackend {
-  std::string name;
-  std::unique_ptr<Backend> backend;
-};
-
-// Emulated fast and faithful (warps of 8, a random schedule), Vulkan mapped and staged; `d7` gives each the reclaim
-// that empties every tombstone.
-std::vector<HashedBackend> HashedBackends(bool d7 = false) {
-  std::vector<HashedBackend> backends;
-  const ReclaimKernelFn reclaim = d7 ? D7ReclaimEveryTombstone : ReclaimKernel;
-  backends.push_back(
-      {"emulated fast", std::make_unique<EmulatedBackend>(EmulatorOptions{}, AccumulateKernel, reclaim)});
-  EmulatorOptions faithful;
-  faithful.mode = simt::Mode::kFaithful;
-  faithful.warp_size = 8;
-  faithful.schedule = "random:7";
-  backends.push_back({"emulated faithful", std::make_unique<EmulatedBackend>(faithful, AccumulateKernel, reclaim)});
-  const std::string eviction_spv = d7 ? HPSF_SHADER_VARIANT_DIR "/eviction_D7.spv" : "";
-  for (const StagingPolicy staging : kStagingPolicies) {
-    backends.push_back({std::string("vulkan, staging ") + ToString(staging),
-                        std::make_unique<VulkanBackend>(TestDevice(staging), "", eviction_spv)});
-  }
-  return backends;
-}
-
-const HashedRun& RunOf(const Backend& backend) {
-  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(&backend)) return emulated->run();
-  return dynamic_cast<const VulkanBackend&>(backend).run();
 }
 
 std::uint64_t LiveSlots(const HashTableDump& table) {
@@ -220,7 +191,7 @@ TEST(Eviction, D7AHoleBeforeALiveCellIsCaughtByTheCheckerAndTheContract) {
     EXPECT_TRUE(right.violations.empty()) << hashed.name;
     EXPECT_FALSE(right.image_differs) << hashed.name;
   }
-  for (HashedBackend& hashed : HashedBackends(true)) {
+  for (HashedBackend& hashed : HashedBackends(D7ReclaimEveryTombstone, HPSF_SHADER_VARIANT_DIR "/eviction_D7.spv")) {
     Outcome d7 = run_sequence(*hashed.backend);
     EXPECT_GT(d7.violations[TableInvariant::kHoleBeforeLiveSlot], 0) << hashed.name << ": the checker misses D7's hole";
     EXPECT_TRUE(d7.image_differs) << hashed.name << ": the contract misses D7's split cell";

@@ -43,7 +43,7 @@ RecordBatch GeneratedBatch(std::uint32_t seed, std::uint32_t count) {
 
 std::vector<TableViolation> Check(const EmulatedRun& run, const RecordBatch& batch,
                                   const HashTableDump* before = nullptr, const FilterConfig& config = {}) {
-  return CheckTable({run.table, batch.records, run.keys, run.placements, before, config.eviction, config.frame});
+  return CheckTable({run.table, batch.records, run.keys, run.placements, before, config.eviction, config.frame, config.temporal});
 }
 
 bool Aliased(const EmulatedRun& run) {
@@ -388,6 +388,30 @@ bool Tombstone(const HashTableDump& table, std::uint32_t s) {
   return table.tags[s] != kEmptyTag && table.counts[s] == 0;
 }
 
+// Over frames with an EMA: frame 1 repeats frame 0's records without jitter (so in the same cells), every cell's
+// history weighs 1/2 by integration, and ema:0.25 blends them all.
+void BlendingSecondFrame(Fixture& f) {
+  f.config.frames = 2;
+  f.config.jitter_scale = 0.0f;
+  f.config.temporal = ParseTemporal("ema:0.25");
+  const EmulatedRun first = EmulatedFilter(f.batch, f.config, EmulatorOptions{});
+  f.config.frame = 1;
+  f.run = EmulatedFilter(f.batch, f.config, EmulatorOptions{}, AccumulateKernel, &first.table);
+  f.before = first.table;
+  ASSERT_TRUE(f.Invariants().empty()) << f.Reported();
+}
+
+// A blended slot one unit of 2^-F off the blend in one channel.
+void PlantBlendOffByOne(Fixture& f) {
+  BlendingSecondFrame(f);
+  const std::uint32_t s = f.FindSlot([&](std::uint32_t s) {
+    const std::uint64_t before = f.before->counts[s], after = f.run.table.counts[s];
+    return before > 0 && after != before && after < 2 * before;
+  });
+  ASSERT_NE(s, kNotPlaced) << "no blended slot";
+  f.run.table.fixed_sums[s][1] += 1;
+}
+
 // An evicted slot whose count and sums came back: the policy evicts it (strict: untouched this frame).
 void PlantEvictedEstimateBack(Fixture& f) {
   EvictingSecondFrame(f);
@@ -465,6 +489,7 @@ const IsolatedCase kIsolatedCases[] = {
     {"StaleLastSeen", TableInvariant::kLastSeenWrong, kRoomy, kFixed64, PlantStaleLastSeen},
     {"HoleBeforeALiveSlot", TableInvariant::kHoleBeforeLiveSlot, kRoomy, kFixed64, PlantHoleBeforeALiveSlot},
     {"UnneededTombstone", TableInvariant::kTombstoneKept, kRoomy, kFixed64, PlantUnneededTombstone},
+    {"BlendOffByOne", TableInvariant::kTemporalBlend, kRoomy, kFixed64, PlantBlendOffByOne},
 };
 
 class IsolatedViolation : public ::testing::TestWithParam<IsolatedCase> {};

@@ -13,6 +13,7 @@
 #include "core/key_batch.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
+#include "core/temporal.h"
 
 namespace hpsf {
 namespace {
@@ -31,6 +32,22 @@ void EvictCells(const FilterConfig& config, FilterResult& result) {
   result.cells = std::move(kept);
   for (std::uint32_t& cell : result.placement) {
     if (cell != kNoCell) cell = renumbered[cell];
+  }
+}
+
+// The temporal blend (core/temporal.h) of each cell the frame added to that held samples before it.
+void BlendCells(const FilterConfig& config, const std::vector<TableCell>& before, FilterResult& result) {
+  const shared::TemporalParams params = MakeTemporalParams(config.temporal);
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  for (std::size_t c = 0; c < before.size(); ++c) {
+    const TableCell& old = before[c];
+    TableCell& cell = result.cells[c];
+    if (old.count == 0 || cell.count == old.count) continue;
+    const CellState blended = BlendCellState(params, fixed, {old.fixed_sum, old.float_sum, old.count},
+                                             {cell.fixed_sum, cell.float_sum, cell.count});
+    cell.fixed_sum = blended.fixed_sum;
+    cell.float_sum = blended.float_sum;
+    cell.count = blended.count;
   }
 }
 
@@ -93,6 +110,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
     cell.last_seen = config.frame;
     result.placement[i] = it->second;
   }
+  if (previous && config.temporal.blends()) BlendCells(config, previous->cells, result);
   if (config.eviction.enabled()) EvictCells(config, result);
 
   std::vector<glm::dvec3> averages(result.cells.size());

@@ -20,9 +20,11 @@
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/table_params.h"
+#include "core/temporal.h"
 #include "eviction_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
+#include "temporal_spv.h"
 #include "vulkan/vulkan_internal.h"
 
 namespace hpsf {
@@ -60,6 +62,14 @@ struct EvictionPush {
 static_assert(sizeof(EvictionPush) == 24, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
+struct TemporalPush {
+  shared::TemporalParams temporal;
+  std::uint32_t capacity;
+  std::uint32_t fixed64;
+};
+static_assert(sizeof(TemporalPush) == 32, "push constants of temporal.comp");
+constexpr std::uint32_t kTemporalSlotsPerWorkgroup = 64;
+
 struct ResolvePush {
   double unscale;
   std::uint32_t capacity;
@@ -77,6 +87,8 @@ constexpr BindingKind kAccumulateBindings[] = {
 constexpr BindingKind kEvictionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer};
+constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 
@@ -122,7 +134,9 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
   std::optional<ComputeProgram> resolve[2];
   std::optional<ComputeProgram> eviction;
+  std::optional<ComputeProgram> temporal;
   DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted;
+  DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
   struct TableShape {
     std::uint32_t capacity;
@@ -158,6 +172,10 @@ struct VulkanFilter::Impl {
     }
     return *eviction;
   }
+  ComputeProgram& Temporal() {
+    if (!temporal) temporal = vulkan_internal::CreateComputeProgram(device, temporal_spv, kTemporalBindings, sizeof(TemporalPush));
+    return *temporal;
+  }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
     if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateDeviceBuffer(device, bytes);
   }
@@ -168,6 +186,9 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
                      eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
+                     {},
+                     {},
+                     {},
                      {},
                      {},
                      {},
@@ -254,6 +275,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                                      : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
+  // The double buffer of the temporal blend: the table as the previous frame left it, copied before the accumulate.
+  const bool blending = keep_table && config.temporal.blends();
+  const vk::DeviceSize sum_bytes_on_device = vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4);
+  if (blending) {
+    p.Ensure(p.previous_sums, sum_bytes_on_device);
+    p.Ensure(p.previous_counts, vk::DeviceSize(config.capacity) * 8);
+  }
+
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
   DeviceBuffer* const accumulate_buffers[] = {&p.records,    &p.keys,  &p.tags,     &p.sums,     &p.counts,
@@ -265,6 +294,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
        fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, evicting ? 1u : 0u, 0, 0}};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
+    if (blending) {
+      cb.copyBuffer(*p.sums.buffer, *p.previous_sums.buffer, vk::BufferCopy(0, 0, sum_bytes_on_device));
+      cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 8));
+    }
     if (!keep_table) {
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
       if (evicting) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -276,6 +309,25 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(vulkan_internal::WorkgroupsFor(n, kAccumulateRecordsPerWorkgroup), 1, 1);
   });
+
+  // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
+  // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
+  if (blending) {
+    ComputeProgram& temporal = p.Temporal();
+    DeviceBuffer* const temporal_buffers[] = {&p.sums, &p.counts, &p.previous_sums, &p.previous_counts};
+    vulkan_internal::BindBuffers(p.device, temporal, temporal_buffers);
+    const TemporalPush temporal_push{MakeTemporalParams(config.temporal), config.capacity, fixed ? 1u : 0u};
+    run.timings.temporal_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+      const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
+                                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                         accumulated, nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *temporal.pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *temporal.layout, 0, *temporal.set, nullptr);
+      cb.pushConstants<TemporalPush>(*temporal.layout, vk::ShaderStageFlagBits::eCompute, 0, temporal_push);
+      cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kTemporalSlotsPerWorkgroup), 1, 1);
+    });
+  }
 
   // Eviction: evict, then reclaim, one invocation per slot (eviction.comp). The frame's resolve reads only slots
   // the frame touched, which no policy evicts, so it may follow.

@@ -18,6 +18,69 @@ std::string Records(const std::vector<std::uint32_t>& records) {
   return s;
 }
 
+std::string SumsText(const std::array<std::uint64_t, 3>& sums) {
+  return "(" + std::to_string(sums[0]) + ", " + std::to_string(sums[1]) + ", " + std::to_string(sums[2]) + ")";
+}
+
+// A slot the frame added to that held samples before it, under a blending temporal mode.
+void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<std::uint32_t>& here,
+                     const CellState& before, std::vector<TableViolation>& violations) {
+  const HashTableDump& t = in.table;
+  const bool fixed = t.accumulation == Accumulation::kFixed64;
+  const float scale = shared::PowerOfTwo(t.fixed_point_bits);
+  const shared::TemporalParams params = MakeTemporalParams(in.temporal);
+  auto fail = [&](std::string detail) {
+    violations.push_back({TableInvariant::kTemporalBlend, s, here, std::move(detail)});
+  };
+  CellState accumulated = before;
+  accumulated.count += here.size();
+  std::array<double, 3> frame_exact{};
+  for (std::uint32_t i : here) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = in.records[i].contribution[c];
+      accumulated.fixed_sum[c] += shared::ToFixedPoint(v, scale);
+      frame_exact[c] += double(v);
+    }
+  }
+  if (fixed) {
+    const CellState expected = BlendCellState(params, true, before, accumulated);
+    if (t.counts[s] != expected.count || t.fixed_sums[s] != expected.fixed_sum) {
+      fail("count " + std::to_string(t.counts[s]) + ", sums " + SumsText(t.fixed_sums[s]) + "; the blend of count " +
+           std::to_string(before.count) + " + " + std::to_string(here.size()) + " gives count " +
+           std::to_string(expected.count) + ", sums " + SumsText(expected.fixed_sum));
+    }
+    return;
+  }
+  // float32: the backend's frame sums carry the rounding of its adds, so the blend is bounded, not replayed. ema's
+  // alpha, and so the count, does not depend on the sums; adaptive's lies between forgetting and integrating.
+  for (int c = 0; c < 3; ++c) accumulated.float_sum[c] = float(double(before.float_sum[c]) + frame_exact[c]);
+  const CellState by_exact = BlendCellState(params, false, before, accumulated);
+  const std::uint64_t n = here.size();
+  const std::uint64_t most = std::min(before.count, params.max_count) + n;
+  const bool count_ok = in.temporal.mode == TemporalMode::kEma ? t.counts[s] == by_exact.count
+                                                                 : t.counts[s] >= n && t.counts[s] <= most;
+  if (!count_ok) {
+    fail("count " + std::to_string(t.counts[s]) + ", expected " +
+         (in.temporal.mode == TemporalMode::kEma ? std::to_string(by_exact.count)
+                                                 : "[" + std::to_string(n) + ", " + std::to_string(most) + "]"));
+  }
+  // The frame's sum is (history + adds) - history in float: each of the n adds and the subtraction rounds by at
+  // most u of a running total no larger than the final one.
+  const double u = 0x1p-23, k = double(n + 1), gamma = k * u / (1.0 - k * u);
+  for (int c = 0; c < 3; ++c) {
+    const double history = double(before.float_sum[c]) / double(before.count);
+    const double error = gamma * (double(before.float_sum[c]) + frame_exact[c]);
+    const double frame_low = (frame_exact[c] - error) / double(n), frame_high = (frame_exact[c] + error) / double(n);
+    // Widened for the blend's double arithmetic and the sum's rounding to float.
+    const double low = std::min(history, frame_low) * (1.0 - 4 * u), high = std::max(history, frame_high) * (1.0 + 4 * u);
+    const double average = t.counts[s] ? double(t.float_sums[s][c]) / double(t.counts[s]) : 0.0;
+    if (!(average >= low && average <= high)) {
+      fail("channel " + std::to_string(c) + ": average " + std::to_string(average) + " outside [" +
+           std::to_string(low) + ", " + std::to_string(high) + "], the history's and the frame's");
+    }
+  }
+}
+
 }  // namespace
 
 const char* ToString(TableInvariant invariant) {
@@ -42,6 +105,8 @@ const char* ToString(TableInvariant invariant) {
       return "tombstone emptied before a live slot that may need it";
     case TableInvariant::kTombstoneKept:
       return "tombstone kept that no live slot needs";
+    case TableInvariant::kTemporalBlend:
+      return "blended cell differs from the temporal blend";
   }
   return "?";
 }
@@ -146,7 +211,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
   // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
   std::array<unsigned __int128, 3> table_total{}, placed_total{};
-  std::uint64_t total_count = 0, count_total_before = 0;
+  std::uint64_t total_count = 0, expected_total_count = 0;
   auto sums_are_zero = [&](std::uint32_t s) {
     return fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
   };
@@ -187,21 +252,35 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s);
     auto fixed_base = [&](int c) -> std::uint64_t { return evicted_by_policy ? 0 : fixed_before(s, c); };
     auto float_base = [&](int c) -> float { return evicted_by_policy ? 0.0f : float_before(s, c); };
-    count_total_before += base_count;
-    for (int c = 0; c < 3; ++c) placed_total[c] += fixed_base(c);
     if (t.tags[s] == kEmptyTag) {
       if (t.counts[s] != 0 || !sums_are_zero(s))
         violate(TableInvariant::kEmptySlotNotZero, s, here, "count " + std::to_string(t.counts[s]));
+      // What should be here still counts in the totals: a record placed on an empty slot lost its add.
+      expected_total_count += base_count + here.size();
+      for (int c = 0; c < 3; ++c) {
+        placed_total[c] += fixed_base(c);
+        for (std::uint32_t i : here) placed_total[c] += shared::ToFixedPoint(in.records[i].contribution[c], scale);
+      }
       continue;
     }
     if (here.empty() && tag_before(s) == kEmptyTag)
       violate(TableInvariant::kOrphanTag, s, {}, "tag " + std::to_string(t.tags[s]));
+    total_count += t.counts[s];
+    if (in.temporal.blends() && base_count > 0 && !here.empty()) {
+      CheckBlend(in, s, here,
+                 {fixed ? before->fixed_sums[s] : std::array<std::uint64_t, 3>{},
+                  fixed ? std::array<float, 3>{} : before->float_sums[s], base_count},
+                 violations);
+      // The blend check is this slot's whole check: the totals take it as it is.
+      expected_total_count += t.counts[s];
+      continue;
+    }
+    expected_total_count += base_count + here.size();
     if (t.counts[s] != base_count + here.size()) {
       violate(TableInvariant::kCountMismatch, s, here,
               "count " + std::to_string(t.counts[s]) + ", before " + std::to_string(base_count) + " + placed " +
                   std::to_string(here.size()));
     }
-    total_count += t.counts[s];
     for (int c = 0; c < 3; ++c) {
       unsigned __int128 exact = fixed_base(c);
       double exact_float = double(float_base(c)), magnitude = std::abs(exact_float);
@@ -213,7 +292,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       }
       if (fixed) {
         table_total[c] += t.fixed_sums[s][c];
-        placed_total[c] += exact - fixed_base(c);
+        placed_total[c] += exact;
         if (exact != t.fixed_sums[s][c]) {
           violate(TableInvariant::kSumMismatch, s, here, "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) +
                                                               ", exact " + std::to_string(std::uint64_t(exact)));
@@ -231,12 +310,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       }
     }
   }
-  std::uint64_t placed_count = 0;
-  for (const auto& here : placed) placed_count += here.size();
-  if (total_count != count_total_before + placed_count) {
+  if (total_count != expected_total_count) {
     violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {},
-            "count " + std::to_string(total_count) + ", before " + std::to_string(count_total_before) + " + placed " +
-                std::to_string(placed_count));
+            "count " + std::to_string(total_count) + ", expected " + std::to_string(expected_total_count));
   }
   for (int c = 0; c < 3; ++c) {
     if (fixed && table_total[c] != placed_total[c]) {

@@ -7,7 +7,11 @@
 // the state after the eviction pass: a slot the frame touched is never evicted and its last-seen frame is this
 // one; a live slot the policy evicts is a tombstone with zero count and sums (no evicted estimate comes back)
 // and one it keeps is unchanged; a tombstone stays exactly when a live slot lies after it within the probe limit
-// with no empty slot between, the rule that leaves no hole on any live slot's probe path (D7).
+// with no empty slot between, the rule that leaves no hole on any live slot's probe path (D7). With a blending
+// temporal mode (core/temporal.h), a slot that held samples before the frame and that the frame added to holds
+// the blend of the two: in fixed64 exactly core's BlendCellState of the table before and the frame's exact sums;
+// in float32 its count exactly (ema; adaptive: between the frame's count and the capped history's plus it) and
+// its average within the bounds of the history's and the frame's averages, widened by float32's rounding.
 #ifndef HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
 #define HPSF_TOOLS_CHECKS_TABLE_CHECKER_H
 
@@ -18,6 +22,7 @@
 
 #include "core/eviction.h"
 #include "core/hash_table.h"
+#include "core/temporal.h"
 #include "core/key_batch.h"
 #include "core/record.h"
 
@@ -39,6 +44,7 @@ enum class TableInvariant {
   kLastSeenWrong,               // a slot's last-seen frame is not this frame (touched) or its earlier one
   kHoleBeforeLiveSlot,          // a tombstone emptied though a live slot after it may have probed past it (D7)
   kTombstoneKept,               // a tombstone kept though no live slot after it can need it (the table fills)
+  kTemporalBlend,               // a blended cell is not the blend of its history and the frame (core/temporal.h)
 };
 const char* ToString(TableInvariant invariant);
 
@@ -59,6 +65,7 @@ struct TableCheckInput {
   const HashTableDump* before = nullptr;
   Eviction eviction = {};   // the sequence's policy; the tables then carry last_seen
   std::uint32_t frame = 0;  // this frame's number
+  Temporal temporal = {};   // the sequence's temporal mode
 };
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& input);

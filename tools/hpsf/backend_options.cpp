@@ -39,8 +39,8 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
   const EmulatedTimings& t = run.timings;
   j["timings_ms"] = {{"keys", 1e3 * t.keys},         {"fixed_point", 1e3 * t.fixed_point},
                      {"clear", 1e3 * t.clear},       {"accumulate", 1e3 * t.accumulate},
-                     {"eviction", 1e3 * t.eviction}, {"read_back", 1e3 * t.read_back},
-                     {"resolve", 1e3 * t.resolve}};
+                     {"temporal", 1e3 * t.temporal}, {"eviction", 1e3 * t.eviction},
+                     {"read_back", 1e3 * t.read_back}, {"resolve", 1e3 * t.resolve}};
   if (options.mode == simt::Mode::kFaithful) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.launch.trace_hash));
@@ -75,6 +75,7 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
            {{"upload", run.timings.upload_ms},
             {"upload_copy", run.timings.upload_copy_ms},
             {"accumulate", run.timings.accumulate_ms},
+            {"temporal", run.timings.temporal_ms},
             {"eviction", run.timings.eviction_ms},
             {"resolve", run.timings.resolve_ms},
             {"filter", run.timings.FilterMs()},

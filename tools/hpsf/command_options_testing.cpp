@@ -82,7 +82,8 @@ const std::vector<std::string>& EdgeValues() {
       "faithful", "round-robin", "random:1", "pct:1:2", "pct:", "exhaustive", "none", "sign", "octahedral:0",
       "octahedral:24", "on", "off", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13", "D1", "reference", "emulated",
       "vulkan", "reference,emulated", "emulated,,vulkan", ",", "always", "never", "auto", "mse", "psnr", "ssim",
-      "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help"};
+      "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help", "integrate", "adaptive",
+      "strict"};
   // clang-format on
   return values;
 }
@@ -97,7 +98,8 @@ const std::vector<std::string>& CompoundValues() {
     std::vector<std::string> v;
     for (const std::string& n : numbers) {
       for (const std::string& s :
-           {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n}) {
+           {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n, "ema:" + n,
+            "ema:0.5:" + n, "stale:" + n}) {
         v.push_back(s);
       }
     }

@@ -34,6 +34,12 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "Cells a table kept across frames forgets after each frame: none, strict (not touched this frame) "
                   "or stale:N (not touched for N frames)")
       ->capture_default_str();
+  command
+      .add_option("--temporal", o.temporal,
+                  "How a cell kept across frames blends its history with a frame: integrate (by counts), "
+                  "ema:ALPHA[:MAXCOUNT] (history weight at most ALPHA, its count at most MAXCOUNT) or adaptive "
+                  "(integration, less where the cell's light changed)")
+      ->capture_default_str();
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {
@@ -52,6 +58,7 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     config.fixed_point_bits = bits;
   }
   config.eviction = ParseEviction(o.eviction);
+  config.temporal = ParseTemporal(o.temporal);
   config.Validate();
   return config;
 }
@@ -80,6 +87,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"frame", c.frame},
           {"frames", c.frames},
           {"eviction", c.eviction.ToString()},
+          {"temporal", c.temporal.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }
 

@@ -1,0 +1,81 @@
+// The temporal blend of one cell after a frame's accumulate (core/temporal.h says what each mode means), shared by
+// C++ (the reference, the emulator, the table checker) and GLSL (vulkan/shaders/temporal.comp). In double, with
+// correctly rounded adds, multiplies, divides and conversions only (the shader declares round-to-nearest-even for
+// 64-bit floats, as resolve does), so every backend blends to the same bits.
+//
+// The blended cell keeps the table's form, a sum and an integer count: the average alpha h + (1 - alpha) f over
+// a count N = ceil(N_new / (1 - alpha)), the count whose integration weight N / (N + N_new') matches alpha at the
+// next frame's like-sized add, at most N' + N_new. Its sum, average times count, never exceeds the integrated
+// sum S_old + S_new by more than one average (alpha <= N' / (N' + N_new)), so fixed64's F, chosen for integrating
+// `frames` frames, holds for every mode. When alpha is the integration's own, the blend is integration and the
+// table keeps its exact sums.
+#ifndef HPSF_CORE_SHARED_TEMPORAL_BLEND_H
+#define HPSF_CORE_SHARED_TEMPORAL_BLEND_H
+
+#include "prelude.h"
+
+HPSF_SHARED_BEGIN
+
+const uint kTemporalIntegrate = 0u;
+const uint kTemporalEma = 1u;
+const uint kTemporalAdaptive = 2u;
+
+struct TemporalParams {
+  double alpha;        // ema: the largest weight of the history; 1 otherwise
+  uint64_t max_count;  // the cap on the history's count; 2^64 - 1 for none
+  uint mode;           // kTemporalIntegrate, kTemporalEma or kTemporalAdaptive
+  uint reserved;
+};
+
+struct TemporalBlend {
+  dvec3 sum;       // the cell's new sums, to be rounded to the table's type (unless integrated)
+  uint64_t count;  // the cell's new count
+  bool integrated;  // alpha is the integration's: the cell keeps its exact sums, S_old + S_new
+};
+
+// The largest relative change of a channel between the history's average h and the frame's f, in [0, 1]: 0 when
+// both are 0.
+HPSF_FN double TemporalChange(dvec3 h, dvec3 f) {
+  double change = double(0.0);
+  for (int c = 0; c < 3; ++c) {
+    HPSF_PRECISE double total = h[c] + f[c];
+    HPSF_PRECISE double difference = f[c] > h[c] ? f[c] - h[c] : h[c] - f[c];
+    HPSF_PRECISE double relative = total > double(0.0) ? difference / total : double(0.0);
+    change = relative > change ? relative : change;
+  }
+  return change;
+}
+
+// old_sum, old_count: the cell before the frame (old_count >= 1); frame_sum, frame_count: what the frame added
+// (frame_count >= 1). Sums in the table's units (fixed64: scaled by 2^F).
+HPSF_FN TemporalBlend BlendCell(TemporalParams p, dvec3 old_sum, uint64_t old_count, dvec3 frame_sum,
+                                uint64_t frame_count) {
+  uint64_t capped = old_count < p.max_count ? old_count : p.max_count;
+  HPSF_PRECISE double n = double(frame_count);
+  HPSF_PRECISE double w = double(capped);
+  HPSF_PRECISE dvec3 h = old_sum / double(old_count);
+  HPSF_PRECISE dvec3 f = frame_sum / n;
+  HPSF_PRECISE double integration = w / (w + n);
+  HPSF_PRECISE double alpha = integration;
+  if (p.mode == kTemporalEma && p.alpha < integration) alpha = p.alpha;
+  if (p.mode == kTemporalAdaptive) alpha = integration * (double(1.0) - TemporalChange(h, f));
+  TemporalBlend b;
+  if (alpha == integration && capped == old_count) {
+    b.sum = old_sum + frame_sum;
+    b.count = old_count + frame_count;
+    b.integrated = true;
+    return b;
+  }
+  HPSF_PRECISE double most = w + n;
+  HPSF_PRECISE double weight = ceil(n / (double(1.0) - alpha));  // +inf when alpha rounded to 1: capped below
+  weight = weight < most ? weight : most;
+  HPSF_PRECISE dvec3 blended = alpha * h + (double(1.0) - alpha) * f;
+  b.sum = blended * weight;
+  b.count = uint64_t(weight);
+  b.integrated = false;
+  return b;
+}
+
+HPSF_SHARED_END
+
+#endif  // HPSF_CORE_SHARED_TEMPORAL_BLEND_H

@@ -1,0 +1,79 @@
+#include "core/temporal.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "core/format.h"
+
+namespace hpsf {
+
+std::string Temporal::ToString() const {
+  switch (mode) {
+    case TemporalMode::kIntegrate: return "integrate";
+    case TemporalMode::kEma:
+      return "ema:" + FormatDouble(alpha) + (max_count ? ":" + std::to_string(max_count) : std::string());
+    case TemporalMode::kAdaptive: return "adaptive";
+  }
+  return "?";
+}
+
+Temporal ParseTemporal(const std::string& text) {
+  if (text == "integrate") return {};
+  if (text == "adaptive") return {TemporalMode::kAdaptive, 1.0, 0};
+  const std::string prefix = "ema:";
+  if (text.rfind(prefix, 0) != 0) {
+    throw ConfigError("--temporal", "expected integrate, ema:ALPHA[:MAXCOUNT] or adaptive; got '" + text + "'");
+  }
+  const char* first = text.data() + prefix.size();
+  const char* last = text.data() + text.size();
+  Temporal temporal{TemporalMode::kEma, 0.0, 0};
+  auto [end, error] = std::from_chars(first, last, temporal.alpha);
+  if (error != std::errc() || end == first || !(temporal.alpha > 0.0 && temporal.alpha <= 1.0)) {
+    throw ConfigError("--temporal", "ema needs ALPHA in (0, 1], as in ema:0.9 or ema:0.9:64; got '" + text + "'");
+  }
+  if (end == last) return temporal;
+  if (*end != ':') throw ConfigError("--temporal", "expected ema:ALPHA[:MAXCOUNT]; got '" + text + "'");
+  const char* count_first = end + 1;
+  auto [count_end, count_error] = std::from_chars(count_first, last, temporal.max_count);
+  if (count_error != std::errc() || count_end != last || count_end == count_first || temporal.max_count == 0) {
+    throw ConfigError("--temporal", "ema's MAXCOUNT must be an integer >= 1, as in ema:0.9:64; got '" + text + "'");
+  }
+  return temporal;
+}
+
+shared::TemporalParams MakeTemporalParams(const Temporal& temporal) {
+  shared::TemporalParams p{};
+  p.mode = temporal.mode == TemporalMode::kIntegrate ? shared::kTemporalIntegrate
+           : temporal.mode == TemporalMode::kEma     ? shared::kTemporalEma
+                                                     : shared::kTemporalAdaptive;
+  p.alpha = temporal.mode == TemporalMode::kEma ? temporal.alpha : 1.0;
+  p.max_count = temporal.max_count ? temporal.max_count : std::numeric_limits<std::uint64_t>::max();
+  return p;
+}
+
+CellState BlendCellState(const shared::TemporalParams& params, bool fixed, const CellState& before,
+                         const CellState& accumulated) {
+  glm::dvec3 old_sum, frame_sum;
+  for (int c = 0; c < 3; ++c) {
+    old_sum[c] = fixed ? double(before.fixed_sum[c]) : double(before.float_sum[c]);
+    frame_sum[c] = fixed ? double(accumulated.fixed_sum[c] - before.fixed_sum[c])
+                         : double(accumulated.float_sum[c] - before.float_sum[c]);
+  }
+  const shared::TemporalBlend blend =
+      shared::BlendCell(params, old_sum, before.count, frame_sum, accumulated.count - before.count);
+  if (blend.integrated) return accumulated;
+  CellState blended;
+  blended.count = blend.count;
+  for (int c = 0; c < 3; ++c) {
+    if (fixed) {
+      blended.fixed_sum[c] = std::uint64_t(std::nearbyint(blend.sum[c]));
+    } else {
+      blended.float_sum[c] = float(blend.sum[c]);
+    }
+  }
+  return blended;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,56 @@
+// Temporal accumulation across frames (issue 14; Binder et al. §3.4.1, Schipek §5.3): how a cell blends what it
+// held before a frame (its history: average h over N_old samples) with what the frame added (average f over
+// N_new). integrate weighs them by their counts, alpha = N_old / (N_old + N_new): the table holds every frame's
+// exact sums. ema:ALPHA[:MAXCOUNT] caps the history's weight: alpha = min(ALPHA, N' / (N' + N_new)) with
+// N' = min(N_old, MAXCOUNT), so a young cell still integrates (a plain EMA of a cell with few samples never
+// converges, Binder §3.4.1) and an old one forgets at the rate ALPHA sets (ALPHA 1 with MAXCOUNT is Schipek's
+// maximum cell count). adaptive lowers the integration's alpha by the cell's temporal change, the largest
+// relative difference |f - h| / (f + h) of a channel: alpha = N_old / (N_old + N_new) * (1 - change), so a cell
+// whose light changed forgets and a steady one integrates (Binder's Fig. 9c). The blend itself is shared by C++
+// and GLSL: core/shared/temporal_blend.h.
+#ifndef HPSF_CORE_TEMPORAL_H
+#define HPSF_CORE_TEMPORAL_H
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "core/shared/temporal_blend.h"
+
+namespace hpsf {
+
+enum class TemporalMode { kIntegrate, kEma, kAdaptive };
+
+struct Temporal {
+  TemporalMode mode = TemporalMode::kIntegrate;
+  double alpha = 1.0;           // ema: the largest weight of the history, in (0, 1]
+  std::uint64_t max_count = 0;  // ema: the cap on the history's count; 0 for none
+
+  bool blends() const { return mode != TemporalMode::kIntegrate; }
+  std::string ToString() const;  // "integrate", "ema:0.9", "ema:0.9:64", "adaptive"
+  bool operator==(const Temporal&) const = default;
+};
+
+// Parses "integrate", "ema:ALPHA" or "ema:ALPHA:MAXCOUNT" (ALPHA in (0, 1], MAXCOUNT >= 1) or "adaptive"; a
+// ConfigError naming --temporal otherwise.
+Temporal ParseTemporal(const std::string& text);
+
+// The shared blend's parameters for `temporal`.
+shared::TemporalParams MakeTemporalParams(const Temporal& temporal);
+
+// A cell's sums and count in the table's own types: fixed64 or float32 sums, as `fixed` says.
+struct CellState {
+  std::array<std::uint64_t, 3> fixed_sum{};
+  std::array<float, 3> float_sum{};
+  std::uint64_t count = 0;
+};
+
+// The cell after the frame's blend, from the cell before the frame (count >= 1) and after the frame's accumulate
+// (a larger count), as every backend computes it: the frame's sums are the difference (exact in fixed64), the
+// blend is shared::BlendCell, and its sums round half to even (fixed64) or to the nearest float.
+CellState BlendCellState(const shared::TemporalParams& params, bool fixed, const CellState& before,
+                         const CellState& accumulated);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_TEMPORAL_H

@@ -1,0 +1,75 @@
+#version 450
+// The temporal blend after a frame's accumulate (core/temporal.h; the emulator's emulated/temporal_kernel.h holds
+// the rule): one invocation per slot. A slot that held samples in the previous table (the double buffer the host
+// copied the table into before the accumulate, read here and written by no pass of the frame) and that the frame
+// added to is blended by core/shared/temporal_blend.h, in double, as C++ blends it; every other slot keeps what it
+// holds.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#include "../../core/shared/prelude.h"
+#include "float_controls.glsl"
+#include "float_controls_fp64.glsl"
+#include "../../core/shared/temporal_blend.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) buffer SumWords { uint sum_words[]; };  // fixed64 or float32 sums, as 32-bit words
+layout(std430, binding = 1) buffer Counts { uint64_t counts[]; };
+layout(std430, binding = 2) readonly buffer PreviousSumWords { uint previous_sum_words[]; };
+layout(std430, binding = 3) readonly buffer PreviousCounts { uint64_t previous_counts[]; };
+layout(push_constant) uniform Params {  // vulkan_filter.cpp's TemporalPush
+  TemporalParams temporal;
+  uint capacity;
+  uint fixed64;  // 1: sums are 64-bit fixed point (two words per channel); 0: float32
+};
+
+double SumAt(uint slot, int c, bool previous) {
+  if (fixed64 != 0u) {
+    uint w = (slot * 3u + uint(c)) * 2u;
+    uvec2 words = previous ? uvec2(previous_sum_words[w], previous_sum_words[w + 1u])
+                           : uvec2(sum_words[w], sum_words[w + 1u]);
+    return double(packUint2x32(words));
+  }
+  uint w = slot * 3u + uint(c);
+  return double(uintBitsToFloat(previous ? previous_sum_words[w] : sum_words[w]));
+}
+
+void Blend(uint slot) {
+  uint64_t old_count = previous_counts[slot];
+  if (old_count == 0ul) return;  // a new cell, or none: nothing to blend
+  uint64_t count = counts[slot];
+  if (count == old_count) return;  // the frame did not touch it
+  dvec3 old_sum, frame_sum;
+  for (int c = 0; c < 3; ++c) {
+    old_sum[c] = SumAt(slot, c, true);
+    // The frame's sums: an exact integer difference in fixed64, a float subtraction in float32, as core's.
+    if (fixed64 != 0u) {
+      uint w = (slot * 3u + uint(c)) * 2u;
+      uint64_t now = packUint2x32(uvec2(sum_words[w], sum_words[w + 1u]));
+      uint64_t before = packUint2x32(uvec2(previous_sum_words[w], previous_sum_words[w + 1u]));
+      frame_sum[c] = double(now - before);
+    } else {
+      uint w = slot * 3u + uint(c);
+      float difference = uintBitsToFloat(sum_words[w]) - uintBitsToFloat(previous_sum_words[w]);
+      frame_sum[c] = double(difference);
+    }
+  }
+  TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, count - old_count);
+  if (b.integrated) return;
+  for (int c = 0; c < 3; ++c) {
+    if (fixed64 != 0u) {
+      uvec2 words = unpackUint2x32(uint64_t(roundEven(b.sum[c])));
+      uint w = (slot * 3u + uint(c)) * 2u;
+      sum_words[w] = words.x;
+      sum_words[w + 1u] = words.y;
+    } else {
+      sum_words[slot * 3u + uint(c)] = floatBitsToUint(float(b.sum[c]));
+    }
+  }
+  counts[slot] = b.count;
+}
+
+void main() {
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  for (uint slot = gl_GlobalInvocationID.x; slot < capacity; slot += stride) Blend(slot);
+}
