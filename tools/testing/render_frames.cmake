@@ -1,7 +1,8 @@
 # hpsf render --frames K: every backend traces and filters K frames through one table; --frame-out writes each
 # frame, -o the last (the same file bytes as the last frame's); the JSON report lists the frames. The last frame
 # of a sequence is not the frame filtered alone (its table holds the frames before it). With --eviction, each
-# frame's entry reports its eviction, the same count on every backend. Bad patterns exit 3 and write nothing.
+# frame's entry reports its eviction, the same count on every backend; with --temporal ema:0.5 every backend
+# blends to the reference's pixels. Bad patterns and modes exit 3 and write nothing.
 set(dir ${OUT}/frames)
 file(REMOVE_RECURSE ${dir})
 set(common render ${SCENE} --size 24x24 --spp 2 --frames 3 --capacity 16384 --json)
@@ -73,6 +74,35 @@ foreach(backend reference emulated vulkan)
     message(FATAL_ERROR "${backend} evicted ${counts} cells per frame, the reference ${reference_counts}")
   endif()
 endforeach()
+
+# --temporal ema:0.5: every backend blends to the reference's pixels, and the blend is not integration.
+foreach(backend reference emulated vulkan)
+  execute_process(COMMAND ${HPSF} ${common} --backend ${backend} --temporal ema:0.5 -o ${dir}/${backend}-ema.exr
+                  RESULT_VARIABLE code OUTPUT_VARIABLE report ERROR_VARIABLE errors)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${backend} --temporal ema:0.5: exit ${code}\n${errors}")
+  endif()
+  string(JSON temporal GET "${report}" config temporal)
+  if(NOT temporal STREQUAL "ema:0.5")
+    message(FATAL_ERROR "${backend}: the report's config says temporal '${temporal}'")
+  endif()
+endforeach()
+foreach(backend emulated vulkan)
+  execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/reference-ema.exr ${dir}/${backend}-ema.exr
+                  RESULT_VARIABLE differ OUTPUT_VARIABLE idiff_report)
+  if(NOT differ EQUAL 0)
+    message(FATAL_ERROR "${backend}'s ema:0.5 frame differs from the reference's:\n${idiff_report}")
+  endif()
+endforeach()
+execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/reference-ema.exr ${dir}/reference-last.exr
+                RESULT_VARIABLE same OUTPUT_QUIET ERROR_QUIET)
+if(same EQUAL 0)
+  message(FATAL_ERROR "ema:0.5 gives integration's pixels")
+endif()
+execute_process(COMMAND ${HPSF} ${common} --temporal ema:2 -o ${dir}/bad-ema.exr RESULT_VARIABLE code ERROR_VARIABLE errors)
+if(NOT code EQUAL 3 OR NOT errors MATCHES "--temporal")
+  message(FATAL_ERROR "--temporal ema:2: exit ${code}, '${errors}'")
+endif()
 
 foreach(bad "${dir}/bad.exr" "${dir}/bad-{frame}-{frame}.exr" "${dir}/bad-{frame}.png")
   execute_process(COMMAND ${HPSF} ${common} --frame-out ${bad} -o ${dir}/bad-last.exr
