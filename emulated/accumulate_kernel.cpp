@@ -31,7 +31,8 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
         co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c, std::bit_cast<std::uint32_t>(r.contribution[c]));
       }
     }
-    co_await ctx.AtomicAdd(b.counts, slot, 1);
+    // A count of 2^64 - 1 wraps to 0 (D12): no frame sequence gets there, but a table loaded with one can.
+    if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) co_await ctx.AtomicAdd(b.wraps, 1, 1);
     if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
     co_await ctx.Store(b.placements, i, slot);
     co_return;

@@ -23,7 +23,7 @@ struct TableBuffers {
                               // share a cache line: 64-bit (fixed64) or 32-bit float bits (float32)
   std::uint32_t counts;       // 64-bit
   std::uint32_t placements;   // 32-bit, one per record
-  std::uint32_t wraps;        // 64-bit, one word: fixed64 adds that wrapped
+  std::uint32_t wraps;        // 64-bit, two words: fixed64 adds whose sum wrapped, adds whose count wrapped
   std::uint32_t last_seen;    // 32-bit per slot, with eviction only: the last frame a record was added
 };
 

@@ -10,8 +10,9 @@
 namespace hpsf {
 namespace {
 
-// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes.
-simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect) {
+// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes; count32
+// is D12's, which needs a sequence of frames (D12Count32Bit).
+simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, bool count32 = false) {
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
   const TableBuffers& b = args.buffers;
@@ -58,8 +59,15 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     if (defect == Defect::kD9NonAtomicAdd) {
       const std::uint64_t count = co_await ctx.Load(b.counts, slot);
       co_await ctx.Store(b.counts, slot, count + 1);
-    } else {
-      co_await ctx.AtomicAdd(b.counts, slot, 1);
+    } else if (count32) {  // D12: a 32-bit counter, one compare-and-swap at a time, that wraps silently
+      std::uint64_t count = co_await ctx.Load(b.counts, slot);
+      for (;;) {
+        const std::uint64_t seen = co_await ctx.AtomicCas(b.counts, slot, count, (count + 1) & 0xFFFFFFFFu);
+        if (seen == count) break;
+        count = seen;
+      }
+    } else if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) {
+      co_await ctx.AtomicAdd(b.wraps, 1, 1);
     }
     if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
     co_await ctx.Store(b.placements, i, slot);
@@ -77,6 +85,10 @@ simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mu
 simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
 
 }  // namespace
+
+simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return Mutant(ctx, args, Defect::kNone, true);
+}
 
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args) {
   const std::uint32_t slot = ctx.Thread();

@@ -30,6 +30,10 @@ AccumulateKernelFn KernelWithDefect(Defect defect);
 // Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
 
+// D12: the accumulate with a 32-bit sample counter that wraps silently at 2^32 adds to one cell. Not a Defect value
+// either: only a long sequence of frames (or a table loaded with a large count) reaches it.
+simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
 }  // namespace hpsf
 
 #endif  // HPSF_EMULATED_DEFECT_INJECTION_H

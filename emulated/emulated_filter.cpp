@@ -101,7 +101,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   b.sums = fixed ? memory.Allocate64("sums", std::size_t(config.capacity) * 3) : memory.Allocate32("sums", std::size_t(config.capacity) * 3);
   b.counts = memory.Allocate64("counts", config.capacity);
   b.placements = memory.Allocate32("placements", n);
-  b.wraps = memory.Allocate64("wraps", 1);
+  b.wraps = memory.Allocate64("wraps", 2);
   const bool evicting = config.eviction.enabled();
   if (evicting) {
     b.last_seen = memory.Allocate32("last_seen", config.capacity);
@@ -184,6 +184,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.counts = memory.TakeWords64(b.counts);
   run.placements = memory.TakeWords32(b.placements);
   run.wraps = memory.Words64(b.wraps)[0];
+  run.count_wraps = memory.Words64(b.wraps)[1];
   if (fixed) {
     ResizeOnHugePages(table.fixed_sums, config.capacity);
   } else {

@@ -106,7 +106,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
         cell.float_sum[c] += r.contribution[c];
       }
     }
-    ++cell.count;
+    stats.count_wraps += ++cell.count == 0;
     cell.last_seen = config.frame;
     result.placement[i] = it->second;
   }

@@ -208,6 +208,32 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
 
 VulkanFilter::~VulkanFilter() = default;
 
+void VulkanFilter::LoadTable(const HashTableDump& table) {
+  Impl& p = *impl_;
+  p.table.reset();
+  const bool fixed = table.accumulation == Accumulation::kFixed64;
+  const std::size_t slots = table.capacity;
+  const std::size_t sum_bytes = slots * (fixed ? 24 : 12);
+  p.Ensure(p.tags, vk::DeviceSize(slots) * 4);
+  p.Ensure(p.sums, vk::DeviceSize(sum_bytes));
+  p.Ensure(p.counts, vk::DeviceSize(slots) * 8);
+  p.Ensure(p.last_seen, vk::DeviceSize(slots) * 4);
+  vulkan_internal::Transfer upload(p.device, p.staging);
+  std::memcpy(upload.Upload(p.tags, slots * 4), table.tags.data(), slots * 4);
+  std::memcpy(upload.Upload(p.sums, sum_bytes),
+              fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data()),
+              sum_bytes);
+  std::memcpy(upload.Upload(p.counts, slots * 8), table.counts.data(), slots * 8);
+  void* last_seen = upload.Upload(p.last_seen, slots * 4);
+  if (table.last_seen.size() == slots) {
+    std::memcpy(last_seen, table.last_seen.data(), slots * 4);
+  } else {
+    std::memset(last_seen, 0, slots * 4);
+  }
+  upload.Submit();
+  p.table = Impl::TableShape{table.capacity, table.accumulation, table.fixed_point_bits};
+}
+
 VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table) {
   CheckBatchShape(batch);
   config.Validate();
@@ -248,7 +274,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.sums, vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4));
   p.Ensure(p.counts, vk::DeviceSize(config.capacity) * 8);
   p.Ensure(p.placements, vk::DeviceSize(n) * 4);
-  p.Ensure(p.stats, 8);
+  p.Ensure(p.stats, 16);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
   const bool evicting = config.eviction.enabled();
@@ -382,7 +408,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_tags = download.Download(p.tags, std::size_t(config.capacity) * 4);
   const void* from_counts = download.Download(p.counts, std::size_t(config.capacity) * 8);
   const void* from_sums = download.Download(p.sums, sum_bytes);
-  const void* from_stats = download.Download(p.stats, 8);
+  const void* from_stats = download.Download(p.stats, 16);
   const void* from_last_seen = evicting ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
   const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
   run.timings.read_back_copy_ms = download.Submit();
@@ -405,7 +431,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                        CopyOut{table.counts.data(), from_counts, std::size_t(config.capacity) * 8},
                        CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()), from_sums,
                                sum_bytes},
-                       CopyOut{&run.wraps, from_stats, 8}};
+                       CopyOut{&run.wraps, from_stats, 8},
+                       CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   if (evicting) {
     ResizeOnHugePages(table.last_seen, config.capacity);

@@ -58,6 +58,11 @@ class VulkanFilter {
   // for this batch (and config.frames).
   VulkanRun Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table = false);
 
+  // Makes `table` the device table a Run with keep_table carries on from, as if a frame had left it: its tags,
+  // sums, counts and last-seen frames (zero when it has none), and its F. For tables no frame reaches in a test's
+  // time (a count near 2^64, DESIGN.md D12) and for starting from a dump.
+  void LoadTable(const HashTableDump& table);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -18,6 +18,15 @@ std::string Records(const std::vector<std::uint32_t>& records) {
   return s;
 }
 
+std::string Decimal(unsigned __int128 x) {
+  std::string digits;
+  do {
+    digits.insert(digits.begin(), char('0' + int(x % 10)));
+    x /= 10;
+  } while (x != 0);
+  return digits;
+}
+
 std::string SumsText(const std::array<std::uint64_t, 3>& sums) {
   return "(" + std::to_string(sums[0]) + ", " + std::to_string(sums[1]) + ", " + std::to_string(sums[2]) + ")";
 }
@@ -211,7 +220,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
   // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
   std::array<unsigned __int128, 3> table_total{}, placed_total{};
-  std::uint64_t total_count = 0, expected_total_count = 0;
+  // Counts in 128 bits: a 64-bit count that wrapped (D12) must not look right because the checker's sum wrapped too.
+  unsigned __int128 total_count = 0, expected_total_count = 0;
   auto sums_are_zero = [&](std::uint32_t s) {
     return fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
   };
@@ -275,11 +285,12 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       expected_total_count += t.counts[s];
       continue;
     }
-    expected_total_count += base_count + here.size();
-    if (t.counts[s] != base_count + here.size()) {
+    const unsigned __int128 expected_count = (unsigned __int128)base_count + here.size();
+    expected_total_count += expected_count;
+    if (t.counts[s] != expected_count) {
       violate(TableInvariant::kCountMismatch, s, here,
               "count " + std::to_string(t.counts[s]) + ", before " + std::to_string(base_count) + " + placed " +
-                  std::to_string(here.size()));
+                  std::to_string(here.size()) + (expected_count >> 64 ? ": more than a 64-bit count holds (D12)" : ""));
     }
     for (int c = 0; c < 3; ++c) {
       unsigned __int128 exact = fixed_base(c);
@@ -312,7 +323,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   }
   if (total_count != expected_total_count) {
     violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {},
-            "count " + std::to_string(total_count) + ", expected " + std::to_string(expected_total_count));
+            "count " + Decimal(total_count) + ", expected " + Decimal(expected_total_count));
   }
   for (int c = 0; c < 3; ++c) {
     if (fixed && table_total[c] != placed_total[c]) {

@@ -31,6 +31,8 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
   nlohmann::json j = {{"mode", options.mode == simt::Mode::kFast ? "fast" : "faithful"},
                       {"probe_failures", run.probe_failures},
                       {"fixed64_wraps", run.wraps},
+          {"count_wraps", run.count_wraps},
+                      {"count_wraps", run.count_wraps},
                       {"slots_used", SlotsUsed(run.table)},
                       {"probe_lengths", run.probe_lengths},
                       {"fixed_point_bits", run.table.fixed_point_bits},

@@ -103,6 +103,7 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"max_records_per_cell", s.max_records_per_cell},
           {"fixed_point_bits", s.fixed_point_bits},
           {"fixed64_wraps", s.fixed_point_wraps},
+          {"count_wraps", s.count_wraps},
           {"cells_evicted", s.cells_evicted}};
 }
 

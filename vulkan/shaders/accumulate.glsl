@@ -19,7 +19,11 @@ const uint kRecordsPerInvocation = 16u;
 layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
-// _D13, each exactly one change) and runs the variants through --accumulate-spv: the gate must catch each.
+// _D12, _D13, each exactly one change) and runs the variants through --accumulate-spv: the gate must catch each.
+
+#if defined(HPSF_DEFECT_D12)
+layout(std430, binding = 4) buffer CountWords { uint count_words[]; };  // binding 4 again, as 32-bit words
+#endif
 
 void AddToSlot(uint slot, Record r, float fixed_point_scale) {
   for (uint c = 0u; c < 3u; ++c) {
@@ -35,8 +39,11 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale) {
   }
 #if defined(HPSF_DEFECT_D9)
   counts[slot] += uint64_t(1);
+#elif defined(HPSF_DEFECT_D12)  // a 32-bit sample counter: the low word of the count, which wraps silently
+  atomicAdd(count_words[slot * 2u], 1u);
 #else
-  atomicAdd(counts[slot], uint64_t(1));
+  // A count of 2^64 - 1 wraps to 0 (DESIGN.md D12): no frame sequence gets there, but a table loaded with one can.
+  if (atomicAdd(counts[slot], uint64_t(1)) == ~uint64_t(0)) atomicAdd(count_wraps, uint64_t(1));
 #endif
 }
 

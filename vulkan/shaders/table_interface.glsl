@@ -7,7 +7,8 @@
 //   3 sums        uint64_t[3 capacity] (fixed64) or float[3 capacity] (float32), slot * 3 + c, zeroed
 //   4 counts      uint64_t[capacity], zeroed                                                  atomics
 //   5 placements  uint[n]: slot, kPlacementProbeFailure or kPlacementNotPlaced                write
-//   6 stats       uint64_t wraps: fixed64 adds whose sum wrapped, zeroed                      atomics
+//   6 stats       uint64_t wraps: fixed64 adds whose sum wrapped; then uint64_t count_wraps:  atomics
+//                 adds whose count wrapped (DESIGN.md D12); both zeroed
 //   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
 // Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state).
@@ -21,7 +22,10 @@ layout(std430, binding = 2) buffer Tags { uint tags[]; };
 layout(std430, binding = 3) buffer Sums { HPSF_SUMS_TYPE sums[]; };
 layout(std430, binding = 4) buffer Counts { uint64_t counts[]; };
 layout(std430, binding = 5) writeonly buffer Placements { uint placements[]; };
-layout(std430, binding = 6) buffer Stats { uint64_t wraps; };
+layout(std430, binding = 6) buffer Stats {
+  uint64_t wraps;
+  uint64_t count_wraps;
+};
 layout(std430, binding = 7) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 8) writeonly buffer LastSeen { uint last_seen[]; };
 layout(push_constant) uniform Params {
