@@ -118,6 +118,14 @@ nlohmann::json LastFrameEviction(const BackendInstance& instance) {
   return {{"evicted", run.evicted}, {"tombstones", run.tombstones}, {"eviction_s", run.timings.eviction_ms / 1e3}};
 }
 
+nlohmann::json LastFrameTemporal(const BackendInstance& instance) {
+  if (dynamic_cast<const ReferenceBackend*>(instance.backend.get())) return nlohmann::json::object();
+  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(instance.backend.get())) {
+    return {{"temporal_s", emulated->run().timings.temporal}};
+  }
+  return {{"temporal_s", dynamic_cast<const VulkanBackend&>(*instance.backend).run().timings.temporal_ms / 1e3}};
+}
+
 BackendOutput LastFrameOutput(const BackendInstance& instance) {
   BackendOutput out;
   if (const auto* reference = dynamic_cast<const ReferenceBackend*>(instance.backend.get())) {

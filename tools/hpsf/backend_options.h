@@ -50,6 +50,9 @@ BackendOutput LastFrameOutput(const BackendInstance& instance);
 // The last frame's eviction, for a report's per-frame entry: cells_evicted (reference), or evicted, tombstones
 // and eviction_s, the evict and reclaim passes' time (hashed backends).
 nlohmann::json LastFrameEviction(const BackendInstance& instance);
+// The temporal blend's pass time of the last frame: {"temporal_s": seconds} for a hashed backend; the reference
+// blends inside its filter ({}).
+nlohmann::json LastFrameTemporal(const BackendInstance& instance);
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
 

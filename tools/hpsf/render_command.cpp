@@ -110,6 +110,7 @@ void RunRender(RenderOptions& o, bool options_only) {
       frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
     }
     if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
+    if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
     per_frame.push_back(frame);
   }
   report["version"] = 1;
