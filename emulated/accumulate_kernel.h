@@ -27,6 +27,8 @@ struct TableBuffers {
   std::uint32_t last_seen;    // 32-bit per slot, with eviction only: the last frame a record was added
 };
 
+struct TemporalArgs;  // emulated/temporal_kernel.h
+
 struct AccumulateArgs {
   std::span<const Record> records;
   std::span<const KeyResult> keys;        // from core, per record
@@ -39,6 +41,9 @@ struct AccumulateArgs {
   bool track_last_seen = false;    // with eviction: store `frame` into buffers.last_seen of every slot added to
   std::uint32_t frame = 0;
   TableBuffers buffers{};
+  // With a blending --temporal and a table before the frame: the temporal pass's arguments. The correct kernel
+  // never reads them (the blend is a pass of its own, after this one); D10's variant blends inside this pass.
+  const TemporalArgs* temporal = nullptr;
 };
 
 simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args);

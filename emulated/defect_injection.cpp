@@ -6,13 +6,17 @@
 #include "core/error.h"
 #include "core/hash_table.h"
 #include "core/shared/fixed_point.h"
+#include "core/temporal.h"
+#include "emulated/temporal_kernel.h"
 
 namespace hpsf {
 namespace {
 
 // The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes; count32
 // is D12's, which needs a sequence of frames (D12Count32Bit).
-simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, bool count32 = false) {
+// blend_in_pass is D10's (D10BlendDuringAccumulate).
+simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, bool count32 = false,
+                        bool blend_in_pass = false) {
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
   const TableBuffers& b = args.buffers;
@@ -70,6 +74,29 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
       co_await ctx.AtomicAdd(b.wraps, 1, 1);
     }
     if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
+    if (blend_in_pass && args.temporal) {
+      // D10: the slot blended right after this record's add, from the table still being accumulated: other
+      // records' adds may come before or after it, and a slot blends once per record instead of once.
+      const TemporalArgs& t = *args.temporal;
+      CellState before, accumulated;
+      before.count = co_await ctx.Load(t.previous_counts, slot);
+      accumulated.count = co_await ctx.Load(b.counts, slot);
+      if (before.count != 0 && accumulated.count != before.count) {
+        for (int c = 0; c < 3; ++c) {
+          const std::uint64_t word = std::uint64_t(slot) * 3 + c;
+          before.fixed_sum[c] = co_await ctx.Load(t.previous_sums, word);
+          accumulated.fixed_sum[c] = co_await ctx.Load(b.sums, word);
+          before.float_sum[c] = std::bit_cast<float>(std::uint32_t(before.fixed_sum[c]));
+          accumulated.float_sum[c] = std::bit_cast<float>(std::uint32_t(accumulated.fixed_sum[c]));
+        }
+        const CellState blended = BlendCellState(t.params, fixed, before, accumulated);
+        for (int c = 0; c < 3; ++c) {
+          co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c,
+                             fixed ? blended.fixed_sum[c] : std::bit_cast<std::uint32_t>(blended.float_sum[c]));
+        }
+        co_await ctx.Store(b.counts, slot, blended.count);
+      }
+    }
     co_await ctx.Store(b.placements, i, slot);
     placed = true;
     if (defect != Defect::kD2AddsAgain) co_return;  // D2: keeps probing and adds again (Meijer Algorithm 4)
@@ -85,6 +112,10 @@ simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mu
 simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
 
 }  // namespace
+
+simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return Mutant(ctx, args, Defect::kNone, false, true);
+}
 
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args) {
   return Mutant(ctx, args, Defect::kNone, true);

@@ -30,6 +30,11 @@ AccumulateKernelFn KernelWithDefect(Defect defect);
 // Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
 
+// D10: the accumulate that blends its slot (core/temporal.h) right after each record's add, reading averages from
+// the table it is still accumulating instead of leaving the blend to a pass after it: torn (sum, count), and a
+// slot blended once per record. Not a Defect value: only a frame after the first blends.
+simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
 // D12: the accumulate with a 32-bit sample counter that wraps silently at 2^32 adds to one cell. Not a Defect value
 // either: only a long sequence of frames (or a table loaded with a large count) reaches it.
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args);

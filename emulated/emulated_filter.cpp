@@ -115,6 +115,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     temporal.previous_sums = fixed ? memory.Allocate64("previous_sums", std::size_t(config.capacity) * 3)
                                    : memory.Allocate32("previous_sums", std::size_t(config.capacity) * 3);
     temporal.previous_counts = memory.Allocate64("previous_counts", config.capacity);
+    args.temporal = &temporal;
   }
   if (previous) {
     if (previous->capacity != config.capacity || previous->accumulation != config.accumulation) {

@@ -4,7 +4,8 @@
 // predicts, Schipek's maximum count acts as alpha = M / (M + n), integration converges as K (a - b) / (K + k), and
 // the adaptive blend follows the move within a frame where integration takes K. Every backend blends to the
 // reference's bits in fixed64 frame by frame, on the light and on the traced animated Cornell box, and the table
-// checker passes them; a backend that ignores --temporal is caught by the checker.
+// checker passes them; a backend that ignores --temporal is caught by the checker, and one that blends during the
+// accumulate (D10) by the checker and the contract.
 
 #include <cmath>
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include "core/backend.h"
 #include "core/error.h"
 #include "core/temporal.h"
+#include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
 #include "property_tests/grid_batch.h"
 #include "property_tests/hashed_backends.h"
@@ -38,18 +40,19 @@ constexpr float kLit = 1.0f;
 constexpr float kDim = 0.25f;
 
 // The light lights cells 0..31 before kMoveFrame and cells 32..63 from it on; the other row is dim. Cell j is the
-// unit cell at x = j, its kPerCell records at its centre.
+// unit cell at x = j, its kPerCell records at its centre, kCells records apart (in different warps, as a frame's
+// pixels of one cell are).
 RecordBatch LightFrame(std::uint32_t frame) {
   RecordBatch batch;
   batch.width = kCells * kPerCell;
   batch.height = 1;
   batch.samples_per_pixel = 1;
   batch.fov_y_radians = 1.0;
-  for (std::uint32_t j = 0; j < kCells; ++j) {
-    const bool lit = (j < kCells / 2) == (frame < kMoveFrame);
-    for (std::uint32_t r = 0; r < kPerCell; ++r) {
+  for (std::uint32_t r = 0; r < kPerCell; ++r) {
+    for (std::uint32_t j = 0; j < kCells; ++j) {
+      const bool lit = (j < kCells / 2) == (frame < kMoveFrame);
       VertexSample v;
-      v.pixel = j * kPerCell + r;
+      v.pixel = r * kCells + j;
       v.position = glm::vec3(float(j) + 0.5f, 0.5f, 0.5f);
       v.previous = v.position + glm::vec3(0.0f, 0.0f, -1.0f);
       v.contribution = glm::vec3(lit ? kLit : kDim);
@@ -276,6 +279,39 @@ TEST(Temporal, TheCheckerCatchesABackendThatIgnoresTheTemporalMode) {
   }
   // Every cell blends from frame 4 on (the history's weight then exceeds 0.75).
   EXPECT_EQ(violations[TableInvariant::kTemporalBlend], int(kCells * (kLightFrames - 4)));
+}
+
+// D10: the emulator's accumulate that blends each slot right after a record's add, reading the table it is still
+// accumulating. Fast (all cores, atomics as they come) and faithful (warps of 8, a random schedule): the checker
+// names blended slots and the image differs from the reference's.
+TEST(Temporal, D10ABlendDuringTheAccumulateIsCaughtByTheCheckerAndTheContract) {
+  EmulatorOptions faithful;
+  faithful.mode = simt::Mode::kFaithful;
+  faithful.warp_size = 8;
+  faithful.schedule = "random:7";
+  for (const EmulatorOptions& options : {EmulatorOptions{}, faithful}) {
+    const std::string name = options.mode == simt::Mode::kFast ? "emulated fast" : "emulated faithful";
+    FilterConfig config = LightConfig("ema:0.75");
+    EmulatedBackend d10(options, D10BlendDuringAccumulate);
+    ReferenceBackend reference;
+    std::optional<HashTableDump> before;
+    int blend_violations = 0, images_differ = 0;
+    for (std::uint32_t k = 0; k < kLightFrames; ++k) {
+      config.frame = k;
+      const RecordBatch batch = LightFrame(k);
+      images_differ += d10.FilterFrame(batch, config).pixels != reference.FilterFrame(batch, config).pixels;
+      const EmulatedRun& run = d10.run();
+      for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements,
+                                                 before ? &*before : nullptr, {}, k, config.temporal})) {
+        blend_violations += v.invariant == TableInvariant::kTemporalBlend;
+      }
+      before = run.table;
+    }
+    EXPECT_GT(blend_violations, 0) << name << ": the checker misses D10";
+    EXPECT_GT(images_differ, 0) << name << ": the contract misses D10";
+    std::printf("%s, D10: %d blended slots named, %d of %u frames' images differ\n", name.c_str(), blend_violations,
+                images_differ, kLightFrames);
+  }
 }
 
 }  // namespace
