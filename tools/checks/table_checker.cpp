@@ -33,7 +33,7 @@ std::string SumsText(const std::array<std::uint64_t, 3>& sums) {
 
 // A slot the frame added to that held samples before it, under a blending temporal mode.
 void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<std::uint32_t>& here,
-                     const CellState& before, std::vector<TableViolation>& violations) {
+                const CellState& before, std::vector<TableViolation>& violations) {
   const HashTableDump& t = in.table;
   const bool fixed = t.accumulation == Accumulation::kFixed64;
   const float scale = shared::PowerOfTwo(t.fixed_point_bits);
