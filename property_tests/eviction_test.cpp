@@ -205,10 +205,10 @@ double MeanRadiance(const Image& image) {
 }
 
 // The furnace's radiance is the same everywhere: with a moving camera over 16 frames, every policy and temporal
-// mode keeps the light on every backend, frame by frame: each frame's filtered mean stays within 1% of the same records'
-// unfiltered mean (plain path tracing), and no pixel is poisoned. Measured: at most 0.52% on every backend and
-// policy, none included (the filter's own noise at 24 x 24 x 2 spp). A frame that read evicted cells (0 / 0) would
-// be NaN; one whose table forgot the light would fall by its share of the records.
+// mode keeps the light on every backend, frame by frame: each frame's filtered mean stays within 1% of the same
+// records' unfiltered mean (plain path tracing), and no pixel is poisoned. Measured: at most 0.52% on every
+// backend, policy and mode, none and integrate included (the filter's own noise at 24 x 24 x 2 spp). A frame that
+// read evicted cells (0 / 0) would be NaN; one whose table forgot the light would fall by its share of the records.
 TEST(Eviction, TheFurnaceKeepsItsLightOver16FramesOfAMovingCamera) {
   constexpr std::uint32_t kFrames = 16;
   Scene furnace = LoadScene("furnace");

@@ -43,7 +43,8 @@ RecordBatch GeneratedBatch(std::uint32_t seed, std::uint32_t count) {
 
 std::vector<TableViolation> Check(const EmulatedRun& run, const RecordBatch& batch,
                                   const HashTableDump* before = nullptr, const FilterConfig& config = {}) {
-  return CheckTable({run.table, batch.records, run.keys, run.placements, before, config.eviction, config.frame, config.temporal});
+  return CheckTable(
+      {run.table, batch.records, run.keys, run.placements, before, config.eviction, config.frame, config.temporal});
 }
 
 bool Aliased(const EmulatedRun& run) {

@@ -128,7 +128,8 @@ TEST(Temporal, TheBlendIsIntegrationUnlessCappedAndStaysWithinTheIntegratedSum) 
     for (int c = 0; c < 3; ++c) {
       EXPECT_LE(blended.fixed_sum[c], accumulated.fixed_sum[c] + accumulated.fixed_sum[c] / 6 + 1) << mode;
       const double average = double(blended.fixed_sum[c]) / double(blended.count);
-      const double history = double(before.fixed_sum[c]) / 4.0, frame = double(accumulated.fixed_sum[c] - before.fixed_sum[c]) / 2.0;
+      const double history = double(before.fixed_sum[c]) / 4.0;
+      const double frame = double(accumulated.fixed_sum[c] - before.fixed_sum[c]) / 2.0;
       EXPECT_GE(average, std::min(history, frame) - 1.0) << mode << ", channel " << c;
       EXPECT_LE(average, std::max(history, frame) + 1.0) << mode << ", channel " << c;
     }
@@ -238,15 +239,19 @@ TEST(Temporal, EveryBackendBlendsTheMovingLightToTheReferencesBits) {
 // to the reference's bits on every backend, with and without eviction; in float32 the checker's bounds hold.
 TEST(Temporal, EveryBackendBlendsTheAnimatedCornellBoxAsTheReferenceDoes) {
   constexpr std::uint32_t kFrames = 4;
-  const std::vector<RecordBatch> frames = TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
+  const std::vector<RecordBatch> frames =
+      TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
   struct Case {
     const char* temporal;
     const char* eviction;
     Accumulation accumulation;
   };
-  for (const Case& c : {Case{"ema:0.6", "none", Accumulation::kFixed64}, Case{"ema:1:3", "strict", Accumulation::kFixed64},
-                        Case{"adaptive", "stale:2", Accumulation::kFixed64}, Case{"ema:0.6", "none", Accumulation::kFloat32},
-                        Case{"adaptive", "none", Accumulation::kFloat32}}) {
+  const Case cases[] = {{"ema:0.6", "none", Accumulation::kFixed64},
+                        {"ema:1:3", "strict", Accumulation::kFixed64},
+                        {"adaptive", "stale:2", Accumulation::kFixed64},
+                        {"ema:0.6", "none", Accumulation::kFloat32},
+                        {"adaptive", "none", Accumulation::kFloat32}};
+  for (const Case& c : cases) {
     FilterConfig config;
     config.capacity = 1u << 12;
     config.frames = kFrames;

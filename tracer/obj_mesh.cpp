@@ -30,9 +30,9 @@ std::vector<std::string> ObjLines(const std::string& path) {
 }
 
 // Every "v" line must hold three finite numbers; tinyobjloader silently turns unparsable ones into 0. hpsf ignores
-// skin weights ("vw"), but tinyobjloader converts their joint ids to int unchecked (undefined beyond int range).
-void CheckLines(const std::string& path) {
-  const std::vector<std::string> lines = ObjLines(path);
+// skin weights ("vw") and tinyobjloader never sees them (TextWithoutSkinWeights), but a joint id beyond the range
+// of an int is still bad input, named.
+void CheckLines(const std::string& path, const std::vector<std::string>& lines) {
   for (std::size_t index = 0; index < lines.size(); ++index) {
     const std::string place = path + ":" + std::to_string(index + 1);
     std::istringstream tokens(lines[index]);
@@ -60,15 +60,33 @@ void CheckLines(const std::string& path) {
   }
 }
 
+// Whether tinyobjloader reads the line as a skin weight: "vw" and a space or tab after leading spaces and tabs.
+bool IsSkinWeightLine(const std::string& line) {
+  const std::size_t start = line.find_first_not_of(" \t");
+  return start != std::string::npos && line.compare(start, 2, "vw") == 0 && start + 2 < line.size() &&
+         (line[start + 2] == ' ' || line[start + 2] == '\t');
+}
+
+// The text tinyobjloader parses: the file's lines, skin weights blanked. hpsf ignores them, and tinyobjloader's own
+// number parser turns some tokens that strtod reads as 0 (such as 00e3848364: 0 times 10^3848364) into NaN, which
+// it then converts to an int (undefined; found by fuzz_obj). A blank line keeps the line numbers of its errors.
+std::string TextWithoutSkinWeights(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& line : lines) text.append(IsSkinWeightLine(line) ? std::string() : line).append("\n");
+  return text;
+}
+
 }  // namespace
 
 std::vector<ObjTriangle> LoadObjTriangles(const std::string& path) {
-  CheckLines(path);
+  const std::vector<std::string> lines = ObjLines(path);
+  CheckLines(path, lines);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) throw InputError(path + ": " + reader.Error());
+  // No material library: hpsf takes only the triangles from a mesh (materials come from the scene file).
+  if (!reader.ParseFromString(TextWithoutSkinWeights(lines), "", config)) throw InputError(path + ": " + reader.Error());
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   std::vector<ObjTriangle> triangles;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {

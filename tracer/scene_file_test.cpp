@@ -111,6 +111,14 @@ TEST(SceneFile, ObjSkinWeightBeyondIntRangeIsAnInputError) {
             std::string::npos);
 }
 
+// Found by fuzz_obj in CI (UBSan): tinyobjloader's number parser reads 00e3848364 as 0 times 10^3848364, NaN, and
+// converts it to an int. Skin weights never reach it now; the mesh loads as if the line were not there (the asan
+// run's float-cast-overflow check sees the conversion if one does).
+TEST(SceneFile, ObjSkinWeightsAreIgnoredWhateverTinyobjloaderWouldReadInThem) {
+  const std::string obj = WriteTemp("skin_nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 00e3848364 1\r vw 0 0 1\nf 1 2 3\n");
+  EXPECT_EQ(LoadObjTriangles(obj).size(), 1u);
+}
+
 // Found by fuzz_obj (UBSan): a face index past 2^31 / 3 overflowed int in the missing-vertex check.
 TEST(SceneFile, ObjFaceIndexBeyondIntRangeIsAMissingVertex) {
   const std::string obj = WriteTemp("big_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 1908428344\n");

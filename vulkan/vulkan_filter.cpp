@@ -173,7 +173,9 @@ struct VulkanFilter::Impl {
     return *eviction;
   }
   ComputeProgram& Temporal() {
-    if (!temporal) temporal = vulkan_internal::CreateComputeProgram(device, temporal_spv, kTemporalBindings, sizeof(TemporalPush));
+    if (!temporal) {
+      temporal = vulkan_internal::CreateComputeProgram(device, temporal_spv, kTemporalBindings, sizeof(TemporalPush));
+    }
     return *temporal;
   }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
@@ -220,9 +222,9 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   p.Ensure(p.last_seen, vk::DeviceSize(slots) * 4);
   vulkan_internal::Transfer upload(p.device, p.staging);
   std::memcpy(upload.Upload(p.tags, slots * 4), table.tags.data(), slots * 4);
-  std::memcpy(upload.Upload(p.sums, sum_bytes),
-              fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data()),
-              sum_bytes);
+  const void* sums = fixed ? static_cast<const void*>(table.fixed_sums.data())
+                           : static_cast<const void*>(table.float_sums.data());
+  std::memcpy(upload.Upload(p.sums, sum_bytes), sums, sum_bytes);
   std::memcpy(upload.Upload(p.counts, slots * 8), table.counts.data(), slots * 8);
   void* last_seen = upload.Upload(p.last_seen, slots * 4);
   if (table.last_seen.size() == slots) {
@@ -322,7 +324,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
     if (blending) {
       cb.copyBuffer(*p.sums.buffer, *p.previous_sums.buffer, vk::BufferCopy(0, 0, sum_bytes_on_device));
-      cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 8));
+      cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer,
+                    vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 8));
     }
     if (!keep_table) {
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);

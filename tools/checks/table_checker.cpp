@@ -81,7 +81,8 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
     const double error = gamma * (double(before.float_sum[c]) + frame_exact[c]);
     const double frame_low = (frame_exact[c] - error) / double(n), frame_high = (frame_exact[c] + error) / double(n);
     // Widened for the blend's double arithmetic and the sum's rounding to float.
-    const double low = std::min(history, frame_low) * (1.0 - 4 * u), high = std::max(history, frame_high) * (1.0 + 4 * u);
+    const double low = std::min(history, frame_low) * (1.0 - 4 * u);
+    const double high = std::max(history, frame_high) * (1.0 + 4 * u);
     const double average = t.counts[s] ? double(t.float_sums[s][c]) / double(t.counts[s]) : 0.0;
     if (!(average >= low && average <= high)) {
       fail("channel " + std::to_string(c) + ": average " + std::to_string(average) + " outside [" +

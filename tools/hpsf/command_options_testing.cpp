@@ -98,8 +98,8 @@ const std::vector<std::string>& CompoundValues() {
     std::vector<std::string> v;
     for (const std::string& n : numbers) {
       for (const std::string& s :
-           {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n, "ema:" + n,
-            "ema:0.5:" + n, "stale:" + n}) {
+           {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n,
+            "ema:" + n, "ema:0.5:" + n, "stale:" + n}) {
         v.push_back(s);
       }
     }

@@ -93,7 +93,8 @@ execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/reference-strict-ema.exr ${
 if(same EQUAL 0)
   message(FATAL_ERROR "strict, ema:0.5 gives the pixels of no eviction and integration")
 endif()
-execute_process(COMMAND ${HPSF} ${common} --temporal ema:2 -o ${dir}/bad-ema.exr RESULT_VARIABLE code ERROR_VARIABLE errors)
+execute_process(COMMAND ${HPSF} ${common} --temporal ema:2 -o ${dir}/bad-ema.exr
+                RESULT_VARIABLE code ERROR_VARIABLE errors)
 if(NOT code EQUAL 3 OR NOT errors MATCHES "--temporal")
   message(FATAL_ERROR "--temporal ema:2: exit ${code}, '${errors}'")
 endif()
