@@ -68,7 +68,9 @@ CellState BlendCellState(const shared::TemporalParams& params, bool fixed, const
   blended.count = blend.count;
   for (int c = 0; c < 3; ++c) {
     if (fixed) {
-      blended.fixed_sum[c] = std::uint64_t(std::nearbyint(blend.sum[c]));
+      // Saturated: a broken kernel's table (D10) can ask for sums beyond 2^64, whose conversion would be undefined.
+      const double rounded = std::nearbyint(blend.sum[c]);
+      blended.fixed_sum[c] = rounded < 0x1p64 ? std::uint64_t(rounded) : ~std::uint64_t(0);
     } else {
       blended.float_sum[c] = float(blend.sum[c]);
     }

@@ -69,6 +69,9 @@ HPSF_FN TemporalBlend BlendCell(TemporalParams p, dvec3 old_sum, uint64_t old_co
   HPSF_PRECISE double most = w + n;
   HPSF_PRECISE double weight = ceil(n / (double(1.0) - alpha));  // +inf when alpha rounded to 1: capped below
   weight = weight < most ? weight : most;
+  // The largest double below 2^64: counts a broken kernel wrapped (D12, D10) must still convert to uint64.
+  HPSF_PRECISE double largest = double(0xFFFFFFFFFFFFF800ul);
+  weight = weight < largest ? weight : largest;
   HPSF_PRECISE dvec3 blended = alpha * h + (double(1.0) - alpha) * f;
   b.sum = blended * weight;
   b.count = uint64_t(weight);
