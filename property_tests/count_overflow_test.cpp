@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -54,9 +55,9 @@ std::vector<Frame> SecondFrames(std::uint64_t count, AccumulateKernelFn kernel, 
                                 HashTableDump& loaded) {
   const RecordBatch batch = CellBatch();
   FilterConfig config = CellConfig();
-  loaded = EmulatedFilter(batch, config, EmulatorOptions{}).table;
-  const std::uint32_t slot = EmulatedFilter(batch, config, EmulatorOptions{}).placements[0];
-  loaded.counts[slot] = count;
+  EmulatedRun first = EmulatedFilter(batch, config, EmulatorOptions{});
+  loaded = std::move(first.table);
+  loaded.counts[first.placements[0]] = count;
   config.frame = 1;
   std::vector<Frame> frames;
   frames.push_back({EmulatedFilter(batch, config, EmulatorOptions{}, kernel, &loaded), "emulated"});
