@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/filter_config.h"
+#include "core/hashed_run.h"
 #include "core/image.h"
 #include "core/record.h"
 
@@ -34,6 +35,11 @@ class Backend {
 
   // Filters one frame's records into the table and returns the frame's image.
   const Image& FilterFrame(const RecordBatch& batch, const FilterConfig& config);
+
+  // A hashed backend's last frame (its table after the frame, and each record's key and placement), what the
+  // table checker and the cross-check judge; null for the reference, whose table is the exact map, and before a
+  // frame.
+  virtual const HashedRun* LastHashedRun() const { return nullptr; }
 
   // Frames filtered since Reset.
   std::uint32_t frames_filtered() const { return frames_filtered_; }

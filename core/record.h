@@ -41,6 +41,7 @@ struct RecordBatch {
   std::uint32_t height = 0;
   std::uint32_t samples_per_pixel = 0;
   double fov_y_radians = 0.0;  // the camera's, for the footprint scale (core/footprint.h)
+  std::uint32_t frame = 0;     // the frame traced: its keyframes and random numbers, and the filter's config.frame
   std::vector<Record> records;
 };
 

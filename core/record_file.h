@@ -1,21 +1,53 @@
-// .hpsfv files: one record batch, so any renderer's vertices can be replayed. Little-endian: a versioned
-// header (magic, version, header size, record size, image size, samples per pixel, field of view, count),
-// the records in the 144-byte layout of core/shared/record_layout.h, and an FNV-1a checksum of everything
-// before it. Reading checks each of these; a truncated or corrupt file is an InputError naming the file and the
-// byte offset.
+// .hpsfv files: the record batches of one or more frames, so any renderer's vertices can be replayed, frame after
+// frame through one table. Little-endian. Version 2 (written): one block per frame, each a header (magic, version,
+// header size, record size, image size, samples per pixel, field of view, record count, frame number, frames in
+// the file), the records in the 144-byte layout of core/shared/record_layout.h, and an FNV-1a checksum of the
+// block before it; frame numbers increase from block to block. Version 1 (read): one block without the last two
+// header fields, frame 0. Reading checks each of these; a truncated or corrupt file is an InputError naming the
+// file and the byte offset.
 #ifndef HPSF_CORE_RECORD_FILE_H
 #define HPSF_CORE_RECORD_FILE_H
 
+#include <cstdint>
+#include <fstream>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/record.h"
 
 namespace hpsf {
 
-inline constexpr std::uint32_t kRecordFileVersion = 1;
+inline constexpr std::uint32_t kRecordFileVersion = 2;
+inline constexpr std::uint32_t kMaxRecordFileFrames = 1u << 20;  // kMaxFrames, the longest sequence a table takes
 
-// Writes to a temporary name beside `path` and renames it, so a failure leaves no partial file.
+// Writes the frames as they come, to a temporary name beside `path` that Finish renames: a failure, or a writer
+// destroyed unfinished, leaves no file.
+class RecordFileWriter {
+ public:
+  RecordFileWriter(const std::string& path, std::uint32_t frames);
+  ~RecordFileWriter();
+  RecordFileWriter(const RecordFileWriter&) = delete;
+  RecordFileWriter& operator=(const RecordFileWriter&) = delete;
+  // The next frame; its frame number above the last one's.
+  void Append(const RecordBatch& batch);
+  // After exactly `frames` Appends.
+  void Finish();
+
+ private:
+  std::string path_, temporary_;
+  std::uint32_t frames_ = 0, written_ = 0;
+  std::uint32_t last_frame_ = 0;
+  std::ofstream out_;
+  bool finished_ = false;
+};
+
+void WriteRecordFile(const std::string& path, std::span<const RecordBatch> frames);
 void WriteRecordFile(const std::string& path, const RecordBatch& batch);
+
+// Every frame of the file, in order.
+std::vector<RecordBatch> ReadRecordFrames(const std::string& path);
+// The one frame of a file that holds one; a file of several is an InputError saying so.
 RecordBatch ReadRecordFile(const std::string& path);
 
 }  // namespace hpsf

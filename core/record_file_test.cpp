@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -44,6 +45,7 @@ TEST(RecordFile, RoundTripsBitForBit) {
   EXPECT_EQ(read.width, 2u);
   EXPECT_EQ(read.samples_per_pixel, 2u);
   EXPECT_EQ(read.fov_y_radians, 0.5);
+  EXPECT_EQ(read.frame, 0u);
   ASSERT_EQ(read.records.size(), batch.records.size());
   EXPECT_EQ(std::memcmp(read.records.data(), batch.records.data(), batch.records.size() * sizeof(Record)), 0);
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
@@ -72,6 +74,78 @@ TEST(RecordFile, TruncatedAndCorruptFilesAreNamedWithTheirByte) {
   std::ofstream(path) << "not a record file at all, but long enough to hold a header.......";
   EXPECT_NE(ErrorOf(path).find("bad magic"), std::string::npos) << ErrorOf(path);
   EXPECT_NE(ErrorOf(TempPath("hpsf_missing.hpsfv")).find("cannot open"), std::string::npos);
+}
+
+bool SameRecords(const RecordBatch& a, const RecordBatch& b) {
+  return a.records.size() == b.records.size() &&
+         std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(Record)) == 0;
+}
+
+TEST(RecordFile, HoldsTheFramesOfASequenceWithTheirNumbers) {
+  std::vector<RecordBatch> frames(3, SmallBatch());
+  frames[0].frame = 4;
+  frames[1].frame = 5;
+  frames[2].frame = 9;
+  frames[1].records[0].contribution.x = 7.0f;
+  frames[2].samples_per_pixel = 1;
+  frames[2].records.resize(2);
+  const std::string path = TempPath("hpsf_frames.hpsfv");
+  WriteRecordFile(path, frames);
+  const std::vector<RecordBatch> read = ReadRecordFrames(path);
+  ASSERT_EQ(read.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(read[k].frame, frames[k].frame);
+    EXPECT_EQ(read[k].samples_per_pixel, frames[k].samples_per_pixel);
+    EXPECT_TRUE(SameRecords(read[k], frames[k])) << "frame " << k;
+  }
+  EXPECT_NE(ErrorOf(path).find(path + ": holds 3 frames; this command filters one"), std::string::npos)
+      << ErrorOf(path);
+
+  // A truncated last frame, and bytes after it, are named with the byte where the frame ends.
+  const auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size - 8);
+  EXPECT_NE(ErrorOf(path).find("truncated: " + std::to_string(size - 8) + " bytes, frame 2 ends at byte " +
+                               std::to_string(size)),
+            std::string::npos)
+      << ErrorOf(path);
+  WriteRecordFile(path, frames);
+  { std::ofstream(path, std::ios::binary | std::ios::app) << 'x'; }
+  try {
+    ReadRecordFrames(path);
+    ADD_FAILURE() << "trailing byte accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("trailing bytes"), std::string::npos) << e.what();
+  }
+
+  // Frame numbers must increase; the writer refuses otherwise and leaves no file.
+  frames[2].frame = 5;
+  std::filesystem::remove(path);
+  EXPECT_THROW(WriteRecordFile(path, frames), InputError);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+}
+
+// Files written before frames (version 1: a 48-byte header, no frame number) read as one frame, frame 0.
+TEST(RecordFile, ReadsVersionOneAsFrameZero) {
+  const RecordBatch batch = SmallBatch();
+  std::string bytes(48, '\0');
+  const char magic[8] = {'H', 'P', 'S', 'F', 'V', 'R', 'E', 'C'};
+  const std::uint32_t fields[6] = {1, 48, sizeof(Record), batch.width, batch.height, batch.samples_per_pixel};
+  const std::uint64_t count = batch.records.size();
+  std::memcpy(bytes.data(), magic, 8);
+  std::memcpy(bytes.data() + 8, fields, sizeof fields);
+  std::memcpy(bytes.data() + 32, &batch.fov_y_radians, 8);
+  std::memcpy(bytes.data() + 40, &count, 8);
+  bytes.append(reinterpret_cast<const char*>(batch.records.data()), batch.records.size() * sizeof(Record));
+  std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a of everything before it
+  for (const char c : bytes) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  bytes.append(reinterpret_cast<const char*>(&hash), 8);
+  const std::string path = TempPath("hpsf_version1.hpsfv");
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  const RecordBatch read = ReadRecordFile(path);
+  EXPECT_EQ(read.frame, 0u);
+  EXPECT_EQ(read.fov_y_radians, 0.5);
+  EXPECT_TRUE(SameRecords(read, batch));
 }
 
 }  // namespace

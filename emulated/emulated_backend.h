@@ -17,6 +17,7 @@ class EmulatedBackend : public Backend {
                            ReclaimKernelFn reclaim = ReclaimKernel)
       : options_(options), kernel_(kernel), reclaim_(reclaim) {}
   std::string Name() const override { return "emulated"; }
+  const HashedRun* LastHashedRun() const override { return run_ ? &*run_ : nullptr; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
   const EmulatedRun& run() const { return *run_; }
 

@@ -39,10 +39,7 @@ inline std::vector<HashedBackend> HashedBackends(ReclaimKernelFn reclaim = Recla
 }
 
 // The last frame's run of a hashed backend.
-inline const HashedRun& RunOf(const Backend& backend) {
-  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(&backend)) return emulated->run();
-  return dynamic_cast<const VulkanBackend&>(backend).run();
-}
+inline const HashedRun& RunOf(const Backend& backend) { return *backend.LastHashedRun(); }
 
 }  // namespace hpsf::testing
 

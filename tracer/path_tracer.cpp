@@ -284,6 +284,7 @@ TraceResult TraceRecords(const Scene& animated, const TraceOptions& options,
   batch.height = options.height;
   batch.samples_per_pixel = options.samples_per_pixel;
   batch.fov_y_radians = scene.camera.fov_y_degrees * std::numbers::pi / 180.0;
+  batch.frame = options.frame;
   batch.records.resize(std::size_t(options.width) * options.height * options.samples_per_pixel);
 
   const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;

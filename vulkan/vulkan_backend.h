@@ -19,6 +19,7 @@ class VulkanBackend : public Backend {
                          const std::string& eviction_spv = "")
       : filter_(device, accumulate_spv, eviction_spv) {}
   std::string Name() const override { return "vulkan"; }
+  const HashedRun* LastHashedRun() const override { return run_ ? &*run_ : nullptr; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
   const VulkanRun& run() const { return *run_; }
 

@@ -1,49 +1,56 @@
-// The cross-check contract's levels 2 to 4 for one hashed run, and the whole contract between the reference and
-// the emulated backend, in code that needs no Vulkan: crosscheck.cpp adds level 1 and the Vulkan backend with the
-// same pieces, and the fuzz build (tools/fuzz, no Vulkan) judges the emulator with exactly this code.
+// The cross-check contract over a sequence of frames (one frame is a sequence of one), in code that needs no
+// Vulkan: crosscheck.cpp adds the Vulkan backend through the same Backend interface, and the fuzz build
+// (tools/fuzz, no Vulkan) judges the emulator with exactly this code. Per frame and hashed backend: level 1 its
+// keys against core's (a backend that computes keys in its own code), level 2 the table checker from the table
+// before the frame, level 3 agreement with the reference outside the classified slots (tools/checks/
+// classified_slots.h), level 4 a second instance of the backend over the same frames keeping its promise.
 #ifndef HPSF_TOOLS_CHECKS_CONTRACT_LEVELS_H
 #define HPSF_TOOLS_CHECKS_CONTRACT_LEVELS_H
 
+#include <cstdint>
+#include <span>
 #include <string>
-#include <vector>
 
+#include "core/backend.h"
 #include "core/filter_config.h"
-#include "core/filter_result.h"
-#include "core/hashed_run.h"
 #include "core/record.h"
 #include "emulated/defect_injection.h"
+#include "emulated/emulated_backend.h"
 #include "emulated/emulated_filter.h"
 #include "tools/checks/crosscheck.h"
 
 namespace hpsf {
 
-// The four levels of one cross-check, filled in by the backends' judges.
-struct ContractVerdicts {
-  LevelVerdict keys, tables, ideal, determinism;
-  explicit ContractVerdicts(bool hashed);
-  std::vector<LevelVerdict> Levels() const { return {keys, tables, ideal, determinism}; }
+// A hashed backend the contract judges: two instances, the second for level 4's rerun.
+struct JudgedBackend {
+  std::string name;  // "emulated", "vulkan"
+  Backend* backend = nullptr;
+  Backend* rerun = nullptr;
+  std::string rerun_how;    // what the rerun varies, for the note
+  bool ordered = false;     // its order of memory operations is fixed (the faithful emulator): reruns repeat it
+  bool judge_keys = false;  // level 1: its keys come from its own code (the Vulkan shaders)
 };
 
-void Fail(LevelVerdict& verdict, std::string failure);  // keeps the first few failures
-void Note(LevelVerdict& verdict, const std::string& backend, const std::string& text);
+// The emulated backend and its rerun: in fast mode on another number of worker threads, since no promised bit may
+// depend on it; `defect` names a known broken kernel, to show the contract fails.
+class EmulatedPair {
+ public:
+  EmulatedPair(const EmulatorOptions& emulator, Defect defect);
+  JudgedBackend Judged();
 
-// Level 2: the table checker on one hashed run.
-void CheckTableOf(const std::string& backend, const RecordBatch& batch, const HashedRun& run, LevelVerdict& tables);
-// Level 2 and the run's quality figures (appended to the report); returns which slots aliased.
-std::vector<bool> JudgeTable(const std::string& backend, const RecordBatch& batch, const HashedRun& run, CrosscheckReport& report,
-                             LevelVerdict& tables);
-// Level 3 for one hashed run against the reference; returns what was compared, for the verdict's note.
-std::string CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const HashedRun& run,
-                                 const std::vector<bool>& aliased, const std::string& prefix, LevelVerdict& ideal);
-// Level 4: a rerun keeps what the contract promises for its kind of run.
-void JudgeRerun(const std::string& backend, const HashedRun& first, const HashedRun& second, bool ordered,
-                const QualityFigures& quality, const std::string& how, LevelVerdict& determinism);
-// Levels 2 to 4 for the emulated backend (with a broken kernel when `defect` names one).
-void JudgeEmulated(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, const EmulatorOptions& emulator,
-                   Defect defect, CrosscheckReport& report, ContractVerdicts& verdicts);
+ private:
+  static EmulatorOptions RerunOptions(const EmulatorOptions& emulator);
+  EmulatorOptions options_;
+  EmulatedBackend backend_, rerun_;
+};
 
-// The reference and the emulated backend on one batch: Crosscheck(batch, config, {"reference", "emulated"}, ...)
-// without linking Vulkan.
+// frames[k] filtered as frame numbers[k] through one table per backend (each Reset first), the reference always:
+// the four levels of every frame, each failure naming its frame when there are several.
+CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
+                               FilterConfig config, std::span<const JudgedBackend> hashed);
+
+// The reference and the emulated backend on one batch, as frame config.frame: Crosscheck(batch, config,
+// {"reference", "emulated"}, ...) without linking Vulkan.
 CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator,
                                     Defect defect = Defect::kNone);
 

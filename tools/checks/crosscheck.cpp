@@ -1,68 +1,24 @@
 #include "tools/checks/crosscheck.h"
 
 #include <algorithm>
+#include <optional>
+#include <vector>
 
 #include "core/error.h"
-#include "core/footprint.h"
-#include "core/input_check.h"
-#include "reference/reference_filter.h"
 #include "tools/checks/contract_levels.h"
-#include "vulkan/vulkan_filter.h"
+#include "vulkan/vulkan_backend.h"
 
 namespace hpsf {
-namespace {
 
-// Level 1: the Vulkan accumulate pass's key words, slot0 and fingerprint for every accepted record equal core's.
-void CompareKeys(const RecordBatch& batch, const FilterConfig& config, const HashedRun& run, LevelVerdict& keys) {
-  const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height),
-                                         std::uint32_t(batch.records.size()));
-  std::uint64_t compared = 0;
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    if (CheckRecordInputs(batch.records[i]) != InputVerdict::kAccepted) continue;
-    const KeyResult expected = shared::ComputeKey(params, batch.records[i]);
-    const auto want = KeyResultWords(expected), got = KeyResultWords(run.keys[i]);
-    ++compared;
-    for (int w = 0; w < int(want.size()); ++w) {
-      if (want[w] != got[w]) {
-        Fail(keys, "record " + std::to_string(i) + ": " + KeyResultWordName(w) + " differs (core " + std::to_string(want[w]) +
-                       ", vulkan " + std::to_string(got[w]) + ")");
-        break;
-      }
-    }
-  }
-  keys.note = "vulkan accumulate pass against core, word for word: " + std::to_string(compared) + " accepted records compared";
-}
-
-void JudgeVulkan(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference, VulkanFilter& filter,
-                 CrosscheckReport& report, ContractVerdicts& verdicts) {
-  LevelVerdict& keys = verdicts.keys;
-  LevelVerdict& tables = verdicts.tables;
-  LevelVerdict& ideal = verdicts.ideal;
-  LevelVerdict& determinism = verdicts.determinism;
-  const VulkanRun run = filter.Run(batch, config);
-  keys.applicable = true;
-  CompareKeys(batch, config, run, keys);
-  const std::vector<bool> aliased = JudgeTable("vulkan", batch, run, report, tables);
-  const QualityFigures& quality = report.quality.back();
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
-  Note(ideal, "vulkan", std::string(fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
-                                          : "float32: counts exact outside the classified records; sums inside the bound at level 2") +
-                            CompareWithReference(batch, config, reference, run, aliased, "vulkan: ", ideal));
-
-  const VulkanRun again = filter.Run(batch, config);
-  CheckTableOf("vulkan rerun", batch, again, tables);
-  JudgeRerun("vulkan", run, again, false, quality, "rerun on the device", determinism);
-}
-
-}  // namespace
-
+// The Vulkan backend and its rerun, on one device.
 struct Crosschecker::VulkanContext {
   VulkanDevice device;
-  VulkanFilter filter;
+  VulkanBackend backend, rerun;
   std::string description;
   explicit VulkanContext(const VulkanBackendOptions& options)
       : device(options.device_filter, options.staging),
-        filter(device, options.accumulate_spv),
+        backend(device, options.accumulate_spv, options.eviction_spv),
+        rerun(device, options.accumulate_spv, options.eviction_spv),
         description(device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info +
                     "), memory " + device.info().memory) {}
 };
@@ -78,20 +34,34 @@ Crosschecker::Crosschecker(const std::vector<std::string>& backends, Defect defe
 
 Crosschecker::~Crosschecker() = default;
 
-CrosscheckReport Crosschecker::Check(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator) {
-  auto has = [&](const char* name) { return std::find(backends_.begin(), backends_.end(), name) != backends_.end(); };
-  const bool hashed = has("emulated") || has("vulkan");
-  CrosscheckReport report;
-  ContractVerdicts verdicts(hashed);
+CrosscheckReport Crosschecker::Check(const RecordBatch& batch, const FilterConfig& config,
+                                     const EmulatorOptions& emulator) {
+  return Judge(std::span<const RecordBatch>(&batch, 1), std::span<const std::uint32_t>(&config.frame, 1), config,
+               emulator);
+}
 
-  const FilterResult reference = ReferenceFilter(batch, config);
-  if (has("emulated")) JudgeEmulated(batch, config, reference, emulator, defect_, report, verdicts);
+CrosscheckReport Crosschecker::CheckFrames(std::span<const RecordBatch> frames, const FilterConfig& config,
+                                           const EmulatorOptions& emulator) {
+  std::vector<std::uint32_t> numbers;
+  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
+  return Judge(frames, numbers, config, emulator);
+}
+
+CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
+                                     const FilterConfig& config, const EmulatorOptions& emulator) {
+  auto has = [&](const char* name) { return std::find(backends_.begin(), backends_.end(), name) != backends_.end(); };
+  std::vector<JudgedBackend> hashed;
+  std::optional<EmulatedPair> emulated;
+  if (has("emulated")) {
+    emulated.emplace(emulator, defect_);
+    hashed.push_back(emulated->Judged());
+  }
   if (has("vulkan")) {
     if (!vulkan_) vulkan_ = std::make_unique<VulkanContext>(vulkan_options_);
-    report.vulkan_device = vulkan_->description;
-    JudgeVulkan(batch, config, reference, vulkan_->filter, report, verdicts);
+    hashed.push_back({"vulkan", &vulkan_->backend, &vulkan_->rerun, "rerun on the device", false, true});
   }
-  report.levels = verdicts.Levels();
+  CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed);
+  if (has("vulkan")) report.vulkan_device = vulkan_->description;
   return report;
 }
 

@@ -1,12 +1,14 @@
-// The cross-check contract of DESIGN.md between backends on one batch: level 1 keys (joins with Vulkan),
-// level 2 every hashed backend passes the table checker, level 3 agreement with the reference outside the
-// records a backend classified (probe failures, aliased slots), level 4 determinism of a rerun. One module
-// for `hpsf crosscheck` and the tests.
+// The cross-check contract of DESIGN.md between backends on one batch or a sequence of frames through one table:
+// level 1 keys (joins with Vulkan), level 2 every hashed backend passes the table checker (each frame from the
+// table before it), level 3 agreement with the reference outside the records a backend classified (probe
+// failures, aliased slots), level 4 determinism of a rerun. One module for `hpsf crosscheck`, `hpsf fuzz` and the
+// tests; the levels themselves are tools/checks/contract_levels.h.
 #ifndef HPSF_TOOLS_CHECKS_CROSSCHECK_H
 #define HPSF_TOOLS_CHECKS_CROSSCHECK_H
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,17 +31,19 @@ struct LevelVerdict {
   std::vector<std::string> failures;  // the first few, each naming records or slots
 };
 
+// Summed over the frames of a sequence.
 struct QualityFigures {
   std::string backend;
   std::uint64_t probe_failures = 0;
   std::uint64_t aliased_slots = 0;    // slots holding records of two or more full keys
-  std::uint64_t aliased_records = 0;  // records placed in such slots
+  std::uint64_t aliased_records = 0;  // records placed in such slots (or holding a cell that failed before)
 };
 
 struct CrosscheckReport {
   std::vector<LevelVerdict> levels;
   std::vector<QualityFigures> quality;
   std::string vulkan_device;  // name and driver, when the Vulkan backend ran
+  std::uint32_t frames = 1;
   bool Passed() const;
   nlohmann::json ToJson() const;  // versioned
 };
@@ -47,11 +51,13 @@ struct CrosscheckReport {
 struct VulkanBackendOptions {
   std::string device_filter;   // --vk-device: a substring of the device name; empty picks the best
   std::string accumulate_spv;  // --accumulate-spv: a user's accumulate shader; empty for the built-in one
+  std::string eviction_spv;    // --eviction-spv: a user's eviction shader; empty for the built-in one
   StagingPolicy staging = StagingPolicy::kAuto;  // --vk-staging
 };
 
-// The cross-check of batch after batch on the same backends, keeping the Vulkan device and its pipelines from one
-// batch to the next (hpsf fuzz judges thousands of small batches; creating a device costs more than one of them).
+// The cross-check of batch after batch (or sequence after sequence) on the same backends, keeping the Vulkan device
+// and its pipelines from one to the next (hpsf fuzz judges thousands of small batches; creating a device costs
+// more than one of them).
 // backends: "reference", "emulated", "vulkan" (the reference is always run: it is the ideal).
 // defect: a known broken kernel for the emulated backend, to show the gate fails.
 class Crosschecker {
@@ -60,9 +66,16 @@ class Crosschecker {
   ~Crosschecker();
   Crosschecker(const Crosschecker&) = delete;
   Crosschecker& operator=(const Crosschecker&) = delete;
+  // One batch, filtered as frame config.frame.
   CrosscheckReport Check(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator);
+  // A sequence through one table per backend, frame k filtered as frame frames[k].frame; config.frames should be
+  // at least frames.size() (fixed64's F leaves room for that many).
+  CrosscheckReport CheckFrames(std::span<const RecordBatch> frames, const FilterConfig& config,
+                               const EmulatorOptions& emulator);
 
  private:
+  CrosscheckReport Judge(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
+                         const FilterConfig& config, const EmulatorOptions& emulator);
   struct VulkanContext;
   std::vector<std::string> backends_;
   Defect defect_;

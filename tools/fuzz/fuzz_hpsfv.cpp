@@ -1,7 +1,7 @@
-// fuzz_hpsfv: .hpsfv record files through core/record_file.h. Every input is a batch or an hpsf::InputError
-// naming the file and byte; a bug is a crash, a hang, a sanitizer report, any other exception, or a batch that
-// does not survive a round trip: written back (WriteRecordFile), the file is byte for byte the input, and read
-// again it is the same batch.
+// fuzz_hpsfv: .hpsfv record files through core/record_file.h. Every input is a sequence of frames or an
+// hpsf::InputError naming the file and byte; a bug is a crash, a hang, a sanitizer report, any other exception, or
+// frames that do not survive a round trip: written back (WriteRecordFile), a version-2 file is byte for byte the
+// input (version 1 is read, never written), and read again they are the same frames.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +10,7 @@
 #include <iterator>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/error.h"
 #include "core/record_file.h"
@@ -21,7 +22,7 @@ namespace {
 constexpr std::size_t kMaxInputBytes = 1 << 20;
 
 bool SameBatch(const RecordBatch& a, const RecordBatch& b) {
-  return a.width == b.width && a.height == b.height && a.samples_per_pixel == b.samples_per_pixel &&
+  return a.frame == b.frame && a.width == b.width && a.height == b.height && a.samples_per_pixel == b.samples_per_pixel &&
          std::memcmp(&a.fov_y_radians, &b.fov_y_radians, sizeof(double)) == 0 && a.records.size() == b.records.size() &&
          (a.records.empty() || std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(Record)) == 0);
 }
@@ -44,15 +45,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > kMaxInputBytes) return 0;
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   const std::string input_path = Scratch().Write("input.hpsfv", bytes);
-  RecordBatch batch;
+  std::vector<RecordBatch> frames;
   try {
-    batch = ReadRecordFile(input_path);
+    frames = ReadRecordFrames(input_path);
   } catch (const InputError&) {
     return 0;
   }
   const std::string written = (Scratch().path() / "written.hpsfv").string();
-  WriteRecordFile(written, batch);
-  if (ReadBytes(written) != bytes) Fail("the batch written back differs from the file it was read from");
-  if (!SameBatch(ReadRecordFile(written), batch)) Fail("the batch read again differs from the one written");
+  WriteRecordFile(written, frames);
+  std::uint32_t version = 0;
+  std::memcpy(&version, data + 8, sizeof version);
+  if (version == 2 && ReadBytes(written) != bytes) Fail("the frames written back differ from the file they came from");
+  const std::vector<RecordBatch> again = ReadRecordFrames(written);
+  if (again.size() != frames.size()) Fail("a different number of frames read again");
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (!SameBatch(again[k], frames[k])) Fail("a frame read again differs from the one written");
+  }
   return 0;
 }

@@ -1,0 +1,48 @@
+#include "tools/checks/classified_slots.h"
+
+#include <algorithm>
+
+namespace hpsf {
+
+const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
+  const std::size_t capacity = run.table.capacity;
+  if (key_of_.size() != capacity) {
+    key_of_.assign(capacity, std::nullopt);
+    aliased_.assign(capacity, false);
+    after_failure_.assign(capacity, false);
+  }
+  auto key_of = [&](std::size_t i) {
+    const shared::KeyWords& w = run.keys[i].words;
+    return FullKey{w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
+  };
+  for (std::size_t i = 0; i < run.placements.size(); ++i) {
+    if (run.placements[i] == kProbeFailure) failed_.insert(key_of(i));
+  }
+  for (std::size_t i = 0; i < run.placements.size(); ++i) {
+    const std::uint32_t slot = run.placements[i];
+    if (slot >= capacity) continue;
+    const FullKey key = key_of(i);
+    if (key_of_[slot] && *key_of_[slot] != key) aliased_[slot] = true;
+    key_of_[slot] = key;
+    if (failed_.contains(key)) after_failure_[slot] = true;
+  }
+  classified_.assign(capacity, false);
+  aliased_slots_ = 0;
+  for (std::size_t s = 0; s < capacity; ++s) {
+    classified_[s] = aliased_[s] || after_failure_[s];
+    aliased_slots_ += aliased_[s];
+  }
+  classified_records_ = 0;
+  for (const std::uint32_t slot : run.placements) classified_records_ += slot < capacity && classified_[slot];
+  any_ = any_ || run.probe_failures > 0 || std::find(classified_.begin(), classified_.end(), true) != classified_.end();
+  // A slot left empty or a tombstone (no count) starts afresh in the next frame.
+  for (std::size_t s = 0; s < capacity; ++s) {
+    if (run.table.counts[s] == 0) {
+      key_of_[s].reset();
+      aliased_[s] = after_failure_[s] = false;
+    }
+  }
+  return classified_;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,41 @@
+// The slots of a hashed table that the contract classifies, over a sequence of frames (DESIGN.md's level 3 and
+// level 4 judge every record outside them): a slot whose placed records carry two or more full keys since it was
+// last empty (the fingerprint aliased them, in one frame or across frames), and a slot holding a cell some of whose
+// records failed to probe in an earlier frame (the reference kept them; the table never saw them). Within one
+// frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots.
+#ifndef HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
+#define HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "core/hashed_run.h"
+
+namespace hpsf {
+
+class ClassifiedSlots {
+ public:
+  // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
+  const std::vector<bool>& AddFrame(const HashedRun& run);
+
+  // This frame's figures: slots aliased, records placed in classified slots, probe failures.
+  std::uint64_t aliased_slots() const { return aliased_slots_; }
+  std::uint64_t classified_records() const { return classified_records_; }
+  // Whether any slot was classified or any record failed, in any frame so far.
+  bool any() const { return any_; }
+
+ private:
+  using FullKey = std::array<std::uint32_t, 6>;
+  std::vector<std::optional<FullKey>> key_of_;  // per slot, the full key last placed there since it was empty
+  std::vector<bool> aliased_, after_failure_, classified_;
+  std::set<FullKey> failed_;  // cells with a probe failure in some frame
+  std::uint64_t aliased_slots_ = 0, classified_records_ = 0;
+  bool any_ = false;
+};
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
