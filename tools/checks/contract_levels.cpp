@@ -71,8 +71,8 @@ void CheckFrameTable(const std::string& who, const RecordBatch& batch, const Has
 // with nothing classified in fixed64, the image is the reference's, bit for bit; and every image is the resolve
 // of its own table. Returns how many records were compared.
 std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference,
-                                   const HashedRun& run, const std::vector<bool>& classified, const std::string& prefix,
-                                   LevelVerdict& ideal) {
+                                   const HashedRun& run, const HashTableDump* before,
+                                   const std::vector<bool>& classified, const std::string& prefix, LevelVerdict& ideal) {
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   std::uint64_t compared = 0, failures = 0;
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
@@ -101,7 +101,7 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
   }
   // Every image, classified records included, is the resolve of its own table: bit for bit in fixed64, within
   // the float32 bound of the exact sums.
-  for (const std::string& pixel : CheckImageAgainstTable(batch, run)) Fail(ideal, prefix + "image: " + pixel);
+  for (const std::string& pixel : CheckImageAgainstTable(batch, run, before)) Fail(ideal, prefix + "image: " + pixel);
   return compared;
 }
 
@@ -215,7 +215,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         s.replayed_float_order = true;
         CompareFloatOrder(batch, emulated->run(), s.before, who + ": ", ideal);
       }
-      s.records_compared += CompareWithReference(batch, config, reference.result(), *run, classified, who + ": ", ideal);
+      s.records_compared += CompareWithReference(batch, config, reference.result(), *run, s.before ? &*s.before : nullptr,
+                                                 classified, who + ": ", ideal);
 
       if (judged.ordered && emulated &&
           dynamic_cast<const EmulatedBackend&>(*judged.rerun).run().launch.trace_hash != emulated->run().launch.trace_hash) {

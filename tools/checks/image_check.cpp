@@ -1,5 +1,6 @@
 #include "tools/checks/image_check.h"
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -64,7 +65,8 @@ void CheckFixed(const RecordBatch& batch, const HashedRun& run, std::vector<std:
   }
 }
 
-void CheckFloat(const RecordBatch& batch, const HashedRun& run, std::vector<std::string>& out) {
+void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableDump* before,
+                std::vector<std::string>& out) {
   const SlotSums sums = SumsByPlacement(batch, run);
   const std::uint32_t spp = batch.samples_per_pixel;
   for (std::size_t p = 0; p < run.image.pixels.size() && out.size() < kShown; ++p) {
@@ -74,7 +76,10 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, std::vector<std:
       if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
       const std::uint32_t slot = run.placements[p * spp + s];
       std::optional<glm::dvec3> average;
-      if (slot < run.table.capacity) {
+      if (slot < run.table.capacity && before && before->counts[slot] > 0) {
+        const std::array<float, 3>& sum = run.table.float_sums[slot];  // carried over
+        average = glm::dvec3(sum[0], sum[1], sum[2]) / double(run.table.counts[slot]);
+      } else if (slot < run.table.capacity) {
         const double n = double(run.table.counts[slot]), k = n - 1.0;
         average = sums.exact[slot] / n;
         // The slot's float sum is within gamma(n - 1) * sum|c| of the exact one; divided by n, times |throughput|.
@@ -97,13 +102,14 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, std::vector<std:
 
 }  // namespace
 
-std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const HashedRun& run) {
+std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const HashedRun& run,
+                                                const HashTableDump* before) {
   std::vector<std::string> out;
   if (run.image.pixels.size() != std::size_t(batch.width) * batch.height) return {"the image does not have the batch's size"};
   if (run.table.accumulation == Accumulation::kFixed64) {
     CheckFixed(batch, run, out);
   } else {
-    CheckFloat(batch, run, out);
+    CheckFloat(batch, run, before, out);
   }
   return out;
 }

@@ -4,7 +4,9 @@
 // the image is held to the exact resolve (each slot's sum taken exactly from the records placed there) within
 // what DESIGN.md's per-slot bound, gamma(n - 1) * sum|c|, allows after the throughput and the pixel mean, plus
 // the final rounding to float. Where nothing failed or aliased, the records of a slot are exactly those of the
-// reference's cell (level 3 checks that apart), so this is the bound against the exact reference.
+// reference's cell (level 3 checks that apart), so this is the bound against the exact reference. Over frames, a
+// float32 slot that held samples before the frame carries a sum rounded in earlier frames (and blended): the table
+// checker bounds it (level 2), and the image is held to the resolve of the table's own sum.
 #ifndef HPSF_TOOLS_CHECKS_IMAGE_CHECK_H
 #define HPSF_TOOLS_CHECKS_IMAGE_CHECK_H
 
@@ -17,8 +19,10 @@
 namespace hpsf {
 
 // Pixels outside what the table allows, each named with its channel, value, expected value and bound; empty
-// when the image holds. The run's table must have passed the table checker.
-std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const HashedRun& run);
+// when the image holds. The run's table must have passed the table checker. before: the table before the frame,
+// null for a frame that started from an empty one.
+std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const HashedRun& run,
+                                                const HashTableDump* before = nullptr);
 
 }  // namespace hpsf
 

@@ -31,7 +31,6 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
   nlohmann::json j = {{"mode", options.mode == simt::Mode::kFast ? "fast" : "faithful"},
                       {"probe_failures", run.probe_failures},
                       {"fixed64_wraps", run.wraps},
-          {"count_wraps", run.count_wraps},
                       {"count_wraps", run.count_wraps},
                       {"slots_used", SlotsUsed(run.table)},
                       {"probe_lengths", run.probe_lengths},
@@ -101,7 +100,7 @@ BackendInstance MakeBackend(const std::string& backend, const EmulatorOptions& e
     instance.backend = std::make_unique<EmulatedBackend>(emulator, KernelWithDefect(defect));
   } else {
     instance.device = std::make_unique<VulkanDevice>(vulkan.device_filter, vulkan.staging);
-    instance.backend = std::make_unique<VulkanBackend>(*instance.device, vulkan.accumulate_spv);
+    instance.backend = std::make_unique<VulkanBackend>(*instance.device, vulkan.accumulate_spv, vulkan.eviction_spv);
   }
   return instance;
 }

@@ -8,11 +8,7 @@
 
 namespace hpsf {
 
-namespace {
-
 bool IsRecordFile(const std::string& input) { return std::filesystem::path(input).extension() == ".hpsfv"; }
-
-}  // namespace
 
 void ResolveTraceOptions(const std::string& input, const std::string& size, TraceOptions& trace, std::uint32_t seed) {
   if (IsRecordFile(input)) return;
@@ -24,6 +20,18 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
 RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace) {
   if (IsRecordFile(input)) return ReadRecordFile(input);
   return TraceRecords(LoadScene(input), trace).batch;
+}
+
+std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const TraceOptions& trace, std::uint32_t frames) {
+  if (IsRecordFile(input)) return ReadRecordFrames(input);
+  const Scene scene = LoadScene(input);
+  std::vector<RecordBatch> sequence;
+  TraceOptions frame_trace = trace;
+  for (std::uint32_t k = 0; k < frames; ++k) {
+    frame_trace.frame = trace.frame + k;
+    sequence.push_back(TraceRecords(scene, frame_trace).batch);
+  }
+  return sequence;
 }
 
 }  // namespace hpsf

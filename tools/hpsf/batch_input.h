@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/record.h"
 #include "tracer/path_tracer.h"
@@ -17,6 +18,12 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
 
 // `trace` as ResolveTraceOptions left it. A bad file or scene is an InputError naming it.
 RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace);
+
+// Whether the input names a recorded .hpsfv file rather than a scene.
+bool IsRecordFile(const std::string& input);
+
+// A sequence: every frame of a record file, or `frames` frames of a scene traced from trace.frame on.
+std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const TraceOptions& trace, std::uint32_t frames);
 
 }  // namespace hpsf
 

@@ -2,7 +2,9 @@
 
 #include <iostream>
 #include <memory>
+#include <span>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 #include "tools/checks/crosscheck.h"
@@ -20,6 +22,8 @@ struct CrosscheckOptions {
   std::string backends = "reference,emulated,vulkan";
   std::string repro_dir = "hpsf-repro";
   std::string size = "128x128";
+  std::uint32_t frames = 1;  // a scene's; a record file's are all it holds
+  bool frames_given = false, frame_given = false;
   TraceOptions trace;
   FilterOptions filter;
   EmulatorFlags emulator;
@@ -35,30 +39,50 @@ std::vector<std::string> SplitList(const std::string& text) {
 }
 
 // The same check on the same records: every option that decides the outcome, the input replaced by the recorded
-// batch, and a bundle of its own so the original is kept for comparison.
-void WriteBundle(const CrosscheckOptions& o, const RecordBatch& batch, const CrosscheckReport& report) {
+// frames (which carry their numbers, so --frame goes), and a bundle of its own so the original is kept for
+// comparison.
+void WriteBundle(const CrosscheckOptions& o, std::span<const RecordBatch> frames, const CrosscheckReport& report) {
   std::vector<std::string> arguments;
   for (std::size_t i = 0; i < o.arguments.size(); ++i) {
-    if (o.arguments[i] == "--repro-dir") {
+    if (o.arguments[i] == "--repro-dir" || o.arguments[i] == "--frame") {
       ++i;
       continue;
     }
     if (o.arguments[i] != "--json") arguments.push_back(o.arguments[i]);
   }
-  WriteReproBundle(o.repro_dir, batch, report, arguments);
+  WriteReproBundle(o.repro_dir, frames, report, arguments);
   std::cerr << "hpsf: the contract does not hold; repro bundle in " << o.repro_dir
             << " (records.hpsfv, report.json; reproduce.sh reruns the check and writes reproduced.json)\n";
 }
 
+// A record file brings its own frames and their numbers; a scene is traced for --frames from --frame on.
+void CheckFrameOptions(const CrosscheckOptions& o) {
+  if (IsRecordFile(o.input)) {
+    if (o.frame_given) throw ConfigError("--frame", o.input + " carries its frames' numbers; --frame is for a scene");
+    return;
+  }
+  if (std::uint64_t(o.trace.frame) + o.frames - 1 > 0xFFFFFFFFu) {
+    throw ConfigError("--frames", "frames " + std::to_string(o.trace.frame) + " + " + std::to_string(o.frames) +
+                                      " run past the last frame number, 2^32 - 1");
+  }
+}
+
 int Run(CrosscheckOptions& o, bool options_only) {
-  const FilterConfig config = ResolveFilterConfig(o.filter);
+  o.filter.config.frames = o.frames;
+  FilterConfig config = ResolveFilterConfig(o.filter);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   // Bad names are bad input before any tracing; the Vulkan device opens at the first check.
   Crosschecker checker(SplitList(o.backends), ParseDefect(o.emulator.defect), o.emulator.vulkan);
   ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
+  CheckFrameOptions(o);
   if (options_only) return kExitOk;
-  const RecordBatch batch = LoadOrTraceBatch(o.input, o.trace);
-  const CrosscheckReport report = checker.Check(batch, config, emulator);
+  const std::vector<RecordBatch> frames = LoadOrTraceFrames(o.input, o.trace, o.frames);
+  if (o.frames_given && frames.size() != o.frames) {
+    throw ConfigError("--frames", o.input + " holds " + std::to_string(frames.size()) + " frames, not " +
+                                      std::to_string(o.frames));
+  }
+  config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
+  const CrosscheckReport report = checker.CheckFrames(frames, config, emulator);
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {
@@ -67,6 +91,7 @@ int Run(CrosscheckOptions& o, bool options_only) {
                 << v.note << ")\n";
       for (const std::string& f : v.failures) std::cout << "  " << f << "\n";
     }
+    if (report.frames > 1) std::cout << "frames: " << report.frames << ", each judged from the table before it\n";
     if (!report.vulkan_device.empty()) std::cout << "vulkan device: " << report.vulkan_device << "\n";
     for (const QualityFigures& q : report.quality) {
       std::cout << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
@@ -74,7 +99,7 @@ int Run(CrosscheckOptions& o, bool options_only) {
     }
   }
   if (report.Passed()) return kExitOk;
-  WriteBundle(o, batch, report);
+  WriteBundle(o, frames, report);
   return kExitCheckFailed;
 }
 
@@ -90,11 +115,20 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--max-depth", o->trace.max_depth,
                 "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
+  c->add_option("--frames", o->frames,
+                "Check a sequence of this many frames through one table per backend (a scene: traced from --frame "
+                "on; a record file: must equal its frames; default every frame of a file, one of a scene)");
+  c->add_option("--frame", o->trace.frame, "A scene's first frame (its keyframes, and the frame in every random number)")
+      ->capture_default_str();
   c->add_option("--repro-dir", o->repro_dir, "Where a failing check writes its repro bundle")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
-  c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });
+  c->callback([o, c, &context] {
+    o->frames_given = c->get_option("--frames")->count() > 0;
+    o->frame_given = c->get_option("--frame")->count() > 0;
+    context.exit_code = Run(*o, context.options_only);
+  });
   c->parse_complete_callback([o, c] {
     // Keep the given options for the bundle's command line.
     o->arguments.clear();

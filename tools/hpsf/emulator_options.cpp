@@ -19,6 +19,8 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
       ->default_str("auto");
   command.add_option("--accumulate-spv", flags.vulkan.accumulate_spv,
                      "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface (README)");
+  command.add_option("--eviction-spv", flags.vulkan.eviction_spv,
+                     "Vulkan backend: run this SPIR-V eviction shader (evict and reclaim passes, README) with --eviction");
   command.add_option("--inject-defect", flags.defect, "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D13)")
       ->capture_default_str();
 }

@@ -144,7 +144,10 @@ int Run(FuzzOptions& o, bool options_only) {
     failure->shrink_seconds = SecondsSince(shrink_start);
     const AdversarialCase& shrunk = failure->shrink.shrunk;
     failure->report = checker.Check(shrunk.batch, shrunk.config, shrunk.emulator);
-    WriteReproBundle(o.repro_dir, shrunk.batch, failure->report, CrosscheckArguments(backends, shrunk.config, shrunk.emulator, defect, o.vulkan));
+    RecordBatch frame = shrunk.batch;
+    frame.frame = shrunk.config.frame;  // crosscheck filters a record file's frame as its own number
+    WriteReproBundle(o.repro_dir, std::span<const RecordBatch>(&frame, 1), failure->report,
+                     CrosscheckArguments(backends, shrunk.config, shrunk.emulator, defect, o.vulkan));
   }
 
   if (o.json) {

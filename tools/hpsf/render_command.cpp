@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/record_file.h"
@@ -81,6 +83,8 @@ void RunRender(RenderOptions& o, bool options_only) {
   BackendInstance backend = MakeBackend(o.backend, emulator, defect, o.emulator.vulkan);
   const std::uint32_t first = o.trace.frame;
   nlohmann::json report, per_frame = nlohmann::json::array();
+  std::optional<RecordFileWriter> dump;
+  if (!o.dump_records.empty()) dump.emplace(o.dump_records, o.frames);
   TraceResult traced;
   double trace_seconds = 0.0;
   for (std::uint32_t k = 0; k < o.frames; ++k) {
@@ -92,7 +96,7 @@ void RunRender(RenderOptions& o, bool options_only) {
     if (progress) std::fprintf(stderr, "\r              \r");
     trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool last = k + 1 == o.frames;
-    if (last && !o.dump_records.empty()) WriteRecordFile(o.dump_records, traced.batch);
+    if (dump) dump->Append(traced.batch);
     nlohmann::json frame = {{"frame", o.trace.frame}, {"trace_s", trace_seconds}};
     if (last) {
       report = FilterAndWrite(backend, traced.batch, config, o.filter, {scene.name, o.backend, o.output});
@@ -113,6 +117,7 @@ void RunRender(RenderOptions& o, bool options_only) {
     if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
     per_frame.push_back(frame);
   }
+  if (dump) dump->Finish();
   report["version"] = 1;
   report["command"] = "render";
   report["scene"] = scene.name;
@@ -137,24 +142,51 @@ struct ReplayOptions {
   std::string records;
   std::string output;
   std::string backend = "reference";
+  std::string frame_out;
   FilterOptions filter;
   EmulatorFlags emulator;
   bool json = false;
 };
 
-void RunReplay(const ReplayOptions& o, bool options_only) {
+// Every frame of the file through one table, each as its own frame number; the last goes to -o, each one to
+// --frame-out's file when given.
+void RunReplay(ReplayOptions& o, bool options_only) {
   CheckBackend(o.backend);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ResolveFilterConfig(o.filter);
+  if (!o.frame_out.empty()) CheckFramePattern(o.frame_out);
   const Defect defect = ParseDefect(o.emulator.defect);
   if (options_only) return;
-  const RecordBatch batch = ReadRecordFile(o.records);
+  const std::vector<RecordBatch> frames = ReadRecordFrames(o.records);
+  o.filter.config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
+  FilterConfig config = ResolveFilterConfig(o.filter);
   BackendInstance backend = MakeBackend(o.backend, emulator, defect, o.emulator.vulkan);
-  nlohmann::json report =
-      FilterAndWrite(backend, batch, ResolveFilterConfig(o.filter), o.filter, {o.records, o.backend, o.output});
+  nlohmann::json report, per_frame = nlohmann::json::array();
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    config.frame = frames[k].frame;
+    nlohmann::json frame = {{"frame", config.frame}};
+    const std::string output = o.frame_out.empty() ? "" : FramePath(o.frame_out, config.frame);
+    if (k + 1 == frames.size()) {
+      report = FilterAndWrite(backend, frames[k], config, o.filter, {o.records, o.backend, o.output});
+      if (!output.empty()) frame["output"] = CopyImageFiles(o.output, output);
+      frame["filter_s"] = report["timings"]["filter_s"];
+    } else if (!output.empty()) {
+      const nlohmann::json written = FilterAndWrite(backend, frames[k], config, o.filter, {o.records, o.backend, output});
+      frame["output"] = written["output"];
+      frame["filter_s"] = written["timings"]["filter_s"];
+    } else {
+      const auto filter_start = std::chrono::steady_clock::now();
+      backend.backend->FilterFrame(frames[k], config);
+      frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
+    }
+    if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
+    if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
+    per_frame.push_back(frame);
+  }
   report["version"] = 1;
   report["command"] = "replay";
   report["records_file"] = o.records;
+  if (frames.size() > 1) report["frames"] = per_frame;
   PrintReport(report, o.json);
 }
 
@@ -183,7 +215,7 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
       ->capture_default_str();
   c->add_option("--frame-out", o->frame_out,
                 "Also write every frame, to PATTERN with {frame} for its number: out/f-{frame}.exr");
-  c->add_option("--dump-records", o->dump_records, "Also write the traced batch to FILE.hpsfv");
+  c->add_option("--dump-records", o->dump_records, "Also write the traced frames to FILE.hpsfv");
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
@@ -192,10 +224,13 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
 
 void AddReplayCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<ReplayOptions>();
-  CLI::App* c = app.add_subcommand("replay", "Filter a recorded batch (.hpsfv) and write OUT.exr and OUT.png");
-  c->add_option("records", o->records, "The .hpsfv file")->required();
+  CLI::App* c = app.add_subcommand("replay", "Filter recorded frames (.hpsfv) and write the last to OUT.exr and OUT.png");
+  c->add_option("records", o->records, "The .hpsfv file; its frames go through one table, each as its number")
+      ->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
   c->add_option("--backend", o->backend, "Filter backend: reference, emulated or vulkan")->capture_default_str();
+  c->add_option("--frame-out", o->frame_out,
+                "Also write every frame, to PATTERN with {frame} for its number: out/f-{frame}.exr");
   c->add_flag("--json", o->json, "Print the report as JSON");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);

@@ -24,11 +24,11 @@ std::string Quoted(const std::string& word) {
 
 }  // namespace
 
-void WriteReproBundle(const std::string& dir_name, const RecordBatch& batch, const CrosscheckReport& report,
+void WriteReproBundle(const std::string& dir_name, std::span<const RecordBatch> frames, const CrosscheckReport& report,
                       const std::vector<std::string>& crosscheck_arguments) {
   const std::filesystem::path dir = dir_name;
   std::filesystem::create_directories(dir);
-  WriteRecordFile((dir / "records.hpsfv").string(), batch);
+  WriteRecordFile((dir / "records.hpsfv").string(), frames);
   std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
   std::string command = "exec " + Quoted(std::filesystem::read_symlink("/proc/self/exe").string()) + " crosscheck records.hpsfv";
   for (const std::string& argument : crosscheck_arguments) command.append(" ").append(Quoted(argument));
@@ -55,7 +55,9 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 "--seed", std::to_string(c.seed),
                                 "--capacity", std::to_string(c.capacity),
                                 "--probe-limit", std::to_string(c.probe_limit),
-                                "--fingerprint-bits", std::to_string(c.fingerprint_bits)};
+                                "--fingerprint-bits", std::to_string(c.fingerprint_bits),
+                                "--eviction", c.eviction.ToString(),
+                                "--temporal", c.temporal.ToString()};
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
   const bool faithful = emulator.mode == simt::Mode::kFaithful;
   a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});
@@ -65,6 +67,9 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   if (vulkan.staging != StagingPolicy::kAuto) a.insert(a.end(), {"--vk-staging", ToString(vulkan.staging)});
   if (!vulkan.accumulate_spv.empty()) {
     a.insert(a.end(), {"--accumulate-spv", std::filesystem::absolute(vulkan.accumulate_spv).string()});
+  }
+  if (!vulkan.eviction_spv.empty()) {
+    a.insert(a.end(), {"--eviction-spv", std::filesystem::absolute(vulkan.eviction_spv).string()});
   }
   return a;
 }

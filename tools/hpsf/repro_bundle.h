@@ -4,6 +4,7 @@
 #ifndef HPSF_TOOLS_HPSF_REPRO_BUNDLE_H
 #define HPSF_TOOLS_HPSF_REPRO_BUNDLE_H
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,9 @@
 
 namespace hpsf {
 
-// `crosscheck_arguments` follow `hpsf crosscheck records.hpsfv`; they must not name --repro-dir or --json.
-void WriteReproBundle(const std::string& dir, const RecordBatch& batch, const CrosscheckReport& report,
+// `crosscheck_arguments` follow `hpsf crosscheck records.hpsfv`; they must not name --repro-dir, --json or
+// --frame (records.hpsfv holds the frames with their numbers).
+void WriteReproBundle(const std::string& dir, std::span<const RecordBatch> frames, const CrosscheckReport& report,
                       const std::vector<std::string>& crosscheck_arguments);
 
 // The `hpsf crosscheck` options that give exactly this configuration, emulator, defect and Vulkan backend.
