@@ -28,6 +28,7 @@ struct TableBuffers {
 };
 
 struct TemporalArgs;  // emulated/temporal_kernel.h
+struct EvictionArgs;  // emulated/eviction_kernels.h
 
 struct AccumulateArgs {
   std::span<const Record> records;
@@ -44,6 +45,9 @@ struct AccumulateArgs {
   // With a blending --temporal and a table before the frame: the temporal pass's arguments. The correct kernel
   // never reads them (the blend is a pass of its own, after this one); D10's variant blends inside this pass.
   const TemporalArgs* temporal = nullptr;
+  // With eviction: the eviction pass's arguments. The correct kernel never reads them (eviction is a pass of its
+  // own, after this one); the variant that evicts while records are inserted does.
+  const EvictionArgs* eviction = nullptr;
 };
 
 simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args);

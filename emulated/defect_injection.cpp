@@ -14,12 +14,23 @@ namespace {
 
 // The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes; count32
 // is D12's, which needs a sequence of frames (D12Count32Bit).
-// blend_in_pass is D10's (D10BlendDuringAccumulate).
+// blend_in_pass is D10's (D10BlendDuringAccumulate); evict_in_pass EvictDuringAccumulate's.
 simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, bool count32 = false,
-                        bool blend_in_pass = false) {
+                        bool blend_in_pass = false, bool evict_in_pass = false) {
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
   const TableBuffers& b = args.buffers;
+  if (evict_in_pass && args.eviction && i < args.capacity) {
+    // Evict slot i as the eviction pass would, but while other threads insert: a slot they touch this frame may
+    // still show its old last-seen frame, or hold only part of their adds, when it is zeroed.
+    const EvictionArgs& e = *args.eviction;
+    if (co_await ctx.Load(b.tags, i) != kEmptyTag && co_await ctx.Load(b.counts, i) != 0 &&
+        e.eviction.Evicts(e.frame, std::uint32_t(co_await ctx.Load(b.last_seen, i)))) {
+      for (int c = 0; c < 3; ++c) co_await ctx.Store(b.sums, std::uint64_t(i) * 3 + c, 0);
+      co_await ctx.Store(b.counts, i, 0);
+      co_await ctx.AtomicAdd(e.evicted, 0, 1);
+    }
+  }
   if (!args.accepted[i] || key.status != shared::kKeyed) {
     co_await ctx.Store(b.placements, i, kNotPlaced);
     co_return;
@@ -115,6 +126,10 @@ simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return M
 
 simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
   return Mutant(ctx, args, Defect::kNone, false, true);
+}
+
+simt::KernelTask EvictDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return Mutant(ctx, args, Defect::kNone, false, false, true);
 }
 
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args) {

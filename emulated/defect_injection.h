@@ -35,6 +35,13 @@ simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const Evictio
 // slot blended once per record. Not a Defect value: only a frame after the first blends.
 simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
+// An eviction racing an insertion (issue 14): the accumulate whose thread i first evicts slot i by the policy, as
+// the eviction pass would, then inserts its record, saving the pass's launch. Another thread may be inserting
+// into slot i meanwhile: its last-seen store may come after the eviction's read, or its adds before the zeroing,
+// so a cell the frame touches is evicted, whole or in part. Not a Defect value: only a frame after the first
+// evicts.
+simt::KernelTask EvictDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
 // D12: the accumulate with a 32-bit sample counter that wraps silently at 2^32 adds to one cell. Not a Defect value
 // either: only a long sequence of frames (or a table loaded with a large count) reaches it.
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args);

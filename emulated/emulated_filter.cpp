@@ -140,6 +140,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     }
   }
 
+  EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b, 0};
+  if (evicting) {
+    eviction.evicted = memory.Allocate64("evicted", 1);
+    args.eviction = &eviction;
+  }
+
   run.timings.clear = clock.Lap();
   const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
   if (options.mode == simt::Mode::kFast) {
@@ -172,8 +178,6 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
   run.timings.temporal = clock.Lap();
   if (evicting) {
-    EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b,
-                          memory.Allocate64("evicted", 1)};
     launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
     launch_per_slot([&](simt::ThreadContext& ctx) { return reclaim(ctx, eviction); });
     run.evicted = memory.Words64(eviction.evicted)[0];

@@ -21,11 +21,14 @@
 #include "core/eviction.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
+#include "emulated/simt/schedule.h"
+#include "property_tests/constructed_cells.h"
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
+#include "tools/checks/contract_levels.h"
 #include "tools/checks/table_checker.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
@@ -196,6 +199,103 @@ TEST(Eviction, D7AHoleBeforeALiveCellIsCaughtByTheCheckerAndTheContract) {
     EXPECT_GT(d7.violations[TableInvariant::kHoleBeforeLiveSlot], 0) << hashed.name << ": the checker misses D7's hole";
     EXPECT_TRUE(d7.image_differs) << hashed.name << ": the contract misses D7's split cell";
   }
+}
+
+// An eviction racing an insertion (EvictDuringAccumulate: thread i evicts slot i by the policy, then inserts its
+// record, in one launch). Over 2 frames of the animated Cornell box in a crowded table with strict eviction, the
+// faithful emulator explores interleavings of the evictions and the insertions under 40 schedules (random and PCT
+// of depth 3, warps of 4) and fast mode's serial order (one worker thread); the contract over the sequence (the
+// table checker from the table before frame 1, and the reference) must catch the variant under at least one, and
+// the correct kernel, whose eviction is a pass of its own after the accumulate, must pass under every one.
+TEST(Eviction, AnEvictionRacingAnInsertionIsCaughtUnderTheSchedulesThatInterleaveThem) {
+  const std::vector<RecordBatch> frames = TraceFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 2);
+  const std::vector<std::uint32_t> numbers = {0, 1};
+  FilterConfig config;
+  config.capacity = 512;
+  config.probe_limit = 8;
+  config.frames = 2;
+  config.eviction = ParseEviction("strict");
+  std::vector<EmulatorOptions> schedules;
+  for (int seed = 1; seed <= 20; ++seed) {
+    for (const std::string& policy : {"random:" + std::to_string(seed), "pct:" + std::to_string(seed) + ":3"}) {
+      EmulatorOptions faithful;
+      faithful.mode = simt::Mode::kFaithful;
+      faithful.warp_size = 4;
+      faithful.schedule = policy;
+      schedules.push_back(faithful);
+    }
+  }
+  EmulatorOptions serial;
+  serial.threads = 1;
+  schedules.push_back(serial);
+  auto passes = [&](const EmulatorOptions& options, AccumulateKernelFn kernel, std::string* failure) {
+    EmulatedBackend backend(options, kernel), rerun(options, kernel);
+    const JudgedBackend judged{"emulated", &backend, &rerun, "rerun", options.mode == simt::Mode::kFaithful, false};
+    const CrosscheckReport report = JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+    for (const LevelVerdict& v : report.levels) {
+      if (v.applicable && !v.passed && failure->empty()) *failure = "level " + std::to_string(v.level) + ": " + v.failures[0];
+    }
+    return report.Passed();
+  };
+  int caught = 0;
+  for (const EmulatorOptions& options : schedules) {
+    const std::string name = options.mode == simt::Mode::kFast ? "fast, one thread" : options.schedule;
+    std::string failure;
+    EXPECT_TRUE(passes(options, AccumulateKernel, &failure)) << name << ": " << failure;
+    failure.clear();
+    if (!passes(options, EvictDuringAccumulate, &failure)) {
+      if (caught++ == 0) std::printf("eviction racing insertion, %s: %s\n", name.c_str(), failure.c_str());
+    }
+  }
+  std::printf("eviction racing insertion: caught under %d of %zu schedules\n", caught, schedules.size());
+  EXPECT_GT(caught, 0) << "no schedule let an eviction race an insertion";
+}
+
+// Every interleaving of one eviction and one insertion into the same slot, enumerated. Cell A (slot0 = 0 in a
+// table of 4 slots) is placed in frame 0; frame 1 holds a record without a vertex (thread 0, which in the racing
+// variant evicts slot 0) and a record of A (thread 1, which touches slot 0), so strict eviction must keep A. The
+// exhaustive schedule (warps of one lane) enumerates every order of the two threads' operations. The variant loses
+// A (evicted whole, or its history zeroed under the new record) wherever thread 0 reads slot 0's last-seen frame
+// before thread 1 stores it, which is most orders (thread 1 stores it after its four adds); a few orders keep A.
+// The correct kernel passes every order.
+TEST(Eviction, EveryInterleavingOfAnEvictionWithAnInsertionIntoItsSlotIsExplored) {
+  FilterConfig config = ConstructedConfig(4, 4);
+  config.frames = 2;
+  config.eviction = ParseEviction("strict");
+  const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 0u; });
+  const RecordBatch frame0 = BatchOfCells({a});
+  RecordBatch frame1 = BatchOfCells({a, a});
+  frame1.frame = 1;
+  frame1.records[0].path.z &= ~shared::kRecordHasVertex;
+  const EmulatedRun first = EmulatedFilter(frame0, config, EmulatorOptions{});
+  config.frame = 1;
+  struct Exploration {
+    std::uint64_t schedules = 0, caught = 0;
+  };
+  auto explore = [&](AccumulateKernelFn kernel) {
+    simt::ExhaustiveSchedule schedule;
+    EmulatorOptions options;
+    options.mode = simt::Mode::kFaithful;
+    options.warp_size = 1;
+    options.schedule_instance = &schedule;
+    Exploration e;
+    do {
+      ++e.schedules;  // every schedule runs: the search learns the next one from this run's decisions
+      const EmulatedRun run = EmulatedFilter(frame1, config, options, kernel, &first.table);
+      e.caught += !CheckTable({run.table, frame1.records, run.keys, run.placements, &first.table, config.eviction, 1})
+                       .empty();
+    } while (schedule.Advance());
+    return e;
+  };
+  const Exploration correct = explore(AccumulateKernel);
+  const Exploration racing = explore(EvictDuringAccumulate);
+  std::printf("one eviction and one insertion, exhaustive: correct kernel %llu schedules, all pass; racing variant "
+              "caught under %llu of %llu\n",
+              (unsigned long long)correct.schedules, (unsigned long long)racing.caught,
+              (unsigned long long)racing.schedules);
+  EXPECT_EQ(correct.caught, 0u);
+  EXPECT_GT(racing.caught, 0u);
+  EXPECT_LT(racing.caught, racing.schedules) << "every order lost A: the exploration saw no order that keeps it";
 }
 
 double MeanRadiance(const Image& image) {
