@@ -251,6 +251,36 @@ TEST(Eviction, AnEvictionRacingAnInsertionIsCaughtUnderTheSchedulesThatInterleav
   EXPECT_GT(caught, 0) << "no schedule let an eviction race an insertion";
 }
 
+// The same variant as a user's accumulate shader (accumulate_EVICT_RACE.spv: the invocation of record i evicts
+// slot i by strict's rule before inserting), through the stable buffer interface over 2 frames, mapped and staged:
+// the contract over the sequence fails it; the correct shader given the same way passes.
+TEST(Eviction, AnEvictionRacingAnInsertionAsAShaderFailsTheContract) {
+  const std::vector<RecordBatch> frames = TraceFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 2);
+  const std::vector<std::uint32_t> numbers = {0, 1};
+  FilterConfig config;
+  config.capacity = 512;
+  config.probe_limit = 8;
+  config.frames = 2;
+  config.eviction = ParseEviction("strict");
+  for (const StagingPolicy staging : kStagingPolicies) {
+    for (const char* variant : {"correct", "EVICT_RACE"}) {
+      const std::string spv = std::string(HPSF_SHADER_VARIANT_DIR "/accumulate_") + variant + ".spv";
+      VulkanBackend backend(TestDevice(staging), spv), rerun(TestDevice(staging), spv);
+      const JudgedBackend judged{"vulkan", &backend, &rerun, "rerun", false, true};
+      const CrosscheckReport report = JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+      const std::string name = std::string(variant) + ", staging " + ToString(staging);
+      const bool correct = std::string(variant) == "correct";
+      EXPECT_EQ(report.Passed(), correct) << name;
+      for (const LevelVerdict& v : report.levels) {
+        if (v.applicable && !v.passed) {
+          std::printf("%s: level %d: %s\n", name.c_str(), v.level, v.failures[0].c_str());
+          break;
+        }
+      }
+    }
+  }
+}
+
 // Every interleaving of one eviction and one insertion into the same slot, enumerated. Cell A (slot0 = 0 in a
 // table of 4 slots) is placed in frame 0; frame 1 holds a record without a vertex (thread 0, which in the racing
 // variant evicts slot 0) and a record of A (thread 1, which touches slot 0), so strict eviction must keep A. The

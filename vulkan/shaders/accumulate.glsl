@@ -19,10 +19,24 @@ const uint kRecordsPerInvocation = 16u;
 layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
-// _D12, _D13, each exactly one change) and runs the variants through --accumulate-spv: the gate must catch each.
+// _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_EVICT_RACE), and runs the variants through
+// --accumulate-spv: the gate must catch each.
 
 #if defined(HPSF_DEFECT_D12)
 layout(std430, binding = 4) buffer CountWords { uint count_words[]; };  // binding 4 again, as 32-bit words
+#endif
+#if defined(HPSF_DEFECT_EVICT_RACE)
+layout(std430, binding = 8) buffer LastSeenRead { uint last_seen_read[]; };  // binding 8 again, read too
+
+// An eviction racing the insertions: slot i evicted by strict's rule (not touched since an earlier frame) by the
+// invocation of record i, in this pass instead of the eviction pass after it, while other invocations may be
+// inserting into it.
+void EvictDuringAccumulate(uint slot, TableParams t) {
+  if (t.track_last_seen == 0u || slot >= t.capacity) return;
+  if (tags[slot] == 0u || counts[slot] == uint64_t(0) || last_seen_read[slot] >= t.frame) return;
+  for (uint c = 0u; c < 3u; ++c) sums[slot * 3u + c] = HPSF_SUMS_TYPE(0);
+  counts[slot] = uint64_t(0);
+}
 #endif
 
 void AddToSlot(uint slot, Record r, float fixed_point_scale) {
@@ -48,6 +62,9 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale) {
 }
 
 void AccumulateRecord(uint i, KeyParams p, TableParams t) {
+#if defined(HPSF_DEFECT_EVICT_RACE)
+  EvictDuringAccumulate(i, t);
+#endif
   if (accepted[i] == 0u) {  // rejected on the host: its bits may be NaN, so no key is computed
     StoreKeyResult(i, EmptyKeyResult(kKeyNoVertex));
     placements[i] = kPlacementNotPlaced;
