@@ -127,7 +127,8 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     }
     const std::uint32_t header_size = header.version == 1 ? kVersion1HeaderSize : std::uint32_t(sizeof(Header));
     if (header.header_size != header_size) {
-      throw fail(at + 12, "header size " + std::to_string(header.header_size) + ", expected " + std::to_string(header_size));
+      throw fail(at + 12, "header size " + std::to_string(header.header_size) + ", expected " +
+                              std::to_string(header_size));
     }
     if (header.version == 2) {
       if (file_size - at < sizeof header) throw fail(file_size, "truncated: the header needs 56 bytes");

@@ -54,7 +54,8 @@ const QualityFigures& QualityOf(const CrosscheckReport& report, const std::strin
 // evictions where the policy evicts.
 TEST(CrosscheckFrames, EveryPolicyAndTemporalModePassesOnAllThreeBackends) {
   constexpr std::uint32_t kFrames = 4;
-  const std::vector<RecordBatch> frames = TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
+  const std::vector<RecordBatch> frames =
+      TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
   Crosschecker checker(kAllBackends);
   struct Case {
     const char* eviction;
@@ -208,11 +209,14 @@ TEST(CrosscheckFrames, ACellWhoseProbeFailedInAnEarlierFrameIsClassifiedNotBlame
 }
 
 // The broken variants of frames, each a backend pair judged over the animated Cornell box: D7 (a reclaim that
-// empties every tombstone) in the emulator and as a shader with strict eviction, and D10 (an accumulate that
-// blends while it accumulates) with ema:0.5. Each fails the contract; the correct backends beside them pass.
+// empties every tombstone) in the emulator and as an eviction shader with strict eviction, and D10 (an accumulate
+// that blends while it accumulates) in the emulator and as an accumulate shader (accumulate_D10.spv, reading the
+// table before the frame through bindings 9 and 10) with ema:0.5. Each fails the contract; the correct backends
+// and the correct user shader beside them pass.
 TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
   constexpr std::uint32_t kFrames = 4;
-  const std::vector<RecordBatch> frames = TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
+  const std::vector<RecordBatch> frames =
+      TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
   std::vector<std::uint32_t> numbers;
   for (const RecordBatch& frame : frames) numbers.push_back(frame.frame);
   FilterConfig config;
@@ -230,8 +234,12 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
   auto emulated = [](AccumulateKernelFn kernel, ReclaimKernelFn reclaim) {
     return std::make_unique<EmulatedBackend>(EmulatorOptions{}, kernel, reclaim);
   };
-  auto vulkan = [&](const std::string& eviction_spv) { return std::make_unique<VulkanBackend>(device, "", eviction_spv); };
+  auto vulkan = [&](const std::string& eviction_spv, const std::string& accumulate_spv = "") {
+    return std::make_unique<VulkanBackend>(device, accumulate_spv, eviction_spv);
+  };
   const std::string d7_spv = HPSF_SHADER_VARIANT_DIR "/eviction_D7.spv";
+  const std::string correct_spv = HPSF_SHADER_VARIANT_DIR "/accumulate_correct.spv";
+  const std::string d10_spv = HPSF_SHADER_VARIANT_DIR "/accumulate_D10.spv";
   std::vector<Variant> variants;
   variants.push_back({"emulated", "strict", "integrate", emulated(AccumulateKernel, ReclaimKernel),
                       emulated(AccumulateKernel, ReclaimKernel), false});
@@ -243,6 +251,9 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
                       emulated(AccumulateKernel, ReclaimKernel), false});
   variants.push_back({"emulated D10", "none", "ema:0.5", emulated(D10BlendDuringAccumulate, ReclaimKernel),
                       emulated(D10BlendDuringAccumulate, ReclaimKernel), true});
+  variants.push_back({"vulkan, the correct shader", "none", "ema:0.5", vulkan("", correct_spv), vulkan("", correct_spv),
+                      false});
+  variants.push_back({"vulkan D10", "none", "ema:0.5", vulkan("", d10_spv), vulkan("", d10_spv), true});
   for (Variant& v : variants) {
     config.eviction = ParseEviction(v.eviction);
     config.temporal = ParseTemporal(v.temporal);

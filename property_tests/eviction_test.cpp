@@ -233,7 +233,9 @@ TEST(Eviction, AnEvictionRacingAnInsertionIsCaughtUnderTheSchedulesThatInterleav
     const JudgedBackend judged{"emulated", &backend, &rerun, "rerun", options.mode == simt::Mode::kFaithful, false};
     const CrosscheckReport report = JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
     for (const LevelVerdict& v : report.levels) {
-      if (v.applicable && !v.passed && failure->empty()) *failure = "level " + std::to_string(v.level) + ": " + v.failures[0];
+      if (v.applicable && !v.passed && failure->empty()) {
+        *failure = "level " + std::to_string(v.level) + ": " + v.failures[0];
+      }
     }
     return report.Passed();
   };
@@ -267,7 +269,8 @@ TEST(Eviction, AnEvictionRacingAnInsertionAsAShaderFailsTheContract) {
       const std::string spv = std::string(HPSF_SHADER_VARIANT_DIR "/accumulate_") + variant + ".spv";
       VulkanBackend backend(TestDevice(staging), spv), rerun(TestDevice(staging), spv);
       const JudgedBackend judged{"vulkan", &backend, &rerun, "rerun", false, true};
-      const CrosscheckReport report = JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+      const CrosscheckReport report =
+          JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
       const std::string name = std::string(variant) + ", staging " + ToString(staging);
       const bool correct = std::string(variant) == "correct";
       EXPECT_EQ(report.Passed(), correct) << name;

@@ -48,8 +48,9 @@ constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;
 struct AccumulatePush {
   KeyParams key;
   shared::TableParams table;
+  shared::TemporalParams temporal;
 };
-static_assert(sizeof(AccumulatePush) == 96, "push constants of table_interface.glsl");
+static_assert(sizeof(AccumulatePush) == 120, "push constants of table_interface.glsl");
 
 struct EvictionPush {
   std::uint32_t capacity;
@@ -83,7 +84,8 @@ static_assert(sizeof(ResolvePush) == 24, "push constants of resolve.glsl");
 constexpr BindingKind kAccumulateBindings[] = {
     BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
 constexpr BindingKind kEvictionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer};
@@ -306,20 +308,22 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // The double buffer of the temporal blend: the table as the previous frame left it, copied before the accumulate.
   const bool blending = keep_table && config.temporal.blends();
   const vk::DeviceSize sum_bytes_on_device = vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4);
-  if (blending) {
-    p.Ensure(p.previous_sums, sum_bytes_on_device);
-    p.Ensure(p.previous_counts, vk::DeviceSize(config.capacity) * 8);
-  }
+  // Bound always (bindings 9 and 10 of the stable interface), sized for the table when the frame blends.
+  p.Ensure(p.previous_sums, blending ? sum_bytes_on_device : 8);
+  p.Ensure(p.previous_counts, blending ? vk::DeviceSize(config.capacity) * 8 : 8);
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
-  DeviceBuffer* const accumulate_buffers[] = {&p.records,    &p.keys,  &p.tags,     &p.sums,     &p.counts,
-                                              &p.placements, &p.stats, &p.accepted, &p.last_seen};
+  DeviceBuffer* const accumulate_buffers[] = {&p.records,   &p.keys,      &p.tags,          &p.sums,
+                                              &p.counts,    &p.placements, &p.stats,        &p.accepted,
+                                              &p.last_seen, &p.previous_sums, &p.previous_counts};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
   AccumulatePush push{
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
       {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
-       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, evicting ? 1u : 0u, 0, 0}};
+       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, evicting ? 1u : 0u,
+       blending ? 1u : 0u, 0},
+      MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
     if (blending) {

@@ -23,8 +23,11 @@ struct TableParams {
   // The frame state (issue 14): with eviction, a slot a record is added to stores `frame` as its last-seen frame.
   uint frame;
   uint track_last_seen;  // 1 with eviction, else 0 (the last-seen buffer is then not written)
-  uint reserved0;
-  uint reserved1;
+  // 1 when the frame blends (a blending --temporal and a table before it): bindings 9 and 10 then hold the table
+  // before the frame and the push constants' TemporalParams its mode (table_interface.glsl). The blend is a pass
+  // of its own after the accumulate; an accumulate reads none of it (DESIGN.md D10).
+  uint blending;
+  uint reserved;
 };
 
 HPSF_SHARED_END

@@ -11,6 +11,11 @@
 #include "../../core/shared/key.h"
 #include "../../core/shared/fixed_point.h"
 #include "../../core/shared/table_params.h"
+#if defined(HPSF_DEFECT_D10)
+#define HPSF_TABLE_INTERFACE_TEMPORAL
+#include "float_controls_fp64.glsl"
+#include "../../core/shared/temporal_blend.h"
+#endif
 #include "subgroup_runs.glsl"
 #include "table_interface.glsl"
 
@@ -19,7 +24,7 @@ const uint kRecordsPerInvocation = 16u;
 layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
-// _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_EVICT_RACE), and runs the variants through
+// _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
 // --accumulate-spv: the gate must catch each.
 
 #if defined(HPSF_DEFECT_D12)
@@ -61,6 +66,27 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale) {
 #endif
 }
 
+#if defined(HPSF_DEFECT_D10)
+// D10: the slot blended right after this record's add, from the table still being accumulated (fixed64 sums):
+// other records' adds land before or after it, and the slot blends once per record instead of once.
+void BlendDuringAccumulate(uint slot, TableParams t) {
+  if (t.blending == 0u) return;
+  uint64_t old_count = previous_counts[slot];
+  uint64_t count = counts[slot];
+  if (old_count == uint64_t(0) || count == old_count) return;
+  dvec3 old_sum, frame_sum;
+  for (int c = 0; c < 3; ++c) {
+    uint64_t before = previous_sums[slot * 3u + uint(c)];
+    old_sum[c] = double(before);
+    frame_sum[c] = double(sums[slot * 3u + uint(c)] - before);
+  }
+  TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, count - old_count);
+  if (b.integrated) return;
+  for (int c = 0; c < 3; ++c) sums[slot * 3u + uint(c)] = uint64_t(roundEven(b.sum[c]));
+  counts[slot] = b.count;
+}
+#endif
+
 void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #if defined(HPSF_DEFECT_EVICT_RACE)
   EvictDuringAccumulate(i, t);
@@ -97,6 +123,9 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
       if (tag != 0u && tag != fingerprint) continue;
       AddToSlot(slot, r, t.fixed_point_scale);
       if (t.track_last_seen != 0u) last_seen[slot] = t.frame;  // every writer stores the same frame
+#if defined(HPSF_DEFECT_D10)
+      BlendDuringAccumulate(slot, t);
+#endif
       placement = slot;
 #if !defined(HPSF_DEFECT_D2)  // D2 keeps probing after a match and adds again (Meijer Algorithm 4)
       break;

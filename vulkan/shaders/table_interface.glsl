@@ -11,8 +11,13 @@
 //                 adds whose count wrapped (DESIGN.md D12); both zeroed
 //   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
-// Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state).
-// A shader written against the first 8 bindings and 16 bytes of TableParams still runs without eviction.
+//   9 previous_sums    as sums: with table.blending, the table before the frame (for reading only;   -
+//  10 previous_counts  uint64_t[capacity]   the blend pass after the accumulate reads them)        -
+// Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state), then
+// TemporalParams (24 bytes, core/shared/temporal_blend.h: the blend's mode, with table.blending).
+// A shader written against the first 8 bindings and 16 bytes of TableParams still runs without eviction; one that
+// declares nothing past TableParams runs with every option. Bindings 9 and 10 and TemporalParams are declared
+// for an includer that defines HPSF_TABLE_INTERFACE_TEMPORAL (its shader then needs 64-bit floats).
 // The includer defines HPSF_SUMS_TYPE (uint64_t or float).
 #define HPSF_RECORDS_BINDING 0
 #include "record_texels.glsl"
@@ -28,10 +33,20 @@ layout(std430, binding = 6) buffer Stats {
 };
 layout(std430, binding = 7) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 8) writeonly buffer LastSeen { uint last_seen[]; };
+#if defined(HPSF_TABLE_INTERFACE_TEMPORAL)
+layout(std430, binding = 9) readonly buffer PreviousSums { HPSF_SUMS_TYPE previous_sums[]; };
+layout(std430, binding = 10) readonly buffer PreviousCounts { uint64_t previous_counts[]; };
+layout(push_constant) uniform Params {
+  KeyParams params;
+  TableParams table;
+  TemporalParams temporal;
+};
+#else
 layout(push_constant) uniform Params {
   KeyParams params;
   TableParams table;
 };
+#endif
 
 // KeyResult as three uvec4: one store per vector instead of one per word.
 void StoreKeyResult(uint i, KeyResult k) {
