@@ -25,8 +25,8 @@ struct Header {
   std::uint32_t samples_per_pixel;
   double fov_y_radians;
   std::uint64_t record_count;
-  std::uint32_t frame;         // version 2
-  std::uint32_t frame_count;   // version 2: the same in every block
+  std::uint32_t frame;        // version 2
+  std::uint32_t frame_count;  // version 2: the same in every block
 };
 static_assert(sizeof(Header) == 56);
 constexpr std::uint32_t kVersion1HeaderSize = 48;
@@ -127,8 +127,8 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     }
     const std::uint32_t header_size = header.version == 1 ? kVersion1HeaderSize : std::uint32_t(sizeof(Header));
     if (header.header_size != header_size) {
-      throw fail(at + 12, "header size " + std::to_string(header.header_size) + ", expected " +
-                              std::to_string(header_size));
+      throw fail(at + 12,
+                 "header size " + std::to_string(header.header_size) + ", expected " + std::to_string(header_size));
     }
     if (header.version == 2) {
       if (file_size - at < sizeof header) throw fail(file_size, "truncated: the header needs 56 bytes");

@@ -4,14 +4,14 @@
 // classified, never blamed on a correct backend; and the broken variants of frames (D7 in the emulator and as a
 // shader, D10) fail it.
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/backend.h"
 #include "core/eviction.h"
@@ -251,8 +251,8 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
                       emulated(AccumulateKernel, ReclaimKernel), false});
   variants.push_back({"emulated D10", "none", "ema:0.5", emulated(D10BlendDuringAccumulate, ReclaimKernel),
                       emulated(D10BlendDuringAccumulate, ReclaimKernel), true});
-  variants.push_back({"vulkan, the correct shader", "none", "ema:0.5", vulkan("", correct_spv), vulkan("", correct_spv),
-                      false});
+  variants.push_back(
+      {"vulkan, the correct shader", "none", "ema:0.5", vulkan("", correct_spv), vulkan("", correct_spv), false});
   variants.push_back({"vulkan D10", "none", "ema:0.5", vulkan("", d10_spv), vulkan("", d10_spv), true});
   for (Variant& v : variants) {
     config.eviction = ParseEviction(v.eviction);

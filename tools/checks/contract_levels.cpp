@@ -61,8 +61,11 @@ std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, 
 // Level 2: the table checker on one frame of a hashed run, from the table before it.
 void CheckFrameTable(const std::string& who, const RecordBatch& batch, const HashedRun& run,
                      const std::optional<HashTableDump>& before, const FilterConfig& config, LevelVerdict& tables) {
-  const TableCheckInput input{run.table,      batch.records,   run.keys,     run.placements,
-                              before ? &*before : nullptr, config.eviction, config.frame, config.temporal};
+  TableCheckInput input{run.table, batch.records, run.keys, run.placements};
+  input.before = before ? &*before : nullptr;
+  input.eviction = config.eviction;
+  input.frame = config.frame;
+  input.temporal = config.temporal;
   for (const TableViolation& v : CheckTable(input)) Fail(tables, who + ": " + v.ToString());
 }
 
@@ -72,7 +75,8 @@ void CheckFrameTable(const std::string& who, const RecordBatch& batch, const Has
 // of its own table. Returns how many records were compared.
 std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference,
                                    const HashedRun& run, const HashTableDump* before,
-                                   const std::vector<bool>& classified, const std::string& prefix, LevelVerdict& ideal) {
+                                   const std::vector<bool>& classified, const std::string& prefix,
+                                   LevelVerdict& ideal) {
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   std::uint64_t compared = 0, failures = 0;
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
@@ -215,11 +219,12 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         s.replayed_float_order = true;
         CompareFloatOrder(batch, emulated->run(), s.before, who + ": ", ideal);
       }
-      s.records_compared += CompareWithReference(batch, config, reference.result(), *run, s.before ? &*s.before : nullptr,
-                                                 classified, who + ": ", ideal);
+      s.records_compared += CompareWithReference(batch, config, reference.result(), *run,
+                                                 s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
 
       if (judged.ordered && emulated &&
-          dynamic_cast<const EmulatedBackend&>(*judged.rerun).run().launch.trace_hash != emulated->run().launch.trace_hash) {
+          dynamic_cast<const EmulatedBackend&>(*judged.rerun).run().launch.trace_hash !=
+              emulated->run().launch.trace_hash) {
         Fail(determinism, who + ": the trace hash changed between two identical runs");
       }
       const RerunPromise promise =
@@ -273,8 +278,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
   return report;
 }
 
-CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator,
-                                    Defect defect) {
+CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config,
+                                    const EmulatorOptions& emulator, Defect defect) {
   EmulatedPair emulated(emulator, defect);
   const JudgedBackend judged = emulated.Judged();
   return JudgeSequence(std::span<const RecordBatch>(&batch, 1), std::span<const std::uint32_t>(&config.frame, 1),
@@ -289,11 +294,17 @@ nlohmann::json CrosscheckReport::ToJson() const {
   nlohmann::json j = {{"version", 2}, {"passed", Passed()}, {"frames", frames}};
   if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
   for (const LevelVerdict& v : levels) {
-    j["levels"].push_back({{"level", v.level}, {"name", v.name}, {"applicable", v.applicable}, {"passed", v.passed},
-                           {"note", v.note}, {"failures", v.failures}});
+    j["levels"].push_back({{"level", v.level},
+                           {"name", v.name},
+                           {"applicable", v.applicable},
+                           {"passed", v.passed},
+                           {"note", v.note},
+                           {"failures", v.failures}});
   }
   for (const QualityFigures& q : quality) {
-    j["quality"].push_back({{"backend", q.backend}, {"probe_failures", q.probe_failures}, {"aliased_slots", q.aliased_slots},
+    j["quality"].push_back({{"backend", q.backend},
+                            {"probe_failures", q.probe_failures},
+                            {"aliased_slots", q.aliased_slots},
                             {"aliased_records", q.aliased_records}});
   }
   return j;

@@ -51,8 +51,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
 
 // The reference and the emulated backend on one batch, as frame config.frame: Crosscheck(batch, config,
 // {"reference", "emulated"}, ...) without linking Vulkan.
-CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& emulator,
-                                    Defect defect = Defect::kNone);
+CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config,
+                                    const EmulatorOptions& emulator, Defect defect = Defect::kNone);
 
 }  // namespace hpsf
 

@@ -65,8 +65,9 @@ CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::s
   return report;
 }
 
-CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator, Defect defect, const VulkanBackendOptions& vulkan) {
+CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config,
+                            const std::vector<std::string>& backends, const EmulatorOptions& emulator, Defect defect,
+                            const VulkanBackendOptions& vulkan) {
   return Crosschecker(backends, defect, vulkan).Check(batch, config, emulator);
 }
 
