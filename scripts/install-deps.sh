@@ -8,7 +8,7 @@ packages=(
   nlohmann-json3-dev libtinyobjloader-dev libcli11-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev
   libvulkan-dev glslang-tools glslang-dev spirv-tools mesa-vulkan-drivers vulkan-tools
-  libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium
+  libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium libxml2-utils
   clang-15 libfuzzer-15-dev llvm-15
 )
 

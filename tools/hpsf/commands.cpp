@@ -1,5 +1,6 @@
 #include "tools/hpsf/commands.h"
 
+#include "tools/hpsf/check_command.h"
 #include "tools/hpsf/crosscheck_command.h"
 #include "tools/hpsf/device_command.h"
 #include "tools/hpsf/diff_command.h"
@@ -20,6 +21,7 @@ void AddCommands(CLI::App& app, CommandContext& context) {
   AddDiffCommand(app, context);
   AddGoldenCommand(app, context);
   AddFuzzCommand(app, context);
+  AddCheckCommand(app, context);
 }
 
 }  // namespace hpsf

@@ -1,5 +1,6 @@
 #include "tools/hpsf/crosscheck_command.h"
 
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <span>
@@ -21,6 +22,7 @@ struct CrosscheckOptions {
   std::string input;
   std::string backends = "reference,emulated,vulkan";
   std::string repro_dir = "hpsf-repro";
+  std::string report_file;
   std::string size = "128x128";
   std::uint32_t frames = 1;  // a scene's; a record file's are all it holds
   bool frames_given = false, frame_given = false;
@@ -44,7 +46,7 @@ std::vector<std::string> SplitList(const std::string& text) {
 void WriteBundle(const CrosscheckOptions& o, std::span<const RecordBatch> frames, const CrosscheckReport& report) {
   std::vector<std::string> arguments;
   for (std::size_t i = 0; i < o.arguments.size(); ++i) {
-    if (o.arguments[i] == "--repro-dir" || o.arguments[i] == "--frame") {
+    if (o.arguments[i] == "--repro-dir" || o.arguments[i] == "--frame" || o.arguments[i] == "--report") {
       ++i;
       continue;
     }
@@ -83,6 +85,7 @@ int Run(CrosscheckOptions& o, bool options_only) {
   }
   config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
   const CrosscheckReport report = checker.CheckFrames(frames, config, emulator);
+  if (!o.report_file.empty()) std::ofstream(o.report_file) << report.ToJson().dump(2) << "\n";
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {
@@ -122,6 +125,7 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
       ->capture_default_str();
   c->add_option("--repro-dir", o->repro_dir, "Where a failing check writes its repro bundle")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
+  c->add_option("--report", o->report_file, "Also write the versioned JSON report to FILE (hpsf check reads it)");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
   c->callback([o, c, &context] {

@@ -1,5 +1,5 @@
-// `hpsf crosscheck SCENE|FILE.hpsfv`: the backends on one batch, the verdict per level and the quality
-// figures; exit 0 when the contract holds, 2 when it does not, and then a repro bundle.
+// `hpsf crosscheck SCENE|FILE.hpsfv`: the backends on one batch or a sequence of frames, the verdict per level
+// and the quality figures; exit 0 when the contract holds, 2 when it does not, and then a repro bundle.
 #ifndef HPSF_TOOLS_HPSF_CROSSCHECK_COMMAND_H
 #define HPSF_TOOLS_HPSF_CROSSCHECK_COMMAND_H
 

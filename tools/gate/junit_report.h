@@ -1,0 +1,28 @@
+// The JUnit XML that CI systems read (GitHub Actions' and GitLab's test reports, Jenkins): one <testsuite> per
+// gate family, one <testcase> per gate case, a <failure> naming the level and the slot or record that failed, an
+// <error> for a case whose check could not finish (a crash), the command that reproduces it in <system-out>.
+#ifndef HPSF_TOOLS_GATE_JUNIT_REPORT_H
+#define HPSF_TOOLS_GATE_JUNIT_REPORT_H
+
+#include <string>
+#include <vector>
+
+namespace hpsf {
+
+enum class CaseOutcome { kPassed, kFailed, kError };
+
+struct GateCaseResult {
+  std::string id;      // "crosscheck/cornell/crowded/vulkan/strict/seed1"
+  std::string family;  // "crosscheck"
+  CaseOutcome outcome = CaseOutcome::kPassed;
+  double seconds = 0.0;
+  std::string message;    // the first failure, one line
+  std::string details;    // every failure, or the output of a case that crashed
+  std::string reproduce;  // the command line that reproduces the case
+};
+
+std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>& results);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_GATE_JUNIT_REPORT_H
