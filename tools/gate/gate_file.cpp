@@ -4,9 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/error.h"
 
@@ -142,9 +141,8 @@ void ExpandCrosscheck(const json& c, const std::string& folder, const GateError&
       NamedOptions(c.contains("configs") ? c["configs"] : empty_set, at + "/configs", error);
   if (!c.contains("backends")) error.At(at + "/backends", "expected an object of named backends");
   const std::vector<Named> backends = NamedOptions(c["backends"], at + "/backends", error);
-  const std::vector<Named> sequences =
-      NamedOptions(c.contains("sequences") ? c["sequences"] : json{{"one-frame", json::object()}}, at + "/sequences",
-                   error);
+  const std::vector<Named> sequences = NamedOptions(
+      c.contains("sequences") ? c["sequences"] : json{{"one-frame", json::object()}}, at + "/sequences", error);
   for (const Named& b : backends) {
     if (!b.options.contains("backend") || !b.options["backend"].is_string()) {
       error.At(b.pointer + "/backend", "expected the backend checked beside the reference: emulated or vulkan");
@@ -172,14 +170,14 @@ void ExpandCrosscheck(const json& c, const std::string& folder, const GateError&
             if (!recorded) gc.arguments.insert(gc.arguments.end(), {"--size", size, "--spp", spp});
             gc.arguments.insert(gc.arguments.end(), {"--seed", std::to_string(seed)});
             for (const Named* set : {&config, &sequence}) {
-              const std::vector<std::string> a =
-                  Arguments(*set, folder, recorded ? std::set<std::string>{"frames", "frame"} : std::set<std::string>{},
-                            error);
+              const std::vector<std::string> a = Arguments(
+                  *set, folder, recorded ? std::set<std::string>{"frames", "frame"} : std::set<std::string>{}, error);
               gc.arguments.insert(gc.arguments.end(), a.begin(), a.end());
             }
             const std::vector<std::string> b = Arguments(backend, folder, {"backend"}, error);
             gc.arguments.insert(gc.arguments.end(), b.begin(), b.end());
-            gc.arguments.insert(gc.arguments.end(), {"--backends", "reference," + backend.options["backend"].get<std::string>()});
+            const std::string checked = backend.options["backend"].get<std::string>();
+            gc.arguments.insert(gc.arguments.end(), {"--backends", "reference," + checked});
             gate.cases.push_back(std::move(gc));
           }
         }

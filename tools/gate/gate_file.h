@@ -25,10 +25,10 @@ namespace hpsf {
 inline constexpr int kGateFileVersion = 1;
 
 struct GateCase {
-  std::string id;                       // "crosscheck/cornell/crowded/vulkan/strict/seed1"
-  std::string family;                   // "crosscheck"
-  std::vector<std::string> arguments;   // after `hpsf`: "crosscheck", the input, then its options
-  std::string where;                    // the gate file's place it came from, for error messages
+  std::string id;                      // "crosscheck/cornell/crowded/vulkan/strict/seed1"
+  std::string family;                  // "crosscheck"
+  std::vector<std::string> arguments;  // after `hpsf`: "crosscheck", the input, then its options
+  std::string where;                   // the gate file's place it came from, for error messages
 };
 
 struct Gate {

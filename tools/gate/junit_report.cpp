@@ -12,11 +12,21 @@ std::string Escaped(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t') out += c;
     }
@@ -72,7 +82,8 @@ std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>&
                (r->outcome == CaseOutcome::kFailed ? "contract" : "crash") + "\">" + Escaped(r->details) + "</" +
                element + ">\n";
       }
-      xml += "      <system-out>reproduce: " + Escaped(r->reproduce) + "</system-out>\n    </testcase>\n";
+      xml += "      <system-out>reproduce: " + Escaped(r->reproduce) +
+             (r->bundle.empty() ? "" : "\nrepro bundle: " + Escaped(r->bundle)) + "</system-out>\n    </testcase>\n";
     }
     xml += "  </testsuite>\n";
   }

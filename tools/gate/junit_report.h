@@ -19,6 +19,7 @@ struct GateCaseResult {
   std::string message;    // the first failure, one line
   std::string details;    // every failure, or the output of a case that crashed
   std::string reproduce;  // the command line that reproduces the case
+  std::string bundle;     // a failed case's repro bundle, else empty
 };
 
 std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>& results);

@@ -1,11 +1,11 @@
 #include "tools/hpsf/check_command.h"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -93,14 +93,14 @@ GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out, int&
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
     for (const nlohmann::json& level : j["levels"]) {
       if (!level["applicable"].get<bool>() || level["passed"].get<bool>()) continue;
-      const std::string head = "level " + std::to_string(level["level"].get<int>()) + " " +
-                               level["name"].get<std::string>();
+      const std::string head =
+          "level " + std::to_string(level["level"].get<int>()) + " " + level["name"].get<std::string>();
       for (const nlohmann::json& failure : level["failures"]) {
         if (r.message.empty()) r.message = head + ": " + failure.get<std::string>();
         r.details += head + ": " + failure.get<std::string>() + "\n";
       }
     }
-    r.reproduce += "  (bundle: " + (out / "bundles" / name).string() + ")";
+    r.bundle = (out / "bundles" / name).string();
     return r;
   }
   // A kernel fault exits 2 with no report; anything else (a signal, an unexpected code) crashed the check.
@@ -122,10 +122,11 @@ nlohmann::json ToJson(const Gate& gate, const std::string& shard, const std::vec
                                                                      : "error"},
                      {"seconds", r.seconds},
                      {"message", r.message},
-                     {"reproduce", r.reproduce}});
+                     {"reproduce", r.reproduce},
+                     {"bundle", r.bundle}});
   }
-  return {{"version", 1}, {"command", "check"}, {"gate", gate.source}, {"shard", shard},
-          {"passed", passed}, {"cases", cases}};
+  return {{"version", 1},   {"command", "check"}, {"gate", gate.source},
+          {"shard", shard}, {"passed", passed},   {"cases", cases}};
 }
 
 int RunCheck(const CheckOptions& o, bool options_only) {
@@ -146,9 +147,12 @@ int RunCheck(const CheckOptions& o, bool options_only) {
     results.push_back(RunCase(c, out, bad_input));
     const GateCaseResult& r = results.back();
     if (!o.json) {
-      std::cout << (r.outcome == CaseOutcome::kPassed ? "PASS " : r.outcome == CaseOutcome::kFailed ? "FAIL " : "ERROR ")
-                << r.id << " (" << std::to_string(r.seconds).substr(0, 5) << " s)"
-                << (r.message.empty() ? "" : ": " + r.message) << std::endl;
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);
+      std::cout << (r.outcome == CaseOutcome::kPassed   ? "PASS "
+                    : r.outcome == CaseOutcome::kFailed ? "FAIL "
+                                                        : "ERROR ")
+                << r.id << " (" << seconds << " s)" << (r.message.empty() ? "" : ": " + r.message) << std::endl;
     }
   }
   if (!o.junit.empty()) std::ofstream(o.junit) << JUnitXml("hpsf check " + gate.source, results);
@@ -157,11 +161,13 @@ int RunCheck(const CheckOptions& o, bool options_only) {
   std::size_t failed = 0;
   for (const GateCaseResult& r : results) failed += r.outcome != CaseOutcome::kPassed;
   if (!o.json) {
-    std::cout << "check: " << results.size() - failed << " of " << results.size() << " cases passed ("
-              << gate.source << ", shard " << o.shard << ")" << std::endl;
+    std::cout << "check: " << results.size() - failed << " of " << results.size() << " cases passed (" << gate.source
+              << ", shard " << o.shard << ")" << std::endl;
   }
   for (const GateCaseResult& r : results) {
-    if (r.outcome != CaseOutcome::kPassed) std::cerr << "hpsf: " << r.id << " reproduces with: " << r.reproduce << "\n";
+    if (r.outcome == CaseOutcome::kPassed) continue;
+    std::cerr << "hpsf: " << r.id << " reproduces with: " << r.reproduce
+              << (r.bundle.empty() ? "" : " (repro bundle: " + r.bundle + ")") << "\n";
   }
   if (bad_input > 0) return kExitBadInput;
   return failed > 0 ? kExitCheckFailed : kExitOk;

@@ -79,7 +79,8 @@ file(WRITE ${dir}/capacity.json [=[
  "backends": {"emulated": {"backend": "emulated"}}}}
 ]=])
 run(3 check capacity.json --list)
-if(NOT err MATCHES "capacity.json: case crosscheck/cornell/odd/emulated/one-frame/seed1 \\([^)]*/crosscheck/configs/odd[^)]*\\): --capacity")
+set(case "crosscheck/cornell/odd/emulated/one-frame/seed1")
+if(NOT err MATCHES "capacity.json: case ${case} \\([^)]*/crosscheck/configs/odd[^)]*\\): --capacity")
   message(FATAL_ERROR "a bad capacity: ${err}")
 endif()
 file(WRITE ${dir}/key.json "{\"hpsf_gate\": 1, \"crosscheck\": {\"scenes\": [\"cornell\"], \"colours\": 3}}")
