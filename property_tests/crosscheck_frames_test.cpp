@@ -35,13 +35,6 @@ const std::vector<std::string> kAllBackends = {"reference", "emulated", "vulkan"
 
 const LevelVerdict& Level(const CrosscheckReport& report, int level) { return report.levels[std::size_t(level - 1)]; }
 
-std::string FirstFailure(const CrosscheckReport& report) {
-  for (const LevelVerdict& v : report.levels) {
-    if (v.applicable && !v.passed) return "level " + std::to_string(v.level) + ": " + v.failures.front();
-  }
-  return "(none)";
-}
-
 const QualityFigures& QualityOf(const CrosscheckReport& report, const std::string& backend) {
   for (const QualityFigures& q : report.quality) {
     if (q.backend == backend) return q;
@@ -85,7 +78,7 @@ TEST(CrosscheckFrames, EveryPolicyAndTemporalModePassesOnAllThreeBackends) {
     const std::string name = std::string(c.eviction) + ", " + c.temporal + ", " + ToString(c.accumulation) +
                              (c.mode == simt::Mode::kFaithful ? ", faithful" : ", fast");
     const CrosscheckReport report = checker.CheckFrames(frames, config, emulator);
-    EXPECT_TRUE(report.Passed()) << name << ": " << FirstFailure(report);
+    EXPECT_TRUE(report.Passed()) << name << ": " << report.FirstFailure();
     EXPECT_EQ(report.frames, kFrames);
     for (int level = 1; level <= 4; ++level) EXPECT_TRUE(Level(report, level).applicable) << name << ", " << level;
     EXPECT_NE(Level(report, 1).note.find("accepted records compared over 4 frames"), std::string::npos) << name;
@@ -166,7 +159,7 @@ TEST(CrosscheckFrames, AnAliasAcrossFramesIsClassifiedNotBlamed) {
   EmulatedBackend emulated(EmulatorOptions{});
   EXPECT_EQ(CountAfter(emulated, frames, config, cells, b), na + nb) << "B did not join A's slot";
   const CrosscheckReport report = Crosschecker(kAllBackends).CheckFrames(frames, config, EmulatorOptions{});
-  EXPECT_TRUE(report.Passed()) << FirstFailure(report);
+  EXPECT_TRUE(report.Passed()) << report.FirstFailure();
   for (const char* backend : {"emulated", "vulkan"}) {
     EXPECT_EQ(QualityOf(report, backend).aliased_slots, 1u) << backend;
     EXPECT_EQ(QualityOf(report, backend).aliased_records, nb) << backend << ": B's records, in frame 1";
@@ -201,7 +194,7 @@ TEST(CrosscheckFrames, ACellWhoseProbeFailedInAnEarlierFrameIsClassifiedNotBlame
   EXPECT_EQ(reference.result().cells[reference.result().placement[cells.records_of.at(c)[0]]].count, 2 * nc);
 
   const CrosscheckReport report = Crosschecker(kAllBackends).CheckFrames(frames, config, EmulatorOptions{});
-  EXPECT_TRUE(report.Passed()) << FirstFailure(report);
+  EXPECT_TRUE(report.Passed()) << report.FirstFailure();
   for (const char* backend : {"emulated", "vulkan"}) {
     EXPECT_EQ(QualityOf(report, backend).probe_failures, nc) << backend << ": C's records, in frame 1";
     EXPECT_EQ(QualityOf(report, backend).aliased_records, nc) << backend << ": C's records, in frame 2";
@@ -260,8 +253,8 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
     const JudgedBackend judged{v.name, v.backend.get(), v.rerun.get(), "rerun", false, v.name.starts_with("vulkan")};
     const CrosscheckReport report = JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
     const std::string name = v.name + ", " + v.eviction + ", " + v.temporal;
-    EXPECT_EQ(report.Passed(), !v.broken) << name << ": " << FirstFailure(report);
-    if (v.broken) std::printf("%s: %s\n", name.c_str(), FirstFailure(report).c_str());
+    EXPECT_EQ(report.Passed(), !v.broken) << name << ": " << report.FirstFailure();
+    if (v.broken) std::printf("%s: %s\n", name.c_str(), report.FirstFailure().c_str());
   }
 }
 

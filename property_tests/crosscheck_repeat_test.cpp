@@ -12,15 +12,6 @@ namespace {
 
 constexpr int kRepeats = 20;
 
-std::string FirstFailure(const CrosscheckReport& report) {
-  for (const LevelVerdict& v : report.levels) {
-    if (v.applicable && !v.passed) {
-      return "level " + std::to_string(v.level) + " " + v.name + ": " + (v.failures.empty() ? v.note : v.failures.front());
-    }
-  }
-  return "";
-}
-
 TEST(CrosscheckRepeat, EveryBuiltInScenePassesTwentyTimesWithAllBackendsInBothAccumulations) {
   for (const std::string scene : {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
     const RecordBatch batch = TracedBatch(scene, 64, 2);  // as `hpsf crosscheck SCENE --size 64x64 --spp 2 --capacity 32768`
@@ -31,7 +22,7 @@ TEST(CrosscheckRepeat, EveryBuiltInScenePassesTwentyTimesWithAllBackendsInBothAc
       for (int run = 0; run < kRepeats; ++run) {
         const CrosscheckReport report = Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{});
         ASSERT_TRUE(report.Passed()) << scene << (accumulation == Accumulation::kFloat32 ? " float32" : " fixed64") << ", run "
-                                     << run + 1 << " of " << kRepeats << ": " << FirstFailure(report);
+                                     << run + 1 << " of " << kRepeats << ": " << report.FirstFailure();
       }
     }
   }

@@ -290,6 +290,15 @@ bool CrosscheckReport::Passed() const {
   return std::all_of(levels.begin(), levels.end(), [](const LevelVerdict& v) { return !v.applicable || v.passed; });
 }
 
+std::string CrosscheckReport::FirstFailure() const {
+  for (const LevelVerdict& v : levels) {
+    if (v.applicable && !v.passed) {
+      return "level " + std::to_string(v.level) + " " + v.name + ": " + (v.failures.empty() ? v.note : v.failures[0]);
+    }
+  }
+  return "";
+}
+
 nlohmann::json CrosscheckReport::ToJson() const {
   nlohmann::json j = {{"version", 2}, {"passed", Passed()}, {"frames", frames}};
   if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;

@@ -45,6 +45,8 @@ struct CrosscheckReport {
   std::string vulkan_device;  // name and driver, when the Vulkan backend ran
   std::uint32_t frames = 1;
   bool Passed() const;
+  // "level N NAME: " and the first failure of the first failed level (its note when it lists none); "" if passed.
+  std::string FirstFailure() const;
   nlohmann::json ToJson() const;  // versioned
 };
 

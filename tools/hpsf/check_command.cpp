@@ -46,9 +46,8 @@ void ValidateCase(const Gate& gate, const GateCase& c) {
   CommandContext context;
   context.options_only = true;
   AddCrosscheckCommand(app, context);
-  std::vector<std::string> arguments = c.arguments;
   std::vector<const char*> argv = {"hpsf"};
-  for (const std::string& a : arguments) argv.push_back(a.c_str());
+  for (const std::string& a : c.arguments) argv.push_back(a.c_str());
   const std::string where = gate.source + ": case " + c.id + " (" + c.where + "): ";
   try {
     app.parse(int(argv.size()), argv.data());

@@ -47,16 +47,6 @@ struct Failure {
   CrosscheckReport report;  // of the shrunk case
 };
 
-// The first failing level and its first failure, for the summary line.
-std::string FirstFailure(const CrosscheckReport& report) {
-  for (const LevelVerdict& v : report.levels) {
-    if (v.applicable && !v.passed) {
-      return "level " + std::to_string(v.level) + " " + v.name + ": " + (v.failures.empty() ? "" : v.failures.front());
-    }
-  }
-  return "";
-}
-
 nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, const std::array<std::uint64_t, kAdversarialFamilies>& families,
                       const std::optional<Failure>& failure) {
   nlohmann::json j = {{"version", 1},
@@ -162,7 +152,7 @@ int Run(FuzzOptions& o, bool options_only) {
     std::printf("  found: %s\n", f.found.ToString().c_str());
     std::printf("  shrunk in %llu checks (%.2f s)%s: %s\n", (unsigned long long)f.shrink.checks, f.shrink_seconds,
                 f.shrink.exhausted ? ", stopped at the check limit" : "", f.shrink.shrunk.ToString().c_str());
-    std::printf("  %s\n", FirstFailure(f.report).c_str());
+    std::printf("  %s\n", f.report.FirstFailure().c_str());
     std::printf("  repro bundle in %s: reproduce.sh runs `hpsf crosscheck records.hpsfv` with the same options\n", o.repro_dir.c_str());
   }
   return failure ? kExitCheckFailed : kExitOk;

@@ -60,6 +60,34 @@ std::string FramePath(const std::string& pattern, std::uint32_t frame) {
   return path.replace(path.find(kFramePlaceholder), std::string(kFramePlaceholder).size(), number);
 }
 
+// One frame of a sequence through the backend's table (core/backend.h). The last frame goes to `request.output`
+// (-o) and, given a --frame-out pattern, to its frame's file too (copied, not filtered twice); an earlier frame
+// goes to its frame's file, or only into the table. `frame` (its JSON entry) gains the output, the filter time and
+// the eviction and temporal figures; the last frame's FilterAndWrite report is returned, an empty one otherwise.
+nlohmann::json FilterSequenceFrame(BackendInstance& backend, const RecordBatch& batch, const FilterConfig& config,
+                                   const FilterOptions& filter, const OutputRequest& request,
+                                   const std::string& frame_out, bool last, nlohmann::json& frame) {
+  const std::string frame_path = frame_out.empty() ? "" : FramePath(frame_out, config.frame);
+  nlohmann::json report;
+  if (last) {
+    report = FilterAndWrite(backend, batch, config, filter, request);
+    if (!frame_path.empty()) frame["output"] = CopyImageFiles(request.output, frame_path);
+    frame["filter_s"] = report["timings"]["filter_s"];
+  } else if (!frame_path.empty()) {
+    const nlohmann::json written =
+        FilterAndWrite(backend, batch, config, filter, {request.scene, request.backend, frame_path});
+    frame["output"] = written["output"];
+    frame["filter_s"] = written["timings"]["filter_s"];
+  } else {
+    const auto filter_start = std::chrono::steady_clock::now();
+    backend.backend->FilterFrame(batch, config);
+    frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
+  }
+  if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
+  if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
+  return report;
+}
+
 void RunRender(RenderOptions& o, bool options_only) {
   CheckBackend(o.backend);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
@@ -98,23 +126,9 @@ void RunRender(RenderOptions& o, bool options_only) {
     const bool last = k + 1 == o.frames;
     if (dump) dump->Append(traced.batch);
     nlohmann::json frame = {{"frame", o.trace.frame}, {"trace_s", trace_seconds}};
-    if (last) {
-      report = FilterAndWrite(backend, traced.batch, config, o.filter, {scene.name, o.backend, o.output});
-      // The last frame's files under --frame-out's name too: the same image, not filtered a second time.
-      if (!o.frame_out.empty()) frame["output"] = CopyImageFiles(o.output, FramePath(o.frame_out, o.trace.frame));
-      frame["filter_s"] = report["timings"]["filter_s"];
-    } else if (!o.frame_out.empty()) {
-      const nlohmann::json written = FilterAndWrite(backend, traced.batch, config, o.filter,
-                                                    {scene.name, o.backend, FramePath(o.frame_out, o.trace.frame)});
-      frame["output"] = written["output"];
-      frame["filter_s"] = written["timings"]["filter_s"];
-    } else {
-      const auto filter_start = std::chrono::steady_clock::now();
-      backend.backend->FilterFrame(traced.batch, config);
-      frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
-    }
-    if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
-    if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
+    nlohmann::json written = FilterSequenceFrame(backend, traced.batch, config, o.filter,
+                                                 {scene.name, o.backend, o.output}, o.frame_out, last, frame);
+    if (last) report = std::move(written);
     per_frame.push_back(frame);
   }
   if (dump) dump->Finish();
@@ -165,22 +179,10 @@ void RunReplay(ReplayOptions& o, bool options_only) {
   for (std::size_t k = 0; k < frames.size(); ++k) {
     config.frame = frames[k].frame;
     nlohmann::json frame = {{"frame", config.frame}};
-    const std::string output = o.frame_out.empty() ? "" : FramePath(o.frame_out, config.frame);
-    if (k + 1 == frames.size()) {
-      report = FilterAndWrite(backend, frames[k], config, o.filter, {o.records, o.backend, o.output});
-      if (!output.empty()) frame["output"] = CopyImageFiles(o.output, output);
-      frame["filter_s"] = report["timings"]["filter_s"];
-    } else if (!output.empty()) {
-      const nlohmann::json written = FilterAndWrite(backend, frames[k], config, o.filter, {o.records, o.backend, output});
-      frame["output"] = written["output"];
-      frame["filter_s"] = written["timings"]["filter_s"];
-    } else {
-      const auto filter_start = std::chrono::steady_clock::now();
-      backend.backend->FilterFrame(frames[k], config);
-      frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
-    }
-    if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
-    if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
+    const bool last = k + 1 == frames.size();
+    nlohmann::json written = FilterSequenceFrame(backend, frames[k], config, o.filter,
+                                                 {o.records, o.backend, o.output}, o.frame_out, last, frame);
+    if (last) report = std::move(written);
     per_frame.push_back(frame);
   }
   report["version"] = 1;

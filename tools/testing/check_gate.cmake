@@ -3,21 +3,12 @@
 # report broken on purpose does not), names the level in the failure, and the failing case's bundle reproduces it;
 # bad gate files and options exit 3 naming the place.
 include(${CMAKE_CURRENT_LIST_DIR}/bundle_reproduces.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/hpsf_run.cmake)
 set(dir ${OUT}/check_gate)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
 
-function(run expected_code)
-  execute_process(COMMAND ${HPSF} ${ARGN} WORKING_DIRECTORY ${dir}
-                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL expected_code)
-    message(FATAL_ERROR "hpsf ${ARGN}: exit ${code}, expected ${expected_code}\n${out}${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
-
-run(0 check --list)
+hpsf_run(0 check --list)
 string(STRIP "${out}" all)
 string(REPLACE "\n" ";" all "${all}")
 list(LENGTH all cases)
@@ -26,7 +17,7 @@ if(NOT cases EQUAL 36)
 endif()
 set(sharded)
 foreach(shard 1 2 3)
-  run(0 check --list --shard ${shard}/3)
+  hpsf_run(0 check --list --shard ${shard}/3)
   string(STRIP "${out}" part)
   string(REPLACE "\n" ";" part "${part}")
   list(APPEND sharded ${part})
@@ -44,7 +35,7 @@ file(WRITE ${dir}/defect.json [=[
    "backends": {"emulated": {"backend": "emulated"},
                 "emulated-D9": {"backend": "emulated", "inject-defect": "D9", "mode": "faithful", "warp-size": 8}}}}
 ]=])
-run(2 check defect.json --junit ${dir}/junit.xml --out ${dir}/out)
+hpsf_run(2 check defect.json --junit ${dir}/junit.xml --out ${dir}/out)
 if(NOT out MATCHES "PASS crosscheck/cornell/small/emulated/one-frame/seed1"
    OR NOT out MATCHES "FAIL crosscheck/cornell/small/emulated-D9/one-frame/seed1 [^\n]*: level 2 tables: emulated: "
    OR NOT out MATCHES "check: 1 of 2 cases passed")
@@ -70,7 +61,7 @@ endif()
 hpsf_expect_bundle_reproduces(${dir}/out/bundles/crosscheck_cornell_small_emulated-D9_one-frame_seed1)
 
 file(WRITE ${dir}/version.json "{\"hpsf_gate\": 2, \"crosscheck\": {}}")
-run(3 check version.json)
+hpsf_run(3 check version.json)
 if(NOT err MATCHES "version.json: /hpsf_gate: expected 1")
   message(FATAL_ERROR "gate version 2: ${err}")
 endif()
@@ -78,22 +69,22 @@ file(WRITE ${dir}/capacity.json [=[
 {"hpsf_gate": 1, "crosscheck": {"scenes": ["cornell"], "configs": {"odd": {"capacity": 1000}},
  "backends": {"emulated": {"backend": "emulated"}}}}
 ]=])
-run(3 check capacity.json --list)
+hpsf_run(3 check capacity.json --list)
 set(case "crosscheck/cornell/odd/emulated/one-frame/seed1")
 if(NOT err MATCHES "capacity.json: case ${case} \\([^)]*/crosscheck/configs/odd[^)]*\\): --capacity")
   message(FATAL_ERROR "a bad capacity: ${err}")
 endif()
 file(WRITE ${dir}/key.json "{\"hpsf_gate\": 1, \"crosscheck\": {\"scenes\": [\"cornell\"], \"colours\": 3}}")
-run(3 check key.json)
+hpsf_run(3 check key.json)
 if(NOT err MATCHES "key.json: /crosscheck/colours: not a gate key")
   message(FATAL_ERROR "an unknown key: ${err}")
 endif()
 file(WRITE ${dir}/broken.json "{\"hpsf_gate\": 1,")
-run(3 check broken.json)
+hpsf_run(3 check broken.json)
 if(NOT err MATCHES "broken.json: not valid JSON at byte")
   message(FATAL_ERROR "broken JSON: ${err}")
 endif()
-run(3 check --shard 4/3 --list)
+hpsf_run(3 check --shard 4/3 --list)
 if(NOT err MATCHES "--shard")
   message(FATAL_ERROR "--shard 4/3: ${err}")
 endif()
