@@ -11,6 +11,7 @@ std::string Eviction::ToString() const {
     case EvictionPolicy::kNone: return "none";
     case EvictionPolicy::kStrict: return "strict";
     case EvictionPolicy::kStale: return "stale:" + std::to_string(unseen_frames);
+    case EvictionPolicy::kPriority: return "priority";
   }
   return "?";
 }
@@ -18,6 +19,7 @@ std::string Eviction::ToString() const {
 Eviction ParseEviction(const std::string& text) {
   if (text == "none") return {EvictionPolicy::kNone, 0};
   if (text == "strict") return {EvictionPolicy::kStrict, 1};
+  if (text == "priority") return {EvictionPolicy::kPriority, 0};
   const std::string prefix = "stale:";
   if (text.rfind(prefix, 0) == 0) {
     const char* first = text.data() + prefix.size();
@@ -29,7 +31,7 @@ Eviction ParseEviction(const std::string& text) {
     }
     throw ConfigError("--eviction", "stale needs a number of frames in [1, 2^20], as in stale:4; got '" + text + "'");
   }
-  throw ConfigError("--eviction", "expected none, strict or stale:N; got '" + text + "'");
+  throw ConfigError("--eviction", "expected none, strict, stale:N or priority; got '" + text + "'");
 }
 
 }  // namespace hpsf

@@ -99,6 +99,10 @@ void FilterConfig::Validate() const {
     throw ConfigError("--eviction", "is not a policy: " + eviction.ToString() + " with " +
                                         std::to_string(eviction.unseen_frames) + " frames unseen");
   }
+  if (eviction.by_priority() && fingerprint_bits > 31) {
+    throw ConfigError("--eviction", "priority reserves the tag 0xFFFFFFFF for its tombstones, so it needs "
+                                    "--fingerprint-bits 31 or fewer; got " + std::to_string(fingerprint_bits));
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }

@@ -3,6 +3,7 @@
 #include <bit>
 
 #include "core/hash_table.h"
+#include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 
 namespace hpsf {
@@ -16,28 +17,53 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     co_return;
   }
   const Record& r = args.records[i];
-  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
-    const std::uint32_t slot = (key.slot0 + probe) & (args.capacity - 1u);
-    std::uint64_t tag = co_await ctx.Load(b.tags, slot);
-    if (tag == kEmptyTag) tag = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, key.fingerprint);
-    // An empty slot we just claimed (CAS returned 0) or a slot that holds our fingerprint: add here, once.
-    if (tag != kEmptyTag && tag != key.fingerprint) continue;
-    for (int c = 0; c < 3; ++c) {
-      if (args.accumulation == Accumulation::kFixed64) {
-        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
-        const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
-        if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
-      } else {
-        co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c, std::bit_cast<std::uint32_t>(r.contribution[c]));
-      }
+  std::uint32_t slot = kProbeFailure;
+  if (args.claim_tombstones) {
+    // Priority eviction's tombstones may be claimed, so the cell may lie past one: look for it first, up to the
+    // first empty slot (no live cell lies past a hole, D7) ...
+    for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
+      const std::uint32_t s = (key.slot0 + probe) & (args.capacity - 1u);
+      const std::uint64_t tag = co_await ctx.Load(b.tags, s);
+      if (tag == key.fingerprint) slot = s;
+      if (tag == kEmptyTag) break;
     }
-    // A count of 2^64 - 1 wraps to 0 (D12): no frame sequence gets there, but a table loaded with one can.
-    if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) co_await ctx.AtomicAdd(b.wraps, 1, 1);
-    if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
-    co_await ctx.Store(b.placements, i, slot);
+    // ... then claim the first empty or tombstone slot; one that another record of this cell claimed meanwhile is
+    // joined. Claimable slots only get fewer during the pass, so every record of a cell ends in the same slot.
+    for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
+      const std::uint32_t s = (key.slot0 + probe) & (args.capacity - 1u);
+      std::uint64_t tag = co_await ctx.Load(b.tags, s);
+      if (tag == kEmptyTag || tag == shared::kTombstoneTag) {
+        const std::uint64_t seen = co_await ctx.AtomicCas(b.tags, s, tag, key.fingerprint);
+        tag = seen == tag ? key.fingerprint : seen;
+      }
+      if (tag == key.fingerprint) slot = s;
+    }
+  } else {
+    for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
+      const std::uint32_t s = (key.slot0 + probe) & (args.capacity - 1u);
+      std::uint64_t tag = co_await ctx.Load(b.tags, s);
+      if (tag == kEmptyTag) tag = co_await ctx.AtomicCas(b.tags, s, kEmptyTag, key.fingerprint);
+      // An empty slot we just claimed (CAS returned 0) or a slot that holds our fingerprint: add here, once.
+      if (tag == kEmptyTag || tag == key.fingerprint) slot = s;
+    }
+  }
+  if (slot == kProbeFailure) {
+    co_await ctx.Store(b.placements, i, kProbeFailure);
     co_return;
   }
-  co_await ctx.Store(b.placements, i, kProbeFailure);
+  for (int c = 0; c < 3; ++c) {
+    if (args.accumulation == Accumulation::kFixed64) {
+      const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+      const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
+      if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
+    } else {
+      co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c, std::bit_cast<std::uint32_t>(r.contribution[c]));
+    }
+  }
+  // A count of 2^64 - 1 wraps to 0 (D12): no frame sequence gets there, but a table loaded with one can.
+  if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) co_await ctx.AtomicAdd(b.wraps, 1, 1);
+  if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
+  co_await ctx.Store(b.placements, i, slot);
 }
 
 }  // namespace hpsf

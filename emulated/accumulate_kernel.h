@@ -3,7 +3,8 @@
 // compare-and-swap; each channel is added atomically, then the count; the record's slot is stored. No slot
 // within the probe limit is a probe failure. fixed64 adds also report wrap (new < old). With eviction, the slot's
 // last-seen frame is stored after the adds (every writer stores the same frame). A tombstone (core/hash_table.h)
-// is a slot like any other: its tag is joined or passed, never claimed by another fingerprint.
+// is a slot like any other: its tag is joined or passed, never claimed by another fingerprint; priority eviction's
+// tombstones (kTombstoneTag, with claim_tombstones) are claimed: the cell is looked for first, then claimed.
 #ifndef HPSF_EMULATED_ACCUMULATE_KERNEL_H
 #define HPSF_EMULATED_ACCUMULATE_KERNEL_H
 
@@ -41,6 +42,7 @@ struct AccumulateArgs {
   float fixed_point_scale = 1.0f;  // 2^F
   bool track_last_seen = false;    // with eviction: store `frame` into buffers.last_seen of every slot added to
   std::uint32_t frame = 0;
+  bool claim_tombstones = false;   // with priority eviction (core/shared/table_params.h)
   TableBuffers buffers{};
   // With a blending --temporal and a table before the frame: the temporal pass's arguments. The correct kernel
   // never reads them (the blend is a pass of its own, after this one); D10's variant blends inside this pass.

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/hash_table.h"
+#include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "core/temporal.h"
 #include "emulated/temporal_kernel.h"
@@ -141,6 +142,32 @@ simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const Evictio
   if (co_await ctx.Load(args.buffers.tags, slot) == kEmptyTag) co_return;
   if (co_await ctx.Load(args.buffers.counts, slot) != 0) co_return;
   co_await ctx.Store(args.buffers.tags, slot, kEmptyTag);  // the one change: no look at the live slots after it
+}
+
+simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const EvictionArgs& args) {
+  const std::uint32_t i = ctx.Thread();
+  const TableBuffers& b = args.buffers;
+  if (co_await ctx.Load(b.placements, i) != kProbeFailure) co_return;
+  bool found = false;
+  std::uint32_t victim = 0, victim_tag = 0;
+  std::uint64_t victim_priority = 0;
+  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+    const std::uint32_t slot = (args.keys[i].slot0 + probe) & (args.capacity - 1u);
+    const auto tag = static_cast<std::uint32_t>(co_await ctx.Load(b.tags, slot));
+    if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
+    const std::uint64_t count = co_await ctx.Load(b.counts, slot);
+    const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));
+    if (count == 0 || last_seen == args.frame) continue;
+    const std::uint64_t priority = shared::EvictionPriority(last_seen, count);
+    // The one change: the compare's operands swapped, so the highest priority is evicted.
+    if (!found || shared::EvictedBefore(victim_priority, victim_tag, priority, tag)) {
+      found = true;
+      victim = slot;
+      victim_priority = priority;
+      victim_tag = tag;
+    }
+  }
+  if (found) co_await ctx.Store(args.victims, victim, 1);
 }
 
 Defect ParseDefect(const std::string& text) {

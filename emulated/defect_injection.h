@@ -30,6 +30,10 @@ AccumulateKernelFn KernelWithDefect(Defect defect);
 // Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
 
+// Priority eviction's compare of the wrong sign (issue 14): the selection evicts, in a failed record's window, the
+// untouched live slot of highest priority instead of lowest (the most recently seen, most sampled cell).
+simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const EvictionArgs& args);
+
 // D10: the accumulate that blends its slot (core/temporal.h) right after each record's add, reading averages from
 // the table it is still accumulating instead of leaving the blend to a pass after it: torn (sum, count), and a
 // slot blended once per record. Not a Defect value: only a frame after the first blends.

@@ -14,8 +14,8 @@ namespace hpsf {
 class EmulatedBackend : public Backend {
  public:
   explicit EmulatedBackend(const EmulatorOptions& options, AccumulateKernelFn kernel = AccumulateKernel,
-                           ReclaimKernelFn reclaim = ReclaimKernel)
-      : options_(options), kernel_(kernel), reclaim_(reclaim) {}
+                           EvictionKernels eviction_kernels = {})
+      : options_(options), kernel_(kernel), eviction_kernels_(eviction_kernels) {}
   std::string Name() const override { return "emulated"; }
   const HashedRun* LastHashedRun() const override { return run_ ? &*run_ : nullptr; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
@@ -28,7 +28,7 @@ class EmulatedBackend : public Backend {
  private:
   EmulatorOptions options_;
   AccumulateKernelFn kernel_;
-  ReclaimKernelFn reclaim_;
+  EvictionKernels eviction_kernels_;
   std::optional<EmulatedRun> run_;
 };
 

@@ -47,7 +47,8 @@ void EmulatorOptions::Validate() const {
 }
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
-                           AccumulateKernelFn accumulate, const HashTableDump* previous, ReclaimKernelFn reclaim) {
+                           AccumulateKernelFn accumulate, const HashTableDump* previous,
+                           EvictionKernels eviction_kernels) {
   CheckBatchShape(batch);
   config.Validate();
   options.Validate();
@@ -107,6 +108,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     b.last_seen = memory.Allocate32("last_seen", config.capacity);
     args.track_last_seen = true;
     args.frame = config.frame;
+    args.claim_tombstones = config.eviction.by_priority();
   }
   // The double buffer (emulated/temporal_kernel.h): the table before the frame, which the blend reads.
   const bool blending = previous && config.temporal.blends();
@@ -140,9 +142,13 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     }
   }
 
-  EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b, 0};
+  EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b, 0, {}, 0};
   if (evicting) {
     eviction.evicted = memory.Allocate64("evicted", 1);
+    if (config.eviction.by_priority()) {
+      eviction.keys = run.keys;
+      eviction.victims = memory.Allocate32("victims", config.capacity);
+    }
     args.eviction = &eviction;
   }
 
@@ -168,18 +174,22 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.timings.accumulate = clock.Lap();
   // The passes after the accumulate run one thread per slot. Faithful mode schedules them by the run's policy; an
   // exhaustive search drives only the accumulate launch, so they then take round-robin.
-  const auto launch_per_slot = [&](const simt::Kernel& kernel) {
-    if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, config.capacity, kernel, options.threads);
-    const std::uint32_t warps = (config.capacity + options.warp_size - 1) / options.warp_size;
+  const auto launch = [&](std::uint32_t threads, const simt::Kernel& kernel) {
+    if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, threads, kernel, options.threads);
+    const std::uint32_t warps = (threads + options.warp_size - 1) / options.warp_size;
     const std::string policy = options.schedule_instance ? "round-robin" : options.schedule;
     const auto schedule = simt::MakeSchedule(policy, warps, std::uint64_t(warps) * (2 * config.probe_limit + 8));
-    simt::LaunchFaithful(memory, config.capacity, options.warp_size, kernel, *schedule, {});
+    simt::LaunchFaithful(memory, threads, options.warp_size, kernel, *schedule, {});
   };
+  const auto launch_per_slot = [&](const simt::Kernel& kernel) { launch(config.capacity, kernel); };
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
   run.timings.temporal = clock.Lap();
   if (evicting) {
+    if (config.eviction.by_priority()) {
+      launch(n, [&](simt::ThreadContext& ctx) { return eviction_kernels.select(ctx, eviction); });
+    }
     launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
-    launch_per_slot([&](simt::ThreadContext& ctx) { return reclaim(ctx, eviction); });
+    launch_per_slot([&](simt::ThreadContext& ctx) { return eviction_kernels.reclaim(ctx, eviction); });
     run.evicted = memory.Words64(eviction.evicted)[0];
     table.last_seen = memory.TakeWords32(b.last_seen);
   }

@@ -56,11 +56,11 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 // previous: the table after the frames before this one in a sequence (core/backend.h); the device table starts
 // as it, and F is its F. Null: the table starts empty and F is chosen for this batch (and config.frames).
 // With a blending config.temporal and a previous table, the temporal launch (emulated/temporal_kernel.h) follows
-// the accumulate. With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow, with `reclaim`
-// as the reclaim kernel; the run's table is the state after them.
+// the accumulate. With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow, with
+// `eviction_kernels` as the selection and reclaim kernels; the run's table is the state after them.
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr,
-                           ReclaimKernelFn reclaim = ReclaimKernel);
+                           EvictionKernels eviction_kernels = {});
 
 }  // namespace hpsf
 

@@ -3,18 +3,49 @@
 #include <algorithm>
 
 #include "core/hash_table.h"
+#include "core/shared/eviction_priority.h"
 
 namespace hpsf {
+
+simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArgs& args) {
+  const std::uint32_t i = ctx.Thread();
+  const TableBuffers& b = args.buffers;
+  if (co_await ctx.Load(b.placements, i) != kProbeFailure) co_return;
+  bool found = false;
+  std::uint32_t victim = 0, victim_tag = 0;
+  std::uint64_t victim_priority = 0;
+  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+    const std::uint32_t slot = (args.keys[i].slot0 + probe) & (args.capacity - 1u);
+    const auto tag = static_cast<std::uint32_t>(co_await ctx.Load(b.tags, slot));
+    if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
+    const std::uint64_t count = co_await ctx.Load(b.counts, slot);
+    const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));
+    if (count == 0 || last_seen == args.frame) continue;  // a tombstone of another policy, or touched this frame
+    const std::uint64_t priority = shared::EvictionPriority(last_seen, count);
+    if (!found || shared::EvictedBefore(priority, tag, victim_priority, victim_tag)) {
+      found = true;
+      victim = slot;
+      victim_priority = priority;
+      victim_tag = tag;
+    }
+  }
+  if (found) co_await ctx.Store(args.victims, victim, 1);
+}
 
 simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args) {
   const std::uint32_t slot = ctx.Thread();
   const TableBuffers& b = args.buffers;
   if (co_await ctx.Load(b.tags, slot) == kEmptyTag) co_return;
   if (co_await ctx.Load(b.counts, slot) == 0) co_return;  // a tombstone already
-  const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));
-  if (!args.eviction.Evicts(args.frame, last_seen)) co_return;
+  if (args.eviction.by_priority()) {
+    if (co_await ctx.Load(args.victims, slot) == 0) co_return;
+  } else {
+    const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));
+    if (!args.eviction.Evicts(args.frame, last_seen)) co_return;
+  }
   for (int c = 0; c < 3; ++c) co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c, 0);
   co_await ctx.Store(b.counts, slot, 0);
+  if (args.eviction.by_priority()) co_await ctx.Store(b.tags, slot, shared::kTombstoneTag);
   co_await ctx.AtomicAdd(args.evicted, 0, 1);
 }
 

@@ -9,10 +9,17 @@
 // every placement of the frame stays valid. The reclaim's threads race benignly: a thread that finds a
 // neighbour already reclaimed reaches the decision it would have reached from the snapshot, because that
 // neighbour found no live slot within a reach that covers the rest of this thread's.
+//
+// Priority eviction (core/eviction.h) adds a launch before them, one thread per record: SelectVictims, in the
+// window of each record that found no slot, marks the untouched live slot of lowest priority
+// (core/shared/eviction_priority.h). The table is only read there, so the victims are a function of the state
+// after the accumulate, whatever the order of the threads, and two failed records that share a window mark the
+// same victim. Evict then evicts the marked slots and tags them kTombstoneTag, which an insertion may claim.
 #ifndef HPSF_EMULATED_EVICTION_KERNELS_H
 #define HPSF_EMULATED_EVICTION_KERNELS_H
 
 #include <cstdint>
+#include <span>
 
 #include "core/eviction.h"
 #include "emulated/accumulate_kernel.h"
@@ -27,13 +34,26 @@ struct EvictionArgs {
   Eviction eviction;
   TableBuffers buffers{};
   std::uint32_t evicted = 0;  // 64-bit, one word: slots made tombstones
+  // With priority: the frame's keys (slot0 per record) and a 32-bit mark per slot, 1 for a victim.
+  std::span<const KeyResult> keys;
+  std::uint32_t victims = 0;
 };
 
-simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args);
-simt::KernelTask ReclaimKernel(simt::ThreadContext& ctx, const EvictionArgs& args);
+simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArgs& args);  // per record
+simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args);          // per slot
+simt::KernelTask ReclaimKernel(simt::ThreadContext& ctx, const EvictionArgs& args);        // per slot
 
-// The reclaim kernel to run; the D7 variant (emulated/defect_injection.h) empties every tombstone.
-using ReclaimKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const EvictionArgs&);
+using EvictionKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const EvictionArgs&);
+
+// The eviction kernels to run where a variant may replace one (emulated/defect_injection.h): D7's reclaim empties
+// every tombstone; the wrong-sign selection evicts the highest priority. A reclaim kernel converts, so a call that
+// names only the reclaim keeps working.
+struct EvictionKernels {
+  EvictionKernels(EvictionKernelFn reclaim_kernel = ReclaimKernel, EvictionKernelFn select_kernel = SelectVictimsKernel)
+      : reclaim(reclaim_kernel), select(select_kernel) {}
+  EvictionKernelFn reclaim;
+  EvictionKernelFn select;
+};
 
 }  // namespace hpsf
 

@@ -224,7 +224,7 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
     std::unique_ptr<Backend> backend, rerun;
     bool broken;
   };
-  auto emulated = [](AccumulateKernelFn kernel, ReclaimKernelFn reclaim) {
+  auto emulated = [](AccumulateKernelFn kernel, EvictionKernels reclaim) {
     return std::make_unique<EmulatedBackend>(EmulatorOptions{}, kernel, reclaim);
   };
   auto vulkan = [&](const std::string& eviction_spv, const std::string& accumulate_spv = "") {

@@ -20,17 +20,19 @@ struct HashedBackend {
   std::unique_ptr<Backend> backend;
 };
 
-// reclaim and eviction_spv: the emulator's reclaim kernel and the eviction shader (empty: the built-in one).
-inline std::vector<HashedBackend> HashedBackends(ReclaimKernelFn reclaim = ReclaimKernel,
+// eviction_kernels and eviction_spv: the emulator's eviction kernels and the eviction shader (empty: the built-in
+// one).
+inline std::vector<HashedBackend> HashedBackends(EvictionKernels eviction_kernels = {},
                                                  const std::string& eviction_spv = "") {
   std::vector<HashedBackend> backends;
   backends.push_back(
-      {"emulated fast", std::make_unique<EmulatedBackend>(EmulatorOptions{}, AccumulateKernel, reclaim)});
+      {"emulated fast", std::make_unique<EmulatedBackend>(EmulatorOptions{}, AccumulateKernel, eviction_kernels)});
   EmulatorOptions faithful;
   faithful.mode = simt::Mode::kFaithful;
   faithful.warp_size = 8;
   faithful.schedule = "random:7";
-  backends.push_back({"emulated faithful", std::make_unique<EmulatedBackend>(faithful, AccumulateKernel, reclaim)});
+  backends.push_back(
+      {"emulated faithful", std::make_unique<EmulatedBackend>(faithful, AccumulateKernel, eviction_kernels)});
   for (const StagingPolicy staging : kStagingPolicies) {
     backends.push_back({std::string("vulkan, staging ") + ToString(staging),
                         std::make_unique<VulkanBackend>(TestDevice(staging), "", eviction_spv)});

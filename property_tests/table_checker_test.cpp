@@ -16,8 +16,10 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "emulated/emulated_filter.h"
+#include "property_tests/constructed_cells.h"
 #include "property_tests/record_generators.h"
 #include "reference/reference_filter.h"
 #include "tools/checks/table_checker.h"
@@ -454,6 +456,40 @@ void PlantUnneededTombstone(Fixture& f) {
   f.run.table.tags[s] = f.before->tags[s];
 }
 
+// Priority: cell B lived at slot0 + 1 past A's tombstone at slot0; frame 1's record of B claimed the tombstone
+// instead of finding B, splitting the cell (an insertion without its search). Constructed cells in 4 slots, the
+// table otherwise consistent with the move.
+void PlantCellSplitPastATombstone(Fixture& f) {
+  f.config = ConstructedConfig(4, 4, 24);
+  f.config.frames = 2;
+  f.config.eviction = ParseEviction("priority");
+  const glm::ivec3 a = FindCell(f.config, [](const KeyResult& k) { return k.slot0 == 0u; });
+  const std::uint32_t fingerprint_a = KeyOfCell(f.config, a).fingerprint;
+  const glm::ivec3 b = FindCell(
+      f.config, [&](const KeyResult& k) { return k.slot0 == 0u && k.fingerprint != fingerprint_a; }, a.x + 1);
+  HashTableDump before = EmulatedFilter(BatchOfCells({a, b}), f.config, EmulatorOptions{}).table;
+  ASSERT_EQ(before.tags[1], KeyOfCell(f.config, b).fingerprint);
+  before.tags[0] = shared::kTombstoneTag;  // A, evicted under pressure
+  before.counts[0] = 0;
+  before.fixed_sums[0] = {};
+  f.batch = BatchOfCells({b});
+  f.batch.frame = 1;
+  f.config.frame = 1;
+  f.run = EmulatedFilter(f.batch, f.config, EmulatorOptions{}, AccumulateKernel, &before);
+  f.before = before;
+  ASSERT_EQ(f.run.placements[0], 1u) << "B's record did not find B past the tombstone";
+  ASSERT_TRUE(f.Invariants().empty()) << f.Reported();
+  HashTableDump& t = f.run.table;
+  t.tags[0] = t.tags[1];
+  t.counts[0] = 1;
+  t.fixed_sums[0] = {f.FixedContribution(0, 0), f.FixedContribution(0, 1), f.FixedContribution(0, 2)};
+  t.last_seen[0] = 1;
+  t.counts[1] = before.counts[1];
+  t.fixed_sums[1] = before.fixed_sums[1];
+  t.last_seen[1] = before.last_seen[1];
+  f.run.placements[0] = 0;
+}
+
 struct IsolatedCase {
   const char* name;
   TableInvariant invariant;
@@ -491,6 +527,7 @@ const IsolatedCase kIsolatedCases[] = {
     {"HoleBeforeALiveSlot", TableInvariant::kHoleBeforeLiveSlot, kRoomy, kFixed64, PlantHoleBeforeALiveSlot},
     {"UnneededTombstone", TableInvariant::kTombstoneKept, kRoomy, kFixed64, PlantUnneededTombstone},
     {"BlendOffByOne", TableInvariant::kTemporalBlend, kRoomy, kFixed64, PlantBlendOffByOne},
+    {"CellSplitPastATombstone", TableInvariant::kCellSplit, kRoomy, kFixed64, PlantCellSplitPastATombstone},
 };
 
 class IsolatedViolation : public ::testing::TestWithParam<IsolatedCase> {};

@@ -58,9 +58,11 @@ struct EvictionPush {
   std::uint32_t frame;
   std::uint32_t unseen_frames;
   std::uint32_t sum_words_per_slot;
-  std::uint32_t pass;  // 0 evict, 1 reclaim
+  std::uint32_t pass;  // 0 evict, 1 reclaim, 2 select (priority, dispatched first, per record)
+  std::uint32_t record_count;
+  std::uint32_t by_priority;
 };
-static_assert(sizeof(EvictionPush) == 24, "push constants of eviction.comp");
+static_assert(sizeof(EvictionPush) == 32, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct TemporalPush {
@@ -88,7 +90,8 @@ constexpr BindingKind kAccumulateBindings[] = {
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
 constexpr BindingKind kEvictionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                             BindingKind::kStorageBuffer};
+                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
@@ -137,7 +140,7 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> resolve[2];
   std::optional<ComputeProgram> eviction;
   std::optional<ComputeProgram> temporal;
-  DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted;
+  DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted, victims;
   DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
   struct TableShape {
@@ -190,6 +193,7 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
                      eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
+                     {},
                      {},
                      {},
                      {},
@@ -284,6 +288,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const bool evicting = config.eviction.enabled();
   p.Ensure(p.last_seen, vk::DeviceSize(config.capacity) * 4);  // bound always (binding 8), written with eviction only
   p.Ensure(p.evicted, 8);
+  const bool by_priority = config.eviction.by_priority();
+  p.Ensure(p.victims, by_priority ? vk::DeviceSize(config.capacity) * 4 : 4);  // bound with eviction
   vulkan_internal::Transfer upload(p.device, p.staging);
   auto* records = static_cast<Record*>(upload.Upload(p.records, batch.records.size() * sizeof(Record)));
   auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
@@ -322,7 +328,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
       {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
        fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, evicting ? 1u : 0u,
-       blending ? 1u : 0u, 0},
+       blending ? 1u : 0u, by_priority ? 1u : 0u},
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -362,27 +368,32 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     });
   }
 
-  // Eviction: evict, then reclaim, one invocation per slot (eviction.comp). The frame's resolve reads only slots
-  // the frame touched, which no policy evicts, so it may follow.
+  // Eviction: with priority, select the victims, one invocation per record; then evict and reclaim, one invocation
+  // per slot (eviction.comp). The frame's resolve reads only slots the frame touched, which no policy evicts, so
+  // it may follow.
   if (evicting) {
     ComputeProgram& eviction = p.Eviction();
-    DeviceBuffer* const eviction_buffers[] = {&p.tags, &p.sums, &p.counts, &p.last_seen, &p.evicted};
+    DeviceBuffer* const eviction_buffers[] = {&p.tags,    &p.sums, &p.counts,     &p.last_seen,
+                                              &p.evicted, &p.keys, &p.placements, &p.victims};
     vulkan_internal::BindBuffers(p.device, eviction, eviction_buffers);
-    EvictionPush eviction_push{
-        config.capacity, config.probe_limit, config.frame, config.eviction.unseen_frames, fixed ? 6u : 3u, 0};
+    EvictionPush eviction_push{config.capacity, config.probe_limit,  config.frame,        config.eviction.unseen_frames,
+                               fixed ? 6u : 3u, 0,                   n,                   by_priority ? 1u : 0u};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
+      cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
       const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite,
                                       vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared,
                          nullptr, nullptr);
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *eviction.pipeline);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *eviction.layout, 0, *eviction.set, nullptr);
-      for (std::uint32_t pass : {0u, 1u}) {
+      const std::vector<std::uint32_t> passes = by_priority ? std::vector<std::uint32_t>{2u, 0u, 1u}
+                                                            : std::vector<std::uint32_t>{0u, 1u};
+      for (std::uint32_t pass : passes) {
         eviction_push.pass = pass;
         cb.pushConstants<EvictionPush>(*eviction.layout, vk::ShaderStageFlagBits::eCompute, 0, eviction_push);
-        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kEvictionSlotsPerWorkgroup), 1, 1);
-        // The reclaim reads the counts the evict pass wrote.
+        cb.dispatch(vulkan_internal::WorkgroupsFor(pass == 2u ? n : config.capacity, kEvictionSlotsPerWorkgroup), 1, 1);
+        // The evict pass reads the victims the select pass marked, the reclaim the counts the evict pass wrote.
         const vk::MemoryBarrier evicted(vk::AccessFlagBits::eShaderWrite,
                                         vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},

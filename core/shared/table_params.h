@@ -27,7 +27,10 @@ struct TableParams {
   // before the frame and the push constants' TemporalParams its mode (table_interface.glsl). The blend is a pass
   // of its own after the accumulate; an accumulate reads none of it (DESIGN.md D10).
   uint blending;
-  uint reserved;
+  // 1 with priority eviction: a slot tagged kTombstoneTag (core/shared/eviction_priority.h) may be claimed, so an
+  // insertion first looks for its cell in the whole window up to the first empty slot, then claims the first empty
+  // or tombstone slot (accumulate.glsl).
+  uint claim_tombstones;
 };
 
 HPSF_SHARED_END

@@ -10,6 +10,7 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     key_of_.assign(capacity, std::nullopt);
     aliased_.assign(capacity, false);
     after_failure_.assign(capacity, false);
+    if (evicts_under_pressure_) keys_here_.assign(capacity, {});
   }
   auto key_of = [&](std::size_t i) {
     const shared::KeyWords& w = run.keys[i].words;
@@ -24,6 +25,9 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     const FullKey key = key_of(i);
     if (key_of_[slot] && *key_of_[slot] != key) aliased_[slot] = true;
     key_of_[slot] = key;
+    if (evicts_under_pressure_ &&
+        std::find(keys_here_[slot].begin(), keys_here_[slot].end(), key) == keys_here_[slot].end())
+      keys_here_[slot].push_back(key);
     if (failed_.contains(key)) after_failure_[slot] = true;
   }
   classified_.assign(capacity, false);
@@ -38,6 +42,10 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
   // A slot left empty or a tombstone (no count) starts afresh in the next frame.
   for (std::size_t s = 0; s < capacity; ++s) {
     if (run.table.counts[s] == 0) {
+      if (evicts_under_pressure_) {  // evicted under pressure: its cells live on in the reference
+        failed_.insert(keys_here_[s].begin(), keys_here_[s].end());
+        keys_here_[s].clear();
+      }
       key_of_[s].reset();
       aliased_[s] = after_failure_[s] = false;
     }

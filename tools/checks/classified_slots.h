@@ -2,7 +2,9 @@
 // level 4 judge every record outside them): a slot whose placed records carry two or more full keys since it was
 // last empty (the fingerprint aliased them, in one frame or across frames), and a slot holding a cell some of whose
 // records failed to probe in an earlier frame (the reference kept them; the table never saw them). Within one
-// frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots.
+// frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots. With priority
+// eviction, a cell the table evicted under pressure counts as failed too: the reference, which has no pressure,
+// kept it.
 #ifndef HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
 #define HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
 
@@ -18,6 +20,8 @@ namespace hpsf {
 
 class ClassifiedSlots {
  public:
+  explicit ClassifiedSlots(bool evicts_under_pressure = false) : evicts_under_pressure_(evicts_under_pressure) {}
+
   // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
   const std::vector<bool>& AddFrame(const HashedRun& run);
 
@@ -29,7 +33,9 @@ class ClassifiedSlots {
 
  private:
   using FullKey = std::array<std::uint32_t, 6>;
-  std::vector<std::optional<FullKey>> key_of_;  // per slot, the full key last placed there since it was empty
+  bool evicts_under_pressure_;
+  std::vector<std::optional<FullKey>> key_of_;   // per slot, the full key last placed there since it was empty
+  std::vector<std::vector<FullKey>> keys_here_;  // with pressure: per slot, every full key placed since it was empty
   std::vector<bool> aliased_, after_failure_, classified_;
   std::set<FullKey> failed_;  // cells with a probe failure in some frame
   std::uint64_t aliased_slots_ = 0, classified_records_ = 0;

@@ -141,6 +141,8 @@ const HashedRun* FilterOrFault(Backend& backend, const RecordBatch& batch, const
 
 // What the contract judged of one hashed backend over the sequence.
 struct SequenceState {
+  explicit SequenceState(bool evicts_under_pressure)
+      : classes(evicts_under_pressure), rerun_classes(evicts_under_pressure) {}
   ClassifiedSlots classes, rerun_classes;
   std::optional<HashTableDump> before, rerun_before;  // the tables before this frame
   QualityFigures quality;
@@ -181,8 +183,9 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
   LevelVerdict ideal{3, "agreement with the reference", any_hashed, true, "", {}};
   LevelVerdict determinism{4, "determinism", any_hashed, true, "", {}};
   ReferenceBackend reference;
-  std::vector<SequenceState> states(hashed.size());
+  std::vector<SequenceState> states;
   for (std::size_t b = 0; b < hashed.size(); ++b) {
+    states.emplace_back(config.eviction.by_priority());
     hashed[b].backend->Reset();
     hashed[b].rerun->Reset();
     states[b].quality.backend = hashed[b].name;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/input_check.h"
+#include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 
 namespace hpsf {
@@ -99,7 +101,8 @@ const char* ToString(TableInvariant invariant) {
     case TableInvariant::kSlotOutsideWindow: return "slot outside the probe window";
     case TableInvariant::kTagIsNotTheFingerprint: return "tag is not the record's fingerprint";
     case TableInvariant::kEarlierSlotEmptyOrMatching: return "earlier slot of the window empty or matching";
-    case TableInvariant::kFailureWindowNotFull: return "probe failure with an empty or matching slot in its window";
+    case TableInvariant::kFailureWindowNotFull:
+      return "probe failure with an empty, matching or claimable slot in its window";
     case TableInvariant::kCountMismatch: return "count differs from the records placed";
     case TableInvariant::kSumMismatch: return "sum differs from the records placed";
     case TableInvariant::kEmptySlotNotZero: return "empty slot with a count or sum";
@@ -117,6 +120,8 @@ const char* ToString(TableInvariant invariant) {
       return "tombstone kept that no live slot needs";
     case TableInvariant::kTemporalBlend:
       return "blended cell differs from the temporal blend";
+    case TableInvariant::kCellSplit:
+      return "slot claimed though the cell lived in the window before the frame";
   }
   return "?";
 }
@@ -147,8 +152,14 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
 
   // The tags the frame's lookups saw: with eviction, a tombstone the reclaim emptied after them still held its tag
   // (whether the reclaim was right to empty it is the tombstone check's question below).
+  // With priority eviction a slot tagged kTombstoneTag after the frame was a live victim during it, or a tombstone
+  // before it; either way it held its tag from before.
   const bool evicting = in.eviction.enabled();
-  auto window_tag = [&](std::uint32_t s) { return evicting && t.tags[s] == kEmptyTag ? tag_before(s) : t.tags[s]; };
+  const bool priority = in.eviction.by_priority();
+  auto tombstone_tag = [&](SlotTag tag) { return priority && tag == shared::kTombstoneTag; };
+  auto window_tag = [&](std::uint32_t s) {
+    return evicting && (t.tags[s] == kEmptyTag || tombstone_tag(t.tags[s])) ? tag_before(s) : t.tags[s];
+  };
   std::vector<std::vector<std::uint32_t>> placed(t.capacity);
   for (std::uint32_t i = 0; i < in.records.size(); ++i) {
     const KeyResult& key = in.keys[i];
@@ -161,7 +172,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (slot == kProbeFailure) {
       for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
         const std::uint32_t s = (key.slot0 + probe) & mask;
-        if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint) {
+        if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint || tombstone_tag(window_tag(s))) {
           violate(TableInvariant::kFailureWindowNotFull, s, {i},
                   "tag " + std::to_string(window_tag(s)) + " at probe " + std::to_string(probe));
           break;
@@ -181,9 +192,24 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       violate(TableInvariant::kTagIsNotTheFingerprint, slot, {i},
               "tag " + std::to_string(t.tags[slot]) + ", fingerprint " + std::to_string(key.fingerprint));
     }
+    // With priority, an insertion claims the first tombstone, but a cell that lived before the frame is found past
+    // one.
+    const bool new_cell = tag_before(slot) != key.fingerprint;
+    // A live slot holding the fingerprint before the frame, with no empty slot before it in the window, is where
+    // the record belongs (its cell, or an alias): a record that claimed another slot split it (past a priority
+    // tombstone). Past an empty slot it may be an alias from another slot0 (D7's hole the reclaim check catches).
+    for (std::uint32_t probe = 0; new_cell && probe < t.probe_limit; ++probe) {
+      const std::uint32_t s = (key.slot0 + probe) & mask;
+      if (tag_before(s) == kEmptyTag) break;
+      if (s != slot && tag_before(s) == key.fingerprint && count_before(s) > 0) {
+        violate(TableInvariant::kCellSplit, slot, {i}, "the fingerprint lived at slot " + std::to_string(s));
+        break;
+      }
+    }
     for (std::uint32_t probe = 0; probe < std::min(distance, t.probe_limit); ++probe) {
       const std::uint32_t s = (key.slot0 + probe) & mask;
-      if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint) {
+      const SlotTag seen = window_tag(s);
+      if (seen == kEmptyTag || seen == key.fingerprint || (new_cell && tombstone_tag(seen))) {
         violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
                 "tag " + std::to_string(window_tag(s)) + " before slot " + std::to_string(slot));
         break;
@@ -200,9 +226,26 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     return violations;
   }
   auto last_seen_before = [&](std::uint32_t s) { return before && evicting ? before->last_seen[s] : 0u; };
+  // Priority: in the window of each record that found no slot, the untouched live slot of lowest priority.
+  std::vector<std::uint32_t> victim_of(priority ? t.capacity : 0, kNotPlaced);  // per slot, a record choosing it
+  for (std::uint32_t i = 0; priority && i < in.records.size(); ++i) {
+    if (in.placements[i] != kProbeFailure) continue;
+    std::optional<std::uint32_t> victim;
+    for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
+      const std::uint32_t s = (in.keys[i].slot0 + probe) & mask;
+      if (!placed[s].empty() || tag_before(s) == kEmptyTag || tombstone_tag(tag_before(s)) || count_before(s) == 0)
+        continue;
+      auto priority_of = [&](std::uint32_t slot) {
+        return shared::EvictionPriority(last_seen_before(slot), count_before(slot));
+      };
+      if (!victim || shared::EvictedBefore(priority_of(s), tag_before(s), priority_of(*victim), tag_before(*victim)))
+        victim = s;
+    }
+    if (victim && victim_of[*victim] == kNotPlaced) victim_of[*victim] = i;
+  }
   auto evicted_now = [&](std::uint32_t s) {
     return evicting && placed[s].empty() && tag_before(s) != kEmptyTag && count_before(s) > 0 &&
-           eviction.Evicts(in.frame, last_seen_before(s));
+           (priority ? victim_of[s] != kNotPlaced : eviction.Evicts(in.frame, last_seen_before(s)));
   };
   auto snapshot_tag = [&](std::uint32_t s) { return placed[s].empty() ? tag_before(s) : t.tags[s]; };
   auto snapshot_live = [&](std::uint32_t s) {
@@ -235,17 +278,24 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     }
     if (evicting && snapshot_tag(s) != kEmptyTag && !snapshot_live(s)) {
       const std::uint32_t live = live_slot_after(s);
-      const SlotTag expected = live != 0xFFFFFFFFu ? snapshot_tag(s) : kEmptyTag;
-      if (t.tags[s] != expected) {
-        const TableInvariant invariant = t.tags[s] == kEmptyTag         ? TableInvariant::kHoleBeforeLiveSlot
-                                         : t.tags[s] == snapshot_tag(s) ? TableInvariant::kTombstoneKept
-                                                                        : TableInvariant::kTagChangedAcrossFrames;
+      const SlotTag tombstone = priority ? shared::kTombstoneTag : snapshot_tag(s);
+      const SlotTag expected = live != 0xFFFFFFFFu ? tombstone : kEmptyTag;
+      // A priority victim left live keeps its tag: the policy check below reports it, once.
+      const bool left_live = priority && t.tags[s] == snapshot_tag(s) && t.counts[s] != 0;
+      if (t.tags[s] != expected && !left_live) {
+        const TableInvariant invariant = t.tags[s] == kEmptyTag    ? TableInvariant::kHoleBeforeLiveSlot
+                                         : t.tags[s] == tombstone ? TableInvariant::kTombstoneKept
+                                                                   : TableInvariant::kTagChangedAcrossFrames;
         violate(
             invariant, s, here,
             "tombstone of tag " + std::to_string(snapshot_tag(s)) + ", tag " + std::to_string(t.tags[s]) + " after; " +
                 (live != 0xFFFFFFFFu ? "live slot " + std::to_string(live) + " after it" : "no live slot after it"));
       }
-    } else if (tag_before(s) != kEmptyTag && t.tags[s] != tag_before(s)) {
+    } else if (tag_before(s) != kEmptyTag && t.tags[s] != tag_before(s) &&
+               !(tombstone_tag(tag_before(s)) && !here.empty()) &&
+               !(tombstone_tag(t.tags[s]) && here.empty() && count_before(s) > 0)) {
+      // (With priority, a tombstone claimed this frame takes its claimant's tag, and a live slot evicted the
+      // policy's tag, which the policy check below judges.)
       violate(TableInvariant::kTagChangedAcrossFrames, s, here,
               "tag " + std::to_string(tag_before(s)) + " before the frame, " + std::to_string(t.tags[s]) + " after");
     }
@@ -253,11 +303,17 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     const bool looks_evicted = t.counts[s] == 0 && sums_are_zero(s);
     if (evicting && here.empty() && tag_before(s) != kEmptyTag && count_before(s) > 0 &&
         evicted_by_policy != looks_evicted) {
+      const std::string why =
+          !priority ? "last seen in frame " + std::to_string(last_seen_before(s)) + ", policy " + eviction.ToString() +
+                          " after frame " + std::to_string(in.frame)
+          : evicted_by_policy ? "the lowest priority in the window of record " + std::to_string(victim_of[s]) +
+                                    ", which found no slot: priority"
+                              : "not the lowest priority in the window of any record that found no slot (last seen " +
+                                    std::to_string(last_seen_before(s)) + ", count " + std::to_string(count_before(s)) +
+                                    "): priority";
       violate(TableInvariant::kEvictionPolicy, s, {},
-              "last seen in frame " + std::to_string(last_seen_before(s)) + ", policy " + eviction.ToString() +
-                  " after frame " + std::to_string(in.frame) +
-                  (evicted_by_policy ? " evicts it, but it holds count " + std::to_string(t.counts[s])
-                                     : " keeps it, but it was emptied"));
+              why + (evicted_by_policy ? " evicts it, but it holds count " + std::to_string(t.counts[s])
+                                       : " keeps it, but it was emptied"));
       continue;  // reported once: its count and sums are the policy's question, not the accumulate's
     }
     const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s);

@@ -45,6 +45,7 @@ enum class TableInvariant {
   kHoleBeforeLiveSlot,          // a tombstone emptied though a live slot after it may have probed past it (D7)
   kTombstoneKept,               // a tombstone kept though no live slot after it can need it (the table fills)
   kTemporalBlend,               // a blended cell is not the blend of its history and the frame (core/temporal.h)
+  kCellSplit,                   // a record claimed a slot though its cell lived in the window before the frame
 };
 const char* ToString(TableInvariant invariant);
 

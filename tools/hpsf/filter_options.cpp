@@ -32,7 +32,8 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command
       .add_option("--eviction", o.eviction,
                   "Cells a table kept across frames forgets after each frame: none, strict (not touched this frame) "
-                  "or stale:N (not touched for N frames)")
+                  "stale:N (not touched for N frames) or priority (under pressure: in the window of a record that "
+                  "found no slot, the least recently seen, least sampled cell; needs --fingerprint-bits 31 or fewer)")
       ->capture_default_str();
   command
       .add_option("--temporal", o.temporal,

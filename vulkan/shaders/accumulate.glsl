@@ -2,8 +2,9 @@
 // bounded linear probing from slot0; a slot whose tag is the fingerprint is joined, an empty one claimed with
 // atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
 // reports wrap from the add's return value. With eviction, the slot's last-seen frame is stored after the adds;
-// a tombstone (an evicted slot that keeps its tag) is joined or passed like any slot, never claimed. accumulate_fixed64.comp and accumulate_float32.comp define the
-// sums type and include this.
+// a tombstone (an evicted slot that keeps its tag) is joined or passed like any slot, never claimed; with priority
+// eviction (table.claim_tombstones) its tombstones may be claimed (FindOrClaim). accumulate_fixed64.comp and
+// accumulate_float32.comp define the sums type and include this.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #include "../../core/shared/prelude.h"
@@ -11,6 +12,7 @@
 #include "../../core/shared/key.h"
 #include "../../core/shared/fixed_point.h"
 #include "../../core/shared/table_params.h"
+#include "../../core/shared/eviction_priority.h"
 #if defined(HPSF_DEFECT_D10)
 #define HPSF_TABLE_INTERFACE_TEMPORAL
 #include "float_controls_fp64.glsl"
@@ -87,6 +89,29 @@ void BlendDuringAccumulate(uint slot, TableParams t) {
 }
 #endif
 
+// Priority eviction's insertion (the emulator's emulated/accumulate_kernel.cpp says why it is right): the cell is
+// looked for first, up to the first empty slot, since a claimable tombstone may lie before it; then the first empty
+// or tombstone slot is claimed by compare-and-swap, and one that a record of the same cell claimed meanwhile is
+// joined. Returns the slot, or kPlacementProbeFailure.
+uint FindOrClaim(uint slot0, uint fingerprint, TableParams t) {
+  for (uint probe = 0u; probe < t.probe_limit; ++probe) {
+    uint slot = (slot0 + probe) & (t.capacity - 1u);
+    uint tag = tags[slot];
+    if (tag == fingerprint) return slot;
+    if (tag == 0u) break;
+  }
+  for (uint probe = 0u; probe < t.probe_limit; ++probe) {
+    uint slot = (slot0 + probe) & (t.capacity - 1u);
+    uint tag = tags[slot];
+    if (tag == 0u || tag == kTombstoneTag) {
+      uint seen = atomicCompSwap(tags[slot], tag, fingerprint);
+      tag = seen == tag ? fingerprint : seen;
+    }
+    if (tag == fingerprint) return slot;
+  }
+  return kPlacementProbeFailure;
+}
+
 void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #if defined(HPSF_DEFECT_EVICT_RACE)
   EvictDuringAccumulate(i, t);
@@ -107,7 +132,14 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #else
     uint fingerprint = k.fingerprint;
 #endif
-    for (uint probe = 0u; probe < t.probe_limit; ++probe) {
+    if (t.claim_tombstones != 0u) {
+      placement = FindOrClaim(k.slot0, fingerprint, t);
+      if (placement != kPlacementProbeFailure) {
+        AddToSlot(placement, r, t.fixed_point_scale);
+        last_seen[placement] = t.frame;
+      }
+    }
+    for (uint probe = 0u; probe < t.probe_limit && t.claim_tombstones == 0u; ++probe) {
 #if defined(HPSF_DEFECT_D8)  // the probe index clamped to the last slot instead of wrapped
       uint slot = min(k.slot0 + probe, t.capacity - 1u);
 #else

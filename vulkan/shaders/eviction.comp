@@ -3,10 +3,18 @@
 // the rule and why tombstones): one invocation per slot, dispatched twice with a barrier between. Pass 0, evict:
 // a live slot last seen `unseen_frames` or more frames ago keeps its tag and becomes a tombstone (count and sums
 // zeroed). Pass 1, reclaim: a tombstone is emptied unless a live slot follows it within probe_limit - 1 slots with
-// no empty slot between. The test suite compiles HPSF_DEFECT_D7 once more: the reclaim empties every tombstone.
+// no empty slot between. Priority eviction (by_priority) dispatches pass 2, select, first: one invocation per record;
+// a record that found no slot marks the untouched live slot of lowest priority in its window as a victim
+// (core/shared/eviction_priority.h; the table is only read, so the victims do not depend on the invocations'
+// order), and pass 0 evicts exactly the victims, tagging them kTombstoneTag, which an insertion may claim.
+// The test suite compiles this file once more per defect: HPSF_DEFECT_D7, the reclaim empties every tombstone;
+// HPSF_DEFECT_PRIORITY_SIGN, the selection's compare of the wrong sign.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
+#include "../../core/shared/prelude.h"
+#include "../../core/shared/eviction_priority.h"
+#include "../../core/shared/table_params.h"
 
 layout(local_size_x = 64) in;
 
@@ -15,20 +23,58 @@ layout(std430, binding = 1) buffer SumWords { uint sum_words[]; };  // fixed64 o
 layout(std430, binding = 2) buffer Counts { uint64_t counts[]; };
 layout(std430, binding = 3) readonly buffer LastSeen { uint last_seen[]; };
 layout(std430, binding = 4) buffer Evicted { uint64_t evicted; };
+// Bindings 5 to 7 are read and written by priority eviction only.
+layout(std430, binding = 5) readonly buffer Keys { uvec4 key_vectors[]; };  // the accumulate's binding 1
+layout(std430, binding = 6) readonly buffer Placements { uint placements[]; };
+layout(std430, binding = 7) buffer Victims { uint victims[]; };  // per slot, zeroed: 1 marks a victim
 layout(push_constant) uniform Params {
   uint capacity;
   uint probe_limit;
   uint frame;
   uint unseen_frames;
   uint sum_words_per_slot;  // 6 (fixed64) or 3 (float32)
-  uint pass;                // 0 evict, 1 reclaim
+  uint pass;                // 0 evict, 1 reclaim, 2 select (priority only, first)
+  uint record_count;
+  uint by_priority;         // 1 with --eviction priority
 };
+
+void SelectVictim(uint i) {
+  if (placements[i] != kPlacementProbeFailure) return;
+  uint slot0 = key_vectors[i * 3u + 1u].z;
+  bool found = false;
+  uint victim = 0u, victim_tag = 0u;
+  uint64_t victim_priority = 0ul;
+  for (uint probe = 0u; probe < probe_limit; ++probe) {
+    uint slot = (slot0 + probe) & (capacity - 1u);
+    uint tag = tags[slot];
+    if (tag == 0u || tag == kTombstoneTag) continue;
+    uint64_t count = counts[slot];
+    if (count == 0ul || last_seen[slot] == frame) continue;  // a tombstone of another policy, or touched this frame
+    uint64_t priority = EvictionPriority(last_seen[slot], count);
+#if defined(HPSF_DEFECT_PRIORITY_SIGN)  // the compare's operands swapped: the highest priority is evicted
+    if (!found || EvictedBefore(victim_priority, victim_tag, priority, tag)) {
+#else
+    if (!found || EvictedBefore(priority, tag, victim_priority, victim_tag)) {
+#endif
+      found = true;
+      victim = slot;
+      victim_priority = priority;
+      victim_tag = tag;
+    }
+  }
+  if (found) victims[victim] = 1u;
+}
 
 void Evict(uint slot) {
   if (tags[slot] == 0u || counts[slot] == 0ul) return;
-  if (frame - last_seen[slot] < unseen_frames) return;
+  if (by_priority != 0u) {
+    if (victims[slot] == 0u) return;
+  } else if (frame - last_seen[slot] < unseen_frames) {
+    return;
+  }
   for (uint w = 0u; w < sum_words_per_slot; ++w) sum_words[slot * sum_words_per_slot + w] = 0u;
   counts[slot] = 0ul;
+  if (by_priority != 0u) tags[slot] = kTombstoneTag;
   atomicAdd(evicted, 1ul);
 }
 
@@ -47,6 +93,10 @@ void Reclaim(uint slot) {
 
 void main() {
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  if (pass == 2u) {
+    for (uint i = gl_GlobalInvocationID.x; i < record_count; i += stride) SelectVictim(i);
+    return;
+  }
   for (uint slot = gl_GlobalInvocationID.x; slot < capacity; slot += stride) {
     if (pass == 0u) {
       Evict(slot);

@@ -13,7 +13,8 @@
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
 //   9 previous_sums    as sums: with table.blending, the table before the frame (for reading only;   -
 //  10 previous_counts  uint64_t[capacity]   the blend pass after the accumulate reads them)        -
-// Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state), then
+// Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state, and
+// claim_tombstones: with priority eviction, slots tagged kTombstoneTag may be claimed), then
 // TemporalParams (24 bytes, core/shared/temporal_blend.h: the blend's mode, with table.blending).
 // A shader written against the first 8 bindings and 16 bytes of TableParams still runs without eviction; one that
 // declares nothing past TableParams runs with every option. Bindings 9 and 10 and TemporalParams are declared
