@@ -103,6 +103,12 @@ void FilterConfig::Validate() const {
     throw ConfigError("--eviction", "priority reserves the tag 0xFFFFFFFF for its tombstones, so it needs "
                                     "--fingerprint-bits 31 or fewer; got " + std::to_string(fingerprint_bits));
   }
+  if (ParseLevelSeed(level_seed.ToString()) != level_seed) {
+    throw ConfigError("--level-change", "is not a mode: " + level_seed.ToString());
+  }
+  if (level_seed.enabled && !lod) {
+    throw ConfigError("--level-change", "seeds cells across levels, which needs --lod on");
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }
@@ -121,7 +127,8 @@ std::string FilterConfig::ToString() const {
          (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
          (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) +
          (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) +
-         (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) + " ]";
+         (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) +
+         (level_seed.enabled ? " level_change: " + level_seed.ToString() : std::string()) + " ]";
 }
 
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/eviction.h"
+#include "core/level_seed.h"
 #include "core/temporal.h"
 #include "core/shared/key_params.h"
 
@@ -49,6 +50,7 @@ struct FilterConfig {
   std::uint32_t frames = 1;  // --frames: how many frames one table integrates (core/backend.h)
   Eviction eviction;         // --eviction: which cells the table forgets after each frame (core/eviction.h)
   Temporal temporal;         // --temporal: how a cell blends its history with a frame (core/temporal.h)
+  LevelSeed level_seed;      // --level-change: how a cell new at another level starts (core/level_seed.h)
 
   // Throws ConfigError for the first invalid option.
   void Validate() const;

@@ -37,6 +37,7 @@ struct FilterStats {
   std::uint64_t fixed_point_wraps = 0;  // fixed64 adds whose cell sum wrapped (a sequence outgrew its F)
   std::uint64_t count_wraps = 0;        // adds whose 64-bit count wrapped (DESIGN.md D12)
   std::uint64_t cells_evicted = 0;      // cells the frame's eviction removed (core/eviction.h)
+  std::uint64_t cells_seeded = 0;       // cells new in the frame seeded from another level (core/level_seed.h)
 };
 
 struct FilterResult {

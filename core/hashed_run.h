@@ -23,6 +23,7 @@ struct HashedRun {
   std::vector<std::uint64_t> probe_lengths;  // [k]: records placed after probing k + 1 slots
   std::uint64_t evicted = 0;                 // live slots this frame's eviction made tombstones
   std::uint64_t tombstones = 0;              // tombstones left after the frame (core/hash_table.h)
+  std::uint64_t seeded = 0;                  // new slots seeded from another level (core/level_seed.h)
 };
 
 // Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).

@@ -16,6 +16,7 @@
 #include "core/parallel_for.h"
 #include "core/resolve.h"
 #include "core/temporal.h"
+#include "emulated/level_seed_kernel.h"
 #include "emulated/temporal_kernel.h"
 
 namespace hpsf {
@@ -182,6 +183,18 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     simt::LaunchFaithful(memory, threads, options.warp_size, kernel, *schedule, {});
   };
   const auto launch_per_slot = [&](const simt::Kernel& kernel) { launch(config.capacity, kernel); };
+  const bool seeding = previous && config.level_seed.enabled;
+  if (seeding) {
+    LevelSeedArgs seed{run.keys, config.capacity, fixed, config.normal_in_index, config.level_seed, previous, b, 0, 0};
+    seed.seeded = memory.Allocate32("seeded", config.capacity);
+    seed.seeded_count = memory.Allocate64("seeded_count", 1);
+    launch(n, [&](simt::ThreadContext& ctx) { return LevelSeedKernel(ctx, seed); });
+    run.seeded = memory.Words64(seed.seeded_count)[0];
+    const std::span<const std::uint32_t> flags = std::as_const(memory).Words32(seed.seeded);
+    run.seeded_slots.resize(config.capacity);
+    for (std::size_t s = 0; s < config.capacity; ++s) run.seeded_slots[s] = flags[s] == 2;
+  }
+  run.timings.level_seed = clock.Lap();
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
   run.timings.temporal = clock.Lap();
   if (evicting) {

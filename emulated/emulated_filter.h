@@ -37,6 +37,7 @@ struct EmulatedTimings {
   double fixed_point = 0;  // the choice of F
   double clear = 0;        // allocating and zeroing the table
   double accumulate = 0;   // the accumulate launch
+  double level_seed = 0;   // the seed launch of resolution changes; 0 without --level-change seed
   double temporal = 0;     // the temporal blend launch; 0 when integrating
   double eviction = 0;     // the evict and reclaim launches; 0 without eviction
   double read_back = 0;    // the dump of the table
@@ -47,6 +48,7 @@ struct EmulatedRun : HashedRun {
   simt::LaunchReport launch;  // faithful mode: trace hash and step statistics
   // Faithful float32: for slot s and channel c, [3 s + c] lists the records in the order their adds applied.
   std::vector<std::vector<std::uint32_t>> float_add_order;
+  std::vector<bool> seeded_slots;  // with --level-change seed: the slots a seed was added to (after the adds)
   EmulatedTimings timings;
 };
 

@@ -11,6 +11,7 @@
 #include "core/footprint.h"
 #include "core/input_check.h"
 #include "core/key_batch.h"
+#include "core/level_seed.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/temporal.h"
@@ -48,6 +49,33 @@ void BlendCells(const FilterConfig& config, const std::vector<TableCell>& before
     cell.fixed_sum = blended.fixed_sum;
     cell.float_sum = blended.float_sum;
     cell.count = blended.count;
+  }
+}
+
+// Resolution changes (core/level_seed.h): each cell new in this frame takes its seed from the cells before it, looked
+// up by exact key. Its sums and count add to the frame's, so the float32 seed comes last in its sum.
+void SeedNewCells(const FilterConfig& config, const FilterResult* previous,
+                  const std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key, FilterResult& result) {
+  const std::size_t old_cells = previous ? previous->cells.size() : 0;
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  const CellLookup lookup = [&](const shared::KeyWords& w) -> std::optional<CellState> {
+    const auto it = cell_of_key.find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
+    if (it == cell_of_key.end() || it->second >= old_cells) return std::nullopt;
+    const TableCell& c = previous->cells[it->second];
+    if (c.count == 0) return std::nullopt;
+    return CellState{c.fixed_sum, c.float_sum, c.count};
+  };
+  for (std::size_t c = old_cells; c < result.cells.size(); ++c) {
+    TableCell& cell = result.cells[c];
+    const shared::KeyWords words{cell.key[0], cell.key[1], cell.key[2], cell.key[3], cell.key[4], cell.key[5]};
+    const CellState seed = SeedOf(words, config.level_seed, fixed, lookup);
+    if (seed.count == 0) continue;
+    ++result.stats.cells_seeded;
+    cell.count += seed.count;
+    for (int k = 0; k < 3; ++k) {
+      cell.fixed_sum[k] += seed.fixed_sum[k];
+      cell.float_sum[k] += seed.float_sum[k];
+    }
   }
 }
 
@@ -110,6 +138,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
     cell.last_seen = config.frame;
     result.placement[i] = it->second;
   }
+  if (config.level_seed.enabled) SeedNewCells(config, previous, cell_of_key, result);
   if (previous && config.temporal.blends()) BlendCells(config, previous->cells, result);
   if (config.eviction.enabled()) EvictCells(config, result);
 

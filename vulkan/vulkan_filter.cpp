@@ -24,6 +24,7 @@
 #include "eviction_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
+#include "level_seed_spv.h"
 #include "temporal_spv.h"
 #include "vulkan/vulkan_internal.h"
 
@@ -73,6 +74,19 @@ struct TemporalPush {
 static_assert(sizeof(TemporalPush) == 32, "push constants of temporal.comp");
 constexpr std::uint32_t kTemporalSlotsPerWorkgroup = 64;
 
+struct LevelSeedPush {
+  std::uint32_t capacity;
+  std::uint32_t probe_limit;
+  std::uint32_t fingerprint_bits;
+  std::uint32_t normal_in_index;
+  std::uint32_t shift;
+  std::uint32_t fixed64;
+  std::uint32_t record_count;
+  std::uint32_t reserved;
+};
+static_assert(sizeof(LevelSeedPush) == 32, "push constants of level_seed.comp");
+constexpr std::uint32_t kLevelSeedRecordsPerWorkgroup = 64;
+
 struct ResolvePush {
   double unscale;
   std::uint32_t capacity;
@@ -92,6 +106,11 @@ constexpr BindingKind kEvictionBindings[] = {BindingKind::kStorageBuffer, Bindin
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kLevelSeedBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                              BindingKind::kStorageBuffer};
 constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
@@ -140,8 +159,10 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> resolve[2];
   std::optional<ComputeProgram> eviction;
   std::optional<ComputeProgram> temporal;
+  std::optional<ComputeProgram> level_seed;
   DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted, victims;
-  DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp
+  DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp and level_seed.comp
+  DeviceBuffer previous_tags, seeded, seeded_count;  // level_seed.comp's
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
   struct TableShape {
     std::uint32_t capacity;
@@ -177,6 +198,14 @@ struct VulkanFilter::Impl {
     }
     return *eviction;
   }
+  ComputeProgram& LevelSeedProgram() {
+    if (!level_seed) {
+      level_seed =
+          vulkan_internal::CreateComputeProgram(device, level_seed_spv, kLevelSeedBindings, sizeof(LevelSeedPush));
+    }
+    return *level_seed;
+  }
+
   ComputeProgram& Temporal() {
     if (!temporal) {
       temporal = vulkan_internal::CreateComputeProgram(device, temporal_spv, kTemporalBindings, sizeof(TemporalPush));
@@ -193,6 +222,10 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
                      eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
+                     {},
+                     {},
+                     {},
+                     {},
                      {},
                      {},
                      {},
@@ -311,12 +344,20 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                                      : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
-  // The double buffer of the temporal blend: the table as the previous frame left it, copied before the accumulate.
+  // The double buffer of the temporal blend and the level seed: the table as the previous frame left it, copied
+  // before the accumulate (the seed needs its tags too).
   const bool blending = keep_table && config.temporal.blends();
+  const bool seeding = keep_table && config.level_seed.enabled;
+  const bool double_buffer = blending || seeding;
   const vk::DeviceSize sum_bytes_on_device = vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4);
-  // Bound always (bindings 9 and 10 of the stable interface), sized for the table when the frame blends.
-  p.Ensure(p.previous_sums, blending ? sum_bytes_on_device : 8);
-  p.Ensure(p.previous_counts, blending ? vk::DeviceSize(config.capacity) * 8 : 8);
+  // Bound always (bindings 9 and 10 of the stable interface), sized for the table when the frame needs them.
+  p.Ensure(p.previous_sums, double_buffer ? sum_bytes_on_device : 8);
+  p.Ensure(p.previous_counts, double_buffer ? vk::DeviceSize(config.capacity) * 8 : 8);
+  if (seeding) {
+    p.Ensure(p.previous_tags, vk::DeviceSize(config.capacity) * 4);
+    p.Ensure(p.seeded, vk::DeviceSize(config.capacity) * 4);
+    p.Ensure(p.seeded_count, 8);
+  }
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
@@ -332,7 +373,12 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
-    if (blending) {
+    if (seeding) {
+      cb.copyBuffer(*p.tags.buffer, *p.previous_tags.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 4));
+      cb.fillBuffer(*p.seeded.buffer, 0, VK_WHOLE_SIZE, 0);
+      cb.fillBuffer(*p.seeded_count.buffer, 0, VK_WHOLE_SIZE, 0);
+    }
+    if (double_buffer) {
       cb.copyBuffer(*p.sums.buffer, *p.previous_sums.buffer, vk::BufferCopy(0, 0, sum_bytes_on_device));
       cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer,
                     vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 8));
@@ -348,6 +394,34 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(vulkan_internal::WorkgroupsFor(n, kAccumulateRecordsPerWorkgroup), 1, 1);
   });
+
+  // The level seed (level_seed.comp), one invocation per record: a slot new this frame takes its cell's seed from
+  // the previous table (copied before the accumulate).
+  if (seeding) {
+    ComputeProgram& level_seed = p.LevelSeedProgram();
+    DeviceBuffer* const seed_buffers[] = {&p.keys,          &p.placements,    &p.sums,
+                                          &p.counts,        &p.previous_tags, &p.previous_sums,
+                                          &p.previous_counts, &p.seeded,      &p.seeded_count};
+    vulkan_internal::BindBuffers(p.device, level_seed, seed_buffers);
+    const LevelSeedPush seed_push{config.capacity,
+                                  config.probe_limit,
+                                  config.fingerprint_bits,
+                                  config.normal_in_index ? 1u : 0u,
+                                  config.level_seed.shift,
+                                  fixed ? 1u : 0u,
+                                  n,
+                                  0};
+    run.timings.level_seed_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+      const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
+                                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                         accumulated, nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *level_seed.pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *level_seed.layout, 0, *level_seed.set, nullptr);
+      cb.pushConstants<LevelSeedPush>(*level_seed.layout, vk::ShaderStageFlagBits::eCompute, 0, seed_push);
+      cb.dispatch(vulkan_internal::WorkgroupsFor(n, kLevelSeedRecordsPerWorkgroup), 1, 1);
+    });
+  }
 
   // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
   // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
@@ -429,6 +503,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_stats = download.Download(p.stats, 16);
   const void* from_last_seen = evicting ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
   const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
+  const void* from_seeded = seeding ? download.Download(p.seeded_count, 8) : nullptr;
   run.timings.read_back_copy_ms = download.Submit();
   run.timings.read_back_bytes = download.bytes();
   start = std::chrono::steady_clock::now();
@@ -452,6 +527,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                        CopyOut{&run.wraps, from_stats, 8},
                        CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
+  if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
   if (evicting) {
     ResizeOnHugePages(table.last_seen, config.capacity);
     ParallelCopy({table.last_seen.data(), from_last_seen, std::size_t(config.capacity) * 4});

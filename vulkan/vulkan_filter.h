@@ -25,13 +25,14 @@ struct VulkanTimings {
   double upload_copy_ms = 0;     // device: staging to device copies (0 when mapped)
   double accumulate_ms = 0;      // device: clearing the table and the accumulate dispatch (keys included)
   double resolve_ms = 0;         // device: the resolve dispatch
+  double level_seed_ms = 0;      // device: the seed pass of --level-change seed
   double temporal_ms = 0;        // device: the temporal blend (the copy into the previous table is in accumulate)
   double eviction_ms = 0;        // device: the evict and reclaim dispatches; 0 without eviction
   double read_back_copy_ms = 0;  // device: device to staging copies (0 when mapped)
   double read_back_ms = 0;       // host: image, table, keys and placements out of mapped or staging memory
   std::uint64_t upload_bytes = 0;
   std::uint64_t read_back_bytes = 0;
-  double FilterMs() const { return accumulate_ms + temporal_ms + eviction_ms + resolve_ms; }
+  double FilterMs() const { return accumulate_ms + level_seed_ms + temporal_ms + eviction_ms + resolve_ms; }
   double UploadMs() const { return upload_ms + upload_copy_ms; }
   double ReadBackMs() const { return read_back_copy_ms + read_back_ms; }
 };

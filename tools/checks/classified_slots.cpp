@@ -2,7 +2,21 @@
 
 #include <algorithm>
 
+#include "core/shared/level_seed.h"
+
 namespace hpsf {
+
+bool ClassifiedSlots::SeedTainted(const FullKey& key) const {
+  const shared::KeyWords w{key[0], key[1], key[2], key[3], key[4], key[5]};
+  auto tainted = [&](const shared::KeyWords& n) {
+    return tainted_.contains({n.cell_x, n.cell_y, n.cell_z, n.level, n.normal, n.extra});
+  };
+  if (tainted(shared::ParentKeyWords(w))) return true;
+  for (std::uint32_t child = 0; child < shared::kLevelSeedChildren; ++child) {
+    if (tainted(shared::ChildKeyWords(w, child))) return true;
+  }
+  return false;
+}
 
 const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
   const std::size_t capacity = run.table.capacity;
@@ -18,12 +32,17 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
   };
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     if (run.placements[i] == kProbeFailure) failed_.insert(key_of(i));
+    if (run.placements[i] == kProbeFailure && seeds_levels_) tainted_.insert(key_of(i));
   }
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     const std::uint32_t slot = run.placements[i];
     if (slot >= capacity) continue;
     const FullKey key = key_of(i);
-    if (key_of_[slot] && *key_of_[slot] != key) aliased_[slot] = true;
+    if (seeds_levels_ && !key_of_[slot] && SeedTainted(key)) after_failure_[slot] = true;  // new, seeded from taint
+    if (key_of_[slot] && *key_of_[slot] != key) {
+      aliased_[slot] = true;
+      if (seeds_levels_) tainted_.insert({key, *key_of_[slot]});
+    }
     key_of_[slot] = key;
     if (evicts_under_pressure_ &&
         std::find(keys_here_[slot].begin(), keys_here_[slot].end(), key) == keys_here_[slot].end())
@@ -44,6 +63,7 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     if (run.table.counts[s] == 0) {
       if (evicts_under_pressure_) {  // evicted under pressure: its cells live on in the reference
         failed_.insert(keys_here_[s].begin(), keys_here_[s].end());
+        if (seeds_levels_) tainted_.insert(keys_here_[s].begin(), keys_here_[s].end());
         keys_here_[s].clear();
       }
       key_of_[s].reset();

@@ -4,7 +4,8 @@
 // records failed to probe in an earlier frame (the reference kept them; the table never saw them). Within one
 // frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots. With priority
 // eviction, a cell the table evicted under pressure counts as failed too: the reference, which has no pressure,
-// kept it.
+// kept it. With level seeds, a cell new in a frame is classified when a neighbour it may be seeded from (parent or
+// child, core/level_seed.h) failed, aliased or was evicted under pressure: the reference seeds from what it kept.
 #ifndef HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
 #define HPSF_TOOLS_CHECKS_CLASSIFIED_SLOTS_H
 
@@ -20,7 +21,8 @@ namespace hpsf {
 
 class ClassifiedSlots {
  public:
-  explicit ClassifiedSlots(bool evicts_under_pressure = false) : evicts_under_pressure_(evicts_under_pressure) {}
+  explicit ClassifiedSlots(bool evicts_under_pressure = false, bool seeds_levels = false)
+      : evicts_under_pressure_(evicts_under_pressure), seeds_levels_(seeds_levels) {}
 
   // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
   const std::vector<bool>& AddFrame(const HashedRun& run);
@@ -33,11 +35,14 @@ class ClassifiedSlots {
 
  private:
   using FullKey = std::array<std::uint32_t, 6>;
-  bool evicts_under_pressure_;
+  bool SeedTainted(const FullKey& key) const;
+
+  bool evicts_under_pressure_, seeds_levels_;
   std::vector<std::optional<FullKey>> key_of_;   // per slot, the full key last placed there since it was empty
   std::vector<std::vector<FullKey>> keys_here_;  // with pressure: per slot, every full key placed since it was empty
   std::vector<bool> aliased_, after_failure_, classified_;
-  std::set<FullKey> failed_;  // cells with a probe failure in some frame
+  std::set<FullKey> failed_;   // cells with a probe failure in some frame
+  std::set<FullKey> tainted_;  // with level seeds: failed, aliased or evicted under pressure
   std::uint64_t aliased_slots_ = 0, classified_records_ = 0;
   bool any_ = false;
 };

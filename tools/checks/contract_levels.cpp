@@ -66,6 +66,8 @@ void CheckFrameTable(const std::string& who, const RecordBatch& batch, const Has
   input.eviction = config.eviction;
   input.frame = config.frame;
   input.temporal = config.temporal;
+  input.level_seed = config.level_seed;
+  input.normal_in_index = config.normal_in_index;
   for (const TableViolation& v : CheckTable(input)) Fail(tables, who + ": " + v.ToString());
 }
 
@@ -117,6 +119,7 @@ void CompareFloatOrder(const RecordBatch& batch, const EmulatedRun& run, const s
     const std::uint32_t slot = std::uint32_t(entry / 3);
     const int channel = int(entry % 3);
     if (before && before->counts[slot] != 0) continue;
+    if (!run.seeded_slots.empty() && run.seeded_slots[slot]) continue;  // its seed was added after the frame's adds
     const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
     if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
       Fail(ideal, prefix + "slot " + std::to_string(slot) + " channel " + std::to_string(channel) +
@@ -141,8 +144,8 @@ const HashedRun* FilterOrFault(Backend& backend, const RecordBatch& batch, const
 
 // What the contract judged of one hashed backend over the sequence.
 struct SequenceState {
-  explicit SequenceState(bool evicts_under_pressure)
-      : classes(evicts_under_pressure), rerun_classes(evicts_under_pressure) {}
+  SequenceState(bool evicts_under_pressure, bool seeds_levels)
+      : classes(evicts_under_pressure, seeds_levels), rerun_classes(evicts_under_pressure, seeds_levels) {}
   ClassifiedSlots classes, rerun_classes;
   std::optional<HashTableDump> before, rerun_before;  // the tables before this frame
   QualityFigures quality;
@@ -185,7 +188,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
   ReferenceBackend reference;
   std::vector<SequenceState> states;
   for (std::size_t b = 0; b < hashed.size(); ++b) {
-    states.emplace_back(config.eviction.by_priority());
+    states.emplace_back(config.eviction.by_priority(), config.level_seed.enabled);
     hashed[b].backend->Reset();
     hashed[b].rerun->Reset();
     states[b].quality.backend = hashed[b].name;

@@ -19,13 +19,17 @@ constexpr double kUnitRoundoff = 0x1p-23;  // float atomics: not promised round-
 // Per slot: the exact sum and the sum of magnitudes of the contributions placed there, per channel.
 struct SlotSums {
   std::vector<glm::dvec3> exact, magnitude;
+  std::vector<std::uint64_t> records;  // placed this frame
 };
 
 SlotSums SumsByPlacement(const RecordBatch& batch, const HashedRun& run) {
-  SlotSums s{std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)), std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0))};
+  SlotSums s{std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)),
+             std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)),
+             std::vector<std::uint64_t>(run.table.capacity, 0)};
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     const std::uint32_t slot = run.placements[i];
     if (slot >= run.table.capacity) continue;
+    ++s.records[slot];
     const glm::dvec3 c(batch.records[i].contribution);
     s.exact[slot] += c;  // doubles: 29 bits beyond float's, far below the bound
     s.magnitude[slot] += glm::abs(c);
@@ -76,8 +80,13 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
       if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
       const std::uint32_t slot = run.placements[p * spp + s];
       std::optional<glm::dvec3> average;
-      if (slot < run.table.capacity && before && before->counts[slot] > 0) {
-        const std::array<float, 3>& sum = run.table.float_sums[slot];  // carried over
+      // A slot that carried samples into the frame, or was seeded from another level (core/level_seed.h), holds more
+      // than this frame's records: level 2 bounds its sum.
+      const bool carried = slot < run.table.capacity &&
+                           ((before && before->counts[slot] > 0) ||
+                            (run.seeded > 0 && run.table.counts[slot] != sums.records[slot]));
+      if (carried) {
+        const std::array<float, 3>& sum = run.table.float_sums[slot];
         average = glm::dvec3(sum[0], sum[1], sum[2]) / double(run.table.counts[slot]);
       } else if (slot < run.table.capacity) {
         const double n = double(run.table.counts[slot]), k = n - 1.0;

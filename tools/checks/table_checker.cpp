@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 
 #include "core/input_check.h"
 #include "core/shared/eviction_priority.h"
@@ -261,6 +262,22 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     return 0xFFFFFFFFu;
   };
 
+  // The seed of a slot new this frame, from the table before it: of the cell its records key (of whichever of an
+  // aliased slot's cells gives the count found; the backends seed from the one record that claims the seeding).
+  auto SeedOfSlot = [&](std::uint32_t s, const std::vector<std::uint32_t>& here) {
+    CellState chosen;
+    if (!in.level_seed.enabled || !before || here.empty() || count_before(s) != 0) return chosen;
+    const CellLookup lookup = [&](const shared::KeyWords& w) { return FindInTable(*before, w, in.normal_in_index); };
+    std::set<std::array<std::uint32_t, 6>> tried;
+    for (std::size_t n = 0; n < here.size(); ++n) {
+      const shared::KeyWords& w = in.keys[here[n]].words;
+      if (!tried.insert({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra}).second) continue;
+      const CellState seed = SeedOf(w, in.level_seed, fixed, lookup);
+      if (n == 0 || seed.count + here.size() == t.counts[s]) chosen = seed;
+    }
+    return chosen;
+  };
+
   // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
   // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
   std::array<unsigned __int128, 3> table_total{}, placed_total{};
@@ -316,9 +333,11 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                                        : " keeps it, but it was emptied"));
       continue;  // reported once: its count and sums are the policy's question, not the accumulate's
     }
-    const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s);
-    auto fixed_base = [&](int c) -> std::uint64_t { return evicted_by_policy ? 0 : fixed_before(s, c); };
-    auto float_base = [&](int c) -> float { return evicted_by_policy ? 0.0f : float_before(s, c); };
+    // A slot new this frame may start from its seed (core/level_seed.h) instead of nothing.
+    const CellState seed = SeedOfSlot(s, here);
+    const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s) + seed.count;
+    auto fixed_base = [&](int c) -> std::uint64_t { return evicted_by_policy ? 0 : fixed_before(s, c) + seed.fixed_sum[c]; };
+    auto float_base = [&](int c) -> float { return evicted_by_policy ? 0.0f : float_before(s, c) + seed.float_sum[c]; };
     if (t.tags[s] == kEmptyTag) {
       if (t.counts[s] != 0 || !sums_are_zero(s))
         violate(TableInvariant::kEmptySlotNotZero, s, here, "count " + std::to_string(t.counts[s]));
@@ -333,10 +352,10 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (here.empty() && tag_before(s) == kEmptyTag)
       violate(TableInvariant::kOrphanTag, s, {}, "tag " + std::to_string(t.tags[s]));
     total_count += t.counts[s];
-    if (in.temporal.blends() && base_count > 0 && !here.empty()) {
+    if (in.temporal.blends() && base_count > seed.count && !here.empty()) {  // a seeded slot is new: no blend
       CheckBlend(in, s, here,
                  {fixed ? before->fixed_sums[s] : std::array<std::uint64_t, 3>{},
-                  fixed ? std::array<float, 3>{} : before->float_sums[s], base_count},
+                  fixed ? std::array<float, 3>{} : before->float_sums[s], base_count - seed.count},
                  violations);
       // The blend check is this slot's whole check: the totals take it as it is.
       expected_total_count += t.counts[s];
@@ -346,7 +365,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     expected_total_count += expected_count;
     if (t.counts[s] != expected_count) {
       violate(TableInvariant::kCountMismatch, s, here,
-              "count " + std::to_string(t.counts[s]) + ", before " + std::to_string(base_count) + " + placed " +
+              "count " + std::to_string(t.counts[s]) + (seed.count > 0 ? ", seeded " : ", before ") +
+                  std::to_string(base_count) + " + placed " +
                   std::to_string(here.size()) + (expected_count >> 64 ? ": more than a 64-bit count holds (D12)" : ""));
     }
     for (int c = 0; c < 3; ++c) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/eviction.h"
+#include "core/level_seed.h"
 #include "core/hash_table.h"
 #include "core/temporal.h"
 #include "core/key_batch.h"
@@ -67,6 +68,8 @@ struct TableCheckInput {
   Eviction eviction = {};   // the sequence's policy; the tables then carry last_seen
   std::uint32_t frame = 0;  // this frame's number
   Temporal temporal = {};   // the sequence's temporal mode
+  LevelSeed level_seed = {};    // the sequence's --level-change
+  bool normal_in_index = true;  // the key's, for the neighbours' windows a seed is looked up in
 };
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& input);

@@ -36,11 +36,13 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"probe_lengths", run.probe_lengths},
                       {"fixed_point_bits", run.table.fixed_point_bits},
                       {"evicted", run.evicted},
-                      {"tombstones", run.tombstones}};
+                      {"tombstones", run.tombstones},
+                      {"seeded", run.seeded}};
   const EmulatedTimings& t = run.timings;
   j["timings_ms"] = {{"keys", 1e3 * t.keys},         {"fixed_point", 1e3 * t.fixed_point},
                      {"clear", 1e3 * t.clear},       {"accumulate", 1e3 * t.accumulate},
-                     {"temporal", 1e3 * t.temporal}, {"eviction", 1e3 * t.eviction},
+                     {"level_seed", 1e3 * t.level_seed}, {"temporal", 1e3 * t.temporal},
+                     {"eviction", 1e3 * t.eviction},
                      {"read_back", 1e3 * t.read_back}, {"resolve", 1e3 * t.resolve}};
   if (options.mode == simt::Mode::kFaithful) {
     char hash[32];
@@ -70,12 +72,14 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
           {"fixed_point_bits", run.table.fixed_point_bits},
           {"evicted", run.evicted},
           {"tombstones", run.tombstones},
+          {"seeded", run.seeded},
           {"memory", device.memory},
           {"staged", device.staged},
           {"timings_ms",
            {{"upload", run.timings.upload_ms},
             {"upload_copy", run.timings.upload_copy_ms},
             {"accumulate", run.timings.accumulate_ms},
+            {"level_seed", run.timings.level_seed_ms},
             {"temporal", run.timings.temporal_ms},
             {"eviction", run.timings.eviction_ms},
             {"resolve", run.timings.resolve_ms},
@@ -115,6 +119,17 @@ nlohmann::json LastFrameEviction(const BackendInstance& instance) {
   }
   const VulkanRun& run = dynamic_cast<const VulkanBackend&>(*instance.backend).run();
   return {{"evicted", run.evicted}, {"tombstones", run.tombstones}, {"eviction_s", run.timings.eviction_ms / 1e3}};
+}
+
+nlohmann::json LastFrameLevelSeed(const BackendInstance& instance) {
+  if (const auto* reference = dynamic_cast<const ReferenceBackend*>(instance.backend.get())) {
+    return {{"cells_seeded", reference->result().stats.cells_seeded}};
+  }
+  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(instance.backend.get())) {
+    return {{"seeded", emulated->run().seeded}, {"level_seed_s", emulated->run().timings.level_seed}};
+  }
+  const VulkanRun& run = dynamic_cast<const VulkanBackend&>(*instance.backend).run();
+  return {{"seeded", run.seeded}, {"level_seed_s", run.timings.level_seed_ms / 1e3}};
 }
 
 nlohmann::json LastFrameTemporal(const BackendInstance& instance) {

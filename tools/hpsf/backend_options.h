@@ -53,6 +53,9 @@ nlohmann::json LastFrameEviction(const BackendInstance& instance);
 // The temporal blend's pass time of the last frame: {"temporal_s": seconds} for a hashed backend; the reference
 // blends inside its filter ({}).
 nlohmann::json LastFrameTemporal(const BackendInstance& instance);
+// The last frame's level seeds (--level-change seed): cells_seeded (reference), or seeded and level_seed_s, the
+// seed pass's time (hashed backends).
+nlohmann::json LastFrameLevelSeed(const BackendInstance& instance);
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
 

@@ -41,6 +41,11 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "ema:ALPHA[:MAXCOUNT] (history weight at most ALPHA, its count at most MAXCOUNT) or adaptive "
                   "(integration, less where the cell's light changed)")
       ->capture_default_str();
+  command
+      .add_option("--level-change", o.level_change,
+                  "How a cell new in a frame starts when its location's level changed: none (empty) or seed[:S] "
+                  "(from its children's sums one level finer, else an eighth of its parent's, times 2^-S)")
+      ->capture_default_str();
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {
@@ -59,6 +64,7 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     config.fixed_point_bits = bits;
   }
   config.eviction = ParseEviction(o.eviction);
+  config.level_seed = ParseLevelSeed(o.level_change);
   config.temporal = ParseTemporal(o.temporal);
   config.Validate();
   return config;
@@ -88,6 +94,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"frame", c.frame},
           {"frames", c.frames},
           {"eviction", c.eviction.ToString()},
+          {"level_change", c.level_seed.ToString()},
           {"temporal", c.temporal.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }
@@ -105,7 +112,8 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"fixed_point_bits", s.fixed_point_bits},
           {"fixed64_wraps", s.fixed_point_wraps},
           {"count_wraps", s.count_wraps},
-          {"cells_evicted", s.cells_evicted}};
+          {"cells_evicted", s.cells_evicted},
+          {"cells_seeded", s.cells_seeded}};
 }
 
 }  // namespace hpsf

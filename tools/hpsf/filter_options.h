@@ -21,6 +21,7 @@ struct FilterOptions {
   std::string accumulation = "fixed64";
   std::string fixed_point_bits = "auto";
   std::string eviction = "none";
+  std::string level_change = "none";
   std::string temporal = "integrate";
   bool no_filter = false;
   bool variance = false;  // also write each pixel's variance (tools/checks/pixel_variance.h)

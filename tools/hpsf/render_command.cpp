@@ -85,6 +85,7 @@ nlohmann::json FilterSequenceFrame(BackendInstance& backend, const RecordBatch& 
   }
   if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
   if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
+  if (config.level_seed.enabled) frame["level_seed"] = LastFrameLevelSeed(backend);
   return report;
 }
 
