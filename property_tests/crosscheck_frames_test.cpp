@@ -42,8 +42,9 @@ const QualityFigures& QualityOf(const CrosscheckReport& report, const std::strin
   throw std::runtime_error("no quality figures for " + backend);
 }
 
-// Four frames of the animated Cornell box (camera, light and cube move) pass the contract with every policy and
-// mode on every backend, and each level judged something in every frame: records compared with the reference, and
+// Four frames of the animated Cornell box (camera, light and cube move) pass the contract with every policy (priority
+// with 24-bit fingerprints; this table has room, so it evicts nothing: priority_eviction_tests puts it under
+// pressure) and mode on every backend, and each level judged something in every frame: records compared with the reference, and
 // evictions where the policy evicts.
 TEST(CrosscheckFrames, EveryPolicyAndTemporalModePassesOnAllThreeBackends) {
   constexpr std::uint32_t kFrames = 4;
@@ -57,7 +58,7 @@ TEST(CrosscheckFrames, EveryPolicyAndTemporalModePassesOnAllThreeBackends) {
     simt::Mode mode;
   };
   std::vector<Case> cases;
-  for (const char* eviction : {"none", "strict", "stale:2"}) {
+  for (const char* eviction : {"none", "strict", "stale:2", "priority"}) {
     for (const char* temporal : {"integrate", "ema:0.5", "adaptive"}) {
       cases.push_back({eviction, temporal, Accumulation::kFixed64, simt::Mode::kFast});
     }
@@ -69,6 +70,7 @@ TEST(CrosscheckFrames, EveryPolicyAndTemporalModePassesOnAllThreeBackends) {
     config.capacity = 1u << 12;
     config.frames = kFrames;
     config.eviction = ParseEviction(c.eviction);
+    if (config.eviction.by_priority()) config.fingerprint_bits = 24;
     config.temporal = ParseTemporal(c.temporal);
     config.accumulation = c.accumulation;
     EmulatorOptions emulator;

@@ -336,7 +336,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     // A slot new this frame may start from its seed (core/level_seed.h) instead of nothing.
     const CellState seed = SeedOfSlot(s, here);
     const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s) + seed.count;
-    auto fixed_base = [&](int c) -> std::uint64_t { return evicted_by_policy ? 0 : fixed_before(s, c) + seed.fixed_sum[c]; };
+    auto fixed_base = [&](int c) -> std::uint64_t {
+      return evicted_by_policy ? 0 : fixed_before(s, c) + seed.fixed_sum[c];
+    };
     auto float_base = [&](int c) -> float { return evicted_by_policy ? 0.0f : float_before(s, c) + seed.float_sum[c]; };
     if (t.tags[s] == kEmptyTag) {
       if (t.counts[s] != 0 || !sums_are_zero(s))
