@@ -66,14 +66,18 @@ TEST(ParallelFor, ReduceAddsEveryIndexOnTbbAndOnPlainThreads) {
 
 TEST(ParallelFor, AChunksExceptionReachesTheCallerOnTbbAndOnPlainThreads) {
   for (bool plain : {false, true}) {
-    std::atomic<int> after_failure{0};
-    EXPECT_THROW(Loops{plain}.For(1 << 20, 16, [&](std::size_t begin, std::size_t end) {
-      if (begin <= 4096 && 4096 < end) throw std::runtime_error("index 4096");
-      after_failure += begin > 4096;
-    }, 2), std::runtime_error) << "plain " << plain;
-    // Plain threads take chunks in order and stop at the failure (TBB's order and cancellation are its own).
-    if (plain) {
-      EXPECT_LT(after_failure.load(), 64);
+    for (int threads : {1, 2}) {
+      std::atomic<int> after_failure{0};
+      EXPECT_THROW(Loops{plain}.For(1 << 20, 16, [&](std::size_t begin, std::size_t end) {
+        if (begin <= 4096 && 4096 < end) throw std::runtime_error("index 4096");
+        after_failure += begin > 4096;
+      }, threads), std::runtime_error) << "plain " << plain << ", threads " << threads;
+      // One plain thread takes the chunks in order and stops at the failure. With two, how many chunks the other
+      // runs while the exception unwinds is timing (an ASan run under load once ran almost all), so nothing is
+      // claimed; nor of TBB, whose order and cancellation are its own.
+      if (plain && threads == 1) {
+        EXPECT_EQ(after_failure.load(), 0);
+      }
     }
   }
 }
