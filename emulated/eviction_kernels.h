@@ -13,8 +13,8 @@
 // Priority eviction (core/eviction.h) adds a launch before them, one thread per record: SelectVictims, in the
 // window of each record that found no slot, marks the untouched live slot of lowest priority
 // (core/shared/eviction_priority.h). The table is only read there, so the victims are a function of the state
-// after the accumulate, whatever the order of the threads, and two failed records that share a window mark the
-// same victim. Evict then evicts the marked slots and tags them kTombstoneTag, which an insertion may claim.
+// after the accumulate, whatever the order of the threads, and two failed records with one slot0 mark the same
+// victim (overlapping windows may mark two). Evict then evicts the marked slots and tags them kTombstoneTag, which an insertion may claim.
 #ifndef HPSF_EMULATED_EVICTION_KERNELS_H
 #define HPSF_EMULATED_EVICTION_KERNELS_H
 

@@ -4,6 +4,7 @@
 #ifndef HPSF_TOOLS_GATE_JUNIT_REPORT_H
 #define HPSF_TOOLS_GATE_JUNIT_REPORT_H
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct GateCaseResult {
   std::string details;    // every failure, or the output of a case that crashed
   std::string reproduce;  // the command line that reproduces the case
   std::string bundle;     // a failed case's repro bundle, else empty
+  std::size_t index = 0;  // the case's place in the whole gate (a shard runs some of them)
 };
 
 std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>& results);

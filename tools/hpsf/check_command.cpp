@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "tools/gate/check_report.h"
 #include "tools/gate/gate_file.h"
 #include "tools/gate/junit_report.h"
 #include "tools/hpsf/crosscheck_command.h"
@@ -24,6 +25,7 @@ struct CheckOptions {
   std::string out = "hpsf-check";
   bool json = false;
   bool list = false;
+  std::vector<std::string> merge;  // --merge: the shards' output directories
 };
 
 std::string Quoted(const std::string& word) {
@@ -109,26 +111,49 @@ GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out, int&
   return r;
 }
 
-nlohmann::json ToJson(const Gate& gate, const std::string& shard, const std::vector<GateCaseResult>& results) {
-  nlohmann::json cases = nlohmann::json::array();
-  bool passed = true;
-  for (const GateCaseResult& r : results) {
-    passed = passed && r.outcome == CaseOutcome::kPassed;
-    cases.push_back({{"id", r.id},
-                     {"family", r.family},
-                     {"outcome", r.outcome == CaseOutcome::kPassed   ? "pass"
-                                 : r.outcome == CaseOutcome::kFailed ? "fail"
-                                                                     : "error"},
-                     {"seconds", r.seconds},
-                     {"message", r.message},
-                     {"reproduce", r.reproduce},
-                     {"bundle", r.bundle}});
+// The report's outputs: the JUnit file, the JSON report or the summary, and the command that reproduces each case
+// that did not pass. Exit 3 when a case's options were bad input, else 2 when a case failed, else 0.
+int Finish(const CheckReport& report, const CheckOptions& o, int bad_input) {
+  if (!o.junit.empty()) std::ofstream(o.junit) << JUnitXml("hpsf check " + report.gate, report.results);
+  if (o.json) std::cout << report.ToJson().dump(2) << "\n";
+  std::size_t failed = 0;
+  for (const GateCaseResult& r : report.results) failed += r.outcome != CaseOutcome::kPassed;
+  if (!o.json) {
+    std::cout << "check: " << report.results.size() - failed << " of " << report.results.size() << " cases passed ("
+              << report.gate << ", shard " << report.shard << ")" << std::endl;
   }
-  return {{"version", 1},   {"command", "check"}, {"gate", gate.source},
-          {"shard", shard}, {"passed", passed},   {"cases", cases}};
+  for (const GateCaseResult& r : report.results) {
+    if (r.outcome == CaseOutcome::kPassed) continue;
+    std::cerr << "hpsf: " << r.id << " reproduces with: " << r.reproduce
+              << (r.bundle.empty() ? "" : " (repro bundle: " + r.bundle + ")") << "\n";
+  }
+  if (bad_input > 0) return kExitBadInput;
+  return failed > 0 ? kExitCheckFailed : kExitOk;
+}
+
+// --merge: the reports the shards wrote (DIR/check.json) as one.
+int RunMerge(const CheckOptions& o) {
+  std::vector<CheckReport> reports;
+  std::vector<std::string> sources;
+  for (const std::string& dir : o.merge) {
+    const std::string source = (std::filesystem::path(dir) / "check.json").string();
+    std::ifstream in(source);
+    if (!in) throw InputError(source + ": cannot be read (a shard's --out directory holds its check.json)");
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded()) throw InputError(source + ": not valid JSON");
+    reports.push_back(CheckReportFromJson(j, source));
+    sources.push_back(source);
+  }
+  return Finish(MergeCheckReports(reports, sources), o, 0);
 }
 
 int RunCheck(const CheckOptions& o, bool options_only) {
+  if (!o.merge.empty()) {
+    if (!o.gate_file.empty() || o.shard != "1/1" || o.list) {
+      throw ConfigError("--merge", "merges the reports of a run's shards: give no gate file, --shard or --list");
+    }
+    return options_only ? kExitOk : RunMerge(o);
+  }
   const auto [index, count] = ParseShard(o.shard);
   const Gate gate = o.gate_file.empty() ? DefaultGate() : ReadGateFile(o.gate_file);
   const std::vector<GateCase> cases = ShardOf(gate.cases, index, count);
@@ -140,11 +165,15 @@ int RunCheck(const CheckOptions& o, bool options_only) {
   }
   const std::filesystem::path out = o.out;
   std::filesystem::create_directories(out / "reports");
-  std::vector<GateCaseResult> results;
+  CheckReport report;
+  report.gate = gate.source;
+  report.shard = o.shard;
+  report.gate_cases = gate.cases.size();
   int bad_input = 0;
-  for (const GateCase& c : cases) {
-    results.push_back(RunCase(c, out, bad_input));
-    const GateCaseResult& r = results.back();
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    report.results.push_back(RunCase(cases[k], out, bad_input));
+    GateCaseResult& r = report.results.back();
+    r.index = (index - 1) + k * count;  // ShardOf's cases I, I + N, ...
     if (!o.json) {
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);
@@ -154,22 +183,8 @@ int RunCheck(const CheckOptions& o, bool options_only) {
                 << r.id << " (" << seconds << " s)" << (r.message.empty() ? "" : ": " + r.message) << std::endl;
     }
   }
-  if (!o.junit.empty()) std::ofstream(o.junit) << JUnitXml("hpsf check " + gate.source, results);
-  const nlohmann::json report = ToJson(gate, o.shard, results);
-  if (o.json) std::cout << report.dump(2) << "\n";
-  std::size_t failed = 0;
-  for (const GateCaseResult& r : results) failed += r.outcome != CaseOutcome::kPassed;
-  if (!o.json) {
-    std::cout << "check: " << results.size() - failed << " of " << results.size() << " cases passed (" << gate.source
-              << ", shard " << o.shard << ")" << std::endl;
-  }
-  for (const GateCaseResult& r : results) {
-    if (r.outcome == CaseOutcome::kPassed) continue;
-    std::cerr << "hpsf: " << r.id << " reproduces with: " << r.reproduce
-              << (r.bundle.empty() ? "" : " (repro bundle: " + r.bundle + ")") << "\n";
-  }
-  if (bad_input > 0) return kExitBadInput;
-  return failed > 0 ? kExitCheckFailed : kExitOk;
+  std::ofstream(out / "check.json") << report.ToJson().dump(2) << "\n";
+  return Finish(report, o, bad_input);
 }
 
 }  // namespace
@@ -183,6 +198,10 @@ void AddCheckCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--out", o->out, "Where reports and the failing cases' repro bundles go")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   c->add_flag("--list", o->list, "List the cases of this shard and exit");
+  c->add_option("--merge", o->merge,
+                "Merge the reports of a gate's shards (each DIR a shard's --out, holding its check.json) into one "
+                "JUnit, JSON report and summary, as the unsharded run gives")
+      ->expected(1, -1);
   c->callback([o, &context] { context.exit_code = RunCheck(*o, context.options_only); });
 }
 
