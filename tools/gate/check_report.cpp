@@ -1,15 +1,16 @@
 #include "tools/gate/check_report.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "core/error.h"
 
 namespace hpsf {
 namespace {
 
-const char* OutcomeName(CaseOutcome outcome) {
-  return outcome == CaseOutcome::kPassed ? "pass" : outcome == CaseOutcome::kFailed ? "fail" : "error";
-}
+constexpr const char* kOutcomeNames[] = {"pass", "warn", "fail", "error"};
+
+const char* OutcomeName(CaseOutcome outcome) { return kOutcomeNames[int(outcome)]; }
 
 // The value at `pointer` in `j`, of the wanted kind; an InputError naming the source and the place otherwise.
 const nlohmann::json& At(const nlohmann::json& j, const std::string& pointer, nlohmann::json::value_t kind,
@@ -26,9 +27,25 @@ const nlohmann::json& At(const nlohmann::json& j, const std::string& pointer, nl
 
 }  // namespace
 
-bool CheckReport::Passed() const {
-  return std::all_of(results.begin(), results.end(),
-                     [](const GateCaseResult& r) { return r.outcome == CaseOutcome::kPassed; });
+CaseOutcome CheckReport::Worst() const {
+  CaseOutcome worst = CaseOutcome::kPassed;
+  for (const GateCaseResult& r : results) worst = std::max(worst, r.outcome);
+  return worst;
+}
+
+std::vector<FamilyTotals> CheckReport::Families() const {
+  std::vector<FamilyTotals> families;
+  for (const GateCaseResult& r : results) {
+    auto it = std::find_if(families.begin(), families.end(), [&](const FamilyTotals& f) { return f.family == r.family; });
+    if (it == families.end()) it = families.insert(families.end(), FamilyTotals{r.family});
+    ++it->cases;
+    it->passed += r.outcome == CaseOutcome::kPassed;
+    it->warned += r.outcome == CaseOutcome::kWarned;
+    it->failed += r.outcome == CaseOutcome::kFailed;
+    it->errors += r.outcome == CaseOutcome::kError;
+    it->seconds += r.seconds;
+  }
+  return families;
 }
 
 nlohmann::json CheckReport::ToJson() const {
@@ -42,10 +59,17 @@ nlohmann::json CheckReport::ToJson() const {
                      {"message", r.message},
                      {"details", r.details},
                      {"reproduce", r.reproduce},
-                     {"bundle", r.bundle}});
+                     {"bundle", r.bundle},
+                     {"html", r.html}});
   }
-  return {{"version", 1},   {"command", "check"},        {"gate", gate},       {"shard", shard},
-          {"gate_cases", gate_cases}, {"passed", Passed()}, {"cases", cases}};
+  nlohmann::json families = nlohmann::json::object();
+  for (const FamilyTotals& f : Families()) {
+    families[f.family] = {{"cases", f.cases},   {"pass", f.passed},   {"warn", f.warned},
+                          {"fail", f.failed},   {"error", f.errors},  {"seconds", f.seconds}};
+  }
+  return {{"version", 1},        {"command", "check"},  {"gate", gate},         {"shard", shard},
+          {"gate_cases", gate_cases}, {"passed", Passed()}, {"outcome", OutcomeName(Worst())},
+          {"families", families}, {"cases", cases}};
 }
 
 CheckReport CheckReportFromJson(const nlohmann::json& j, const std::string& source) {
@@ -67,15 +91,17 @@ CheckReport CheckReportFromJson(const nlohmann::json& j, const std::string& sour
     r.id = At(j, at + "/id", Kind::string, source).get<std::string>();
     r.family = At(j, at + "/family", Kind::string, source).get<std::string>();
     const std::string outcome = At(j, at + "/outcome", Kind::string, source).get<std::string>();
-    if (outcome != "pass" && outcome != "fail" && outcome != "error") {
-      throw InputError(source + ": " + at + "/outcome: expected pass, fail or error; got '" + outcome + "'");
+    const auto name = std::find(std::begin(kOutcomeNames), std::end(kOutcomeNames), outcome);
+    if (name == std::end(kOutcomeNames)) {
+      throw InputError(source + ": " + at + "/outcome: expected pass, warn, fail or error; got '" + outcome + "'");
     }
-    r.outcome = outcome == "pass" ? CaseOutcome::kPassed : outcome == "fail" ? CaseOutcome::kFailed : CaseOutcome::kError;
+    r.outcome = CaseOutcome(name - std::begin(kOutcomeNames));
     r.seconds = At(j, at + "/seconds", Kind::number_float, source).get<double>();
     r.message = At(j, at + "/message", Kind::string, source).get<std::string>();
     r.details = At(j, at + "/details", Kind::string, source).get<std::string>();
     r.reproduce = At(j, at + "/reproduce", Kind::string, source).get<std::string>();
     r.bundle = At(j, at + "/bundle", Kind::string, source).get<std::string>();
+    r.html = At(j, at + "/html", Kind::string, source).get<std::string>();
     if (r.index >= report.gate_cases) {
       throw InputError(source + ": " + at + "/index: " + std::to_string(r.index) + " is not below /gate_cases " +
                        std::to_string(report.gate_cases));

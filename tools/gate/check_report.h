@@ -15,14 +15,23 @@
 
 namespace hpsf {
 
+// One family's share of a run: its cases by outcome and the seconds they took (the gate's wall time by family).
+struct FamilyTotals {
+  std::string family;
+  std::size_t cases = 0, passed = 0, warned = 0, failed = 0, errors = 0;
+  double seconds = 0.0;
+};
+
 struct CheckReport {
   std::string gate;            // the gate file, or "the default gate"
   std::string shard = "1/1";   // "I/N", or "1/1" for a merge of every shard
   std::size_t gate_cases = 0;  // cases in the whole gate
   std::vector<GateCaseResult> results;  // this run's, in gate order, each with its index
 
-  bool Passed() const;
-  nlohmann::json ToJson() const;  // version 1
+  CaseOutcome Worst() const;  // kPassed when there is no case
+  bool Passed() const { return Worst() <= CaseOutcome::kWarned; }  // no case failed or crashed
+  std::vector<FamilyTotals> Families() const;  // in the order families first appear in the results
+  nlohmann::json ToJson() const;               // version 1
 };
 
 // A report read back; an InputError naming `source` and the JSON place of what is wrong.

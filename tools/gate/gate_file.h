@@ -1,18 +1,21 @@
-// The gate file of `hpsf check` (issue 16): a versioned JSON matrix that a team's CI adopts. This first part of
-// the gate declares the cross-check family: scenes (built-in names, scene files or recorded .hpsfv sequences),
-// named table configurations, named backends (a team's SPIR-V accumulate shader is a backend), named sequences of
-// frames (eviction, temporal mode) and seeds. Each entry is a set of `hpsf crosscheck` options, written without
-// their dashes ({"capacity": 512, "accum": "float32"}), so a gate case is exactly a crosscheck command line and
-// the command line's own option layer validates it:
+// The gate file of `hpsf check` (issue 16): a versioned JSON matrix that a team's CI adopts. It declares families
+// of cases (tools/gate/gate_families.h): cross-checks (scenes, named table configurations, named backends, a team's
+// SPIR-V accumulate shader being one, named sequences of frames, seeds), statistics, goldens and a fuzz budget.
+// Option sets are `hpsf` command options written without their dashes ({"capacity": 512, "accum": "float32"}), so
+// a gate case is exactly a command line and the command's own option layer validates it:
 //
 //   {"hpsf_gate": 1,
 //    "crosscheck": {"scenes": ["cornell"], "size": "32x32", "spp": 2, "seeds": [1],
 //                   "configs": {"default": {}, "crowded": {"capacity": 256, "probe-limit": 4}},
 //                   "backends": {"emulated": {"backend": "emulated"}, "vulkan": {"backend": "vulkan"}},
-//                   "sequences": {"one-frame": {}, "strict": {"frames": 3, "eviction": "strict"}}}}
+//                   "sequences": {"one-frame": {}, "strict": {"frames": 3, "eviction": "strict"}}},
+//    "statistics": {"scenes": ["cornell"], "size": "64x64", "spp": 1, "configs": {"small": {"capacity": 4096}}},
+//    "golden": {"manifest": "golden/manifest.json", "cases": ["cornell/fixed64"]},
+//    "fuzz": {"runs": 1000, "seeds": [1], "backends": {"ours": {"backend": "vulkan", "accumulate-spv": "a.spv",
+//                                                               "accum": "fixed64"}}}}
 //
-// The matrix is every scene x config x backend x sequence x seed, in that order of nesting, names sorted; a case's
-// id names each coordinate. A bad file is an InputError naming the file and the JSON pointer of the place.
+// A case's id names its family and each coordinate. A bad file is an InputError naming the file and the JSON pointer
+// of the place.
 #ifndef HPSF_TOOLS_GATE_GATE_FILE_H
 #define HPSF_TOOLS_GATE_GATE_FILE_H
 
@@ -26,8 +29,8 @@ inline constexpr int kGateFileVersion = 1;
 
 struct GateCase {
   std::string id;                      // "crosscheck/cornell/crowded/vulkan/strict/seed1"
-  std::string family;                  // "crosscheck"
-  std::vector<std::string> arguments;  // after `hpsf`: "crosscheck", the input, then its options
+  std::string family;                  // "crosscheck", "statistics", "golden" or "fuzz"
+  std::vector<std::string> arguments;  // after `hpsf`: the command ("crosscheck"), its input, then its options
   std::string where;                   // the gate file's place it came from, for error messages
 };
 
@@ -39,7 +42,8 @@ struct Gate {
 // Reads and expands a gate file. Relative paths in it (scene files, record files, shaders) are relative to the
 // file's folder.
 Gate ReadGateFile(const std::string& path);
-// The gate `hpsf check` runs without a file: the built-in backends on built-in scenes, a few minutes on 2 cores.
+// The gate `hpsf check` runs without a file: the built-in backends on built-in scenes, cross-checked, their
+// statistics and a fuzz budget; a few minutes on 2 cores.
 Gate DefaultGate();
 // Expands a parsed gate document; `folder` resolves relative paths, `source` names it in errors.
 Gate ExpandGate(const std::string& text, const std::string& source, const std::string& folder);

@@ -76,13 +76,14 @@ std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>&
       const std::string classname = r->id.substr(0, cut == std::string::npos ? r->id.size() : cut);
       xml += "    <testcase classname=\"" + Escaped(classname) + "\" name=\"" + Escaped(r->id) + "\" time=\"" +
              Seconds(r->seconds) + "\">\n";
-      if (r->outcome != CaseOutcome::kPassed) {
+      if (r->outcome == CaseOutcome::kFailed || r->outcome == CaseOutcome::kError) {
         const char* element = r->outcome == CaseOutcome::kFailed ? "failure" : "error";
         xml += "      <" + std::string(element) + " message=\"" + Escaped(r->message) + "\" type=\"" +
                (r->outcome == CaseOutcome::kFailed ? "contract" : "crash") + "\">" + Escaped(r->details) + "</" +
                element + ">\n";
       }
-      xml += "      <system-out>reproduce: " + Escaped(r->reproduce) +
+      const std::string warning = r->outcome == CaseOutcome::kWarned ? "warning: " + r->details : "";
+      xml += "      <system-out>" + Escaped(warning) + "reproduce: " + Escaped(r->reproduce) +
              (r->bundle.empty() ? "" : "\nrepro bundle: " + Escaped(r->bundle)) + "</system-out>\n    </testcase>\n";
     }
     xml += "  </testsuite>\n";

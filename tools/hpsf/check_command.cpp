@@ -1,5 +1,6 @@
 #include "tools/hpsf/check_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,10 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "tools/gate/case_judgement.h"
 #include "tools/gate/check_report.h"
 #include "tools/gate/gate_file.h"
 #include "tools/gate/junit_report.h"
-#include "tools/hpsf/crosscheck_command.h"
+#include "tools/hpsf/check_html_report.h"
+#include "tools/hpsf/commands.h"
+#include "tools/hpsf/html_report.h"
 #include "tools/hpsf/subprocess.h"
 
 namespace hpsf {
@@ -22,6 +26,7 @@ struct CheckOptions {
   std::string gate_file;
   std::string shard = "1/1";
   std::string junit;
+  std::string html;
   std::string out = "hpsf-check";
   bool json = false;
   bool list = false;
@@ -41,13 +46,13 @@ std::string CommandLine(const std::vector<std::string>& arguments) {
   return line;
 }
 
-// A case's options through the crosscheck command's own option layer, options only: a bad one is bad input
-// named with the case and its place in the gate file, before any case runs.
+// A case's options through its command's own option layer, options only: a bad one is bad input named with the
+// case and its place in the gate file, before any case runs.
 void ValidateCase(const Gate& gate, const GateCase& c) {
   CLI::App app;
   CommandContext context;
   context.options_only = true;
-  AddCrosscheckCommand(app, context);
+  AddCommands(app, context);
   std::vector<const char*> argv = {"hpsf"};
   for (const std::string& a : c.arguments) argv.push_back(a.c_str());
   const std::string where = gate.source + ": case " + c.id + " (" + c.where + "): ";
@@ -60,75 +65,109 @@ void ValidateCase(const Gate& gate, const GateCase& c) {
   }
 }
 
-// The case's directory name: its id with '/' as '_'.
+// The case's file name: its id with '/' as '_'.
 std::string FileName(const std::string& id) {
   std::string name = id;
   for (char& c : name) c = c == '/' ? '_' : c;
   return name;
 }
 
-GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out, int& bad_input) {
+// Runs a case's command with what makes its result readable: its JSON report in OUT/reports/NAME.json (crosscheck
+// writes it with --report; the others print it with --json, their stdout sent to the file), a failure's repro
+// bundle in OUT/bundles/NAME (crosscheck, fuzz), a golden's comparisons in OUT/html/NAME.html.
+GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out) {
   GateCaseResult r;
   r.id = c.id;
   r.family = c.family;
   r.reproduce = CommandLine(c.arguments);
   const std::string name = FileName(c.id);
   const std::filesystem::path report = out / "reports" / (name + ".json");
+  const std::filesystem::path bundle = out / "bundles" / name;
+  const std::filesystem::path html = out / "html" / (name + ".html");
   std::filesystem::remove(report);
   std::vector<std::string> argv = {SelfPath()};
   argv.insert(argv.end(), c.arguments.begin(), c.arguments.end());
-  argv.insert(argv.end(), {"--repro-dir", (out / "bundles" / name).string(), "--report", report.string()});
+  std::string stdout_file;
+  if (c.family == "crosscheck") {
+    argv.insert(argv.end(), {"--repro-dir", bundle.string(), "--report", report.string()});
+  } else {
+    argv.push_back("--json");
+    stdout_file = report.string();
+  }
+  if (c.family == "fuzz") argv.insert(argv.end(), {"--repro-dir", bundle.string()});
+  if (c.family == "golden") {
+    std::filesystem::create_directories(html.parent_path());
+    argv.insert(argv.end(), {"--html", html.string()});
+  }
   const auto start = std::chrono::steady_clock::now();
-  const ProcessResult process = RunProcess(argv);
+  const ProcessResult process = RunProcess(argv, "", stdout_file);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (process.exit_code == kExitOk) return r;
-  if (process.exit_code == kExitBadInput) {
-    ++bad_input;
-    r.outcome = CaseOutcome::kError;
-    r.message = "bad input";
-    r.details = process.output;
-    return r;
+  CaseRun run{process.exit_code, process.output, std::nullopt};
+  if (std::ifstream in(report); in) {
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (!j.is_discarded()) run.report = std::move(j);
   }
-  if (process.exit_code == kExitCheckFailed && std::filesystem::exists(report)) {
-    r.outcome = CaseOutcome::kFailed;
-    const nlohmann::json j = nlohmann::json::parse(std::ifstream(report));
-    for (const nlohmann::json& level : j["levels"]) {
-      if (!level["applicable"].get<bool>() || level["passed"].get<bool>()) continue;
-      const std::string head =
-          "level " + std::to_string(level["level"].get<int>()) + " " + level["name"].get<std::string>();
-      for (const nlohmann::json& failure : level["failures"]) {
-        if (r.message.empty()) r.message = head + ": " + failure.get<std::string>();
-        r.details += head + ": " + failure.get<std::string>() + "\n";
-      }
-    }
-    r.bundle = (out / "bundles" / name).string();
-    return r;
+  JudgeCase(run, r);
+  const bool failed = r.outcome == CaseOutcome::kFailed;
+  if (failed && (c.family == "crosscheck" || c.family == "fuzz") && std::filesystem::exists(bundle)) {
+    r.bundle = bundle.string();
   }
-  // A kernel fault exits 2 with no report; anything else (a signal, an unexpected code) crashed the check.
-  r.outcome = process.exit_code == kExitCheckFailed ? CaseOutcome::kFailed : CaseOutcome::kError;
-  r.message = "exit " + std::to_string(process.exit_code);
-  r.details = process.output;
+  if (c.family == "golden" && std::filesystem::exists(html)) r.html = html.string();
   return r;
 }
 
-// The report's outputs: the JUnit file, the JSON report or the summary, and the command that reproduces each case
-// that did not pass. Exit 3 when a case's options were bad input, else 2 when a case failed, else 0.
-int Finish(const CheckReport& report, const CheckOptions& o, int bad_input) {
+const char* OutcomeWord(CaseOutcome outcome) {
+  switch (outcome) {
+    case CaseOutcome::kPassed:
+      return "PASS";
+    case CaseOutcome::kWarned:
+      return "WARN";
+    case CaseOutcome::kFailed:
+      return "FAIL";
+    case CaseOutcome::kError:
+      break;
+  }
+  return "ERROR";
+}
+
+// The report's outputs: the JUnit file, the HTML page, the JSON report or the summary with its split by family,
+// and the command that reproduces each case that did not pass. Exit 3 when a case's options were bad input, else 2
+// when a case failed or crashed, else 1 when one warned, else 0.
+int Finish(const CheckReport& report, const CheckOptions& o) {
   if (!o.junit.empty()) std::ofstream(o.junit) << JUnitXml("hpsf check " + report.gate, report.results);
+  if (!o.html.empty()) WriteHtmlReport(o.html, RenderCheckHtml(report, o.html));
   if (o.json) std::cout << report.ToJson().dump(2) << "\n";
-  std::size_t failed = 0;
-  for (const GateCaseResult& r : report.results) failed += r.outcome != CaseOutcome::kPassed;
+  std::size_t passed = 0;
+  for (const GateCaseResult& r : report.results) passed += r.outcome == CaseOutcome::kPassed;
   if (!o.json) {
-    std::cout << "check: " << report.results.size() - failed << " of " << report.results.size() << " cases passed ("
-              << report.gate << ", shard " << report.shard << ")" << std::endl;
+    for (const FamilyTotals& f : report.Families()) {
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%.1f", f.seconds);
+      std::cout << "  " << f.family << ": " << f.passed << " of " << f.cases << " passed"
+                << (f.warned ? ", " + std::to_string(f.warned) + " warned" : "")
+                << (f.failed ? ", " + std::to_string(f.failed) + " failed" : "")
+                << (f.errors ? ", " + std::to_string(f.errors) + " errors" : "") << " (" << seconds << " s)\n";
+    }
+    std::cout << "check: " << passed << " of " << report.results.size() << " cases passed (" << report.gate
+              << ", shard " << report.shard << ")" << std::endl;
   }
   for (const GateCaseResult& r : report.results) {
     if (r.outcome == CaseOutcome::kPassed) continue;
     std::cerr << "hpsf: " << r.id << " reproduces with: " << r.reproduce
               << (r.bundle.empty() ? "" : " (repro bundle: " + r.bundle + ")") << "\n";
   }
-  if (bad_input > 0) return kExitBadInput;
-  return failed > 0 ? kExitCheckFailed : kExitOk;
+  if (std::any_of(report.results.begin(), report.results.end(),
+                  [](const GateCaseResult& r) { return r.outcome == CaseOutcome::kError && r.message == kBadInputMessage; })) {
+    return kExitBadInput;
+  }
+  switch (report.Worst()) {
+    case CaseOutcome::kPassed:
+      return kExitOk;
+    case CaseOutcome::kWarned:
+      return kExitWarn;
+    default:
+      return kExitCheckFailed;
+  }
 }
 
 // --merge: the reports the shards wrote (DIR/check.json) as one.
@@ -144,7 +183,7 @@ int RunMerge(const CheckOptions& o) {
     reports.push_back(CheckReportFromJson(j, source));
     sources.push_back(source);
   }
-  return Finish(MergeCheckReports(reports, sources), o, 0);
+  return Finish(MergeCheckReports(reports, sources), o);
 }
 
 int RunCheck(const CheckOptions& o, bool options_only) {
@@ -169,32 +208,31 @@ int RunCheck(const CheckOptions& o, bool options_only) {
   report.gate = gate.source;
   report.shard = o.shard;
   report.gate_cases = gate.cases.size();
-  int bad_input = 0;
   for (std::size_t k = 0; k < cases.size(); ++k) {
-    report.results.push_back(RunCase(cases[k], out, bad_input));
+    report.results.push_back(RunCase(cases[k], out));
     GateCaseResult& r = report.results.back();
     r.index = (index - 1) + k * count;  // ShardOf's cases I, I + N, ...
     if (!o.json) {
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);
-      std::cout << (r.outcome == CaseOutcome::kPassed   ? "PASS "
-                    : r.outcome == CaseOutcome::kFailed ? "FAIL "
-                                                        : "ERROR ")
-                << r.id << " (" << seconds << " s)" << (r.message.empty() ? "" : ": " + r.message) << std::endl;
+      std::cout << OutcomeWord(r.outcome) << " " << r.id << " (" << seconds << " s)"
+                << (r.message.empty() ? "" : ": " + r.message) << std::endl;
     }
   }
   std::ofstream(out / "check.json") << report.ToJson().dump(2) << "\n";
-  return Finish(report, o, bad_input);
+  return Finish(report, o);
 }
 
 }  // namespace
 
 void AddCheckCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<CheckOptions>();
-  CLI::App* c = app.add_subcommand("check", "The CI correctness gate: run a gate file's matrix of cross-checks");
+  CLI::App* c = app.add_subcommand("check", "The CI correctness gate: run a gate file's cross-checks, statistics, goldens and fuzzing: exit 0 pass, 1 warn, "
+                                   "2 fail, 3 bad input");
   c->add_option("gate", o->gate_file, "The gate file (JSON, \"hpsf_gate\": 1); none: the default gate");
   c->add_option("--shard", o->shard, "Run shard I of N: cases I, I + N, I + 2N, ...")->capture_default_str();
   c->add_option("--junit", o->junit, "Write the JUnit XML report to FILE");
+  c->add_option("--html", o->html, "Write the HTML report, a row per case, to FILE");
   c->add_option("--out", o->out, "Where reports and the failing cases' repro bundles go")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   c->add_flag("--list", o->list, "List the cases of this shard and exit");

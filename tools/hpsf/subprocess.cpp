@@ -1,5 +1,6 @@
 #include "tools/hpsf/subprocess.h"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,13 +14,18 @@ extern char** environ;
 
 namespace hpsf {
 
-ProcessResult RunProcess(const std::vector<std::string>& argv, const std::string& folder) {
+ProcessResult RunProcess(const std::vector<std::string>& argv, const std::string& folder,
+                         const std::string& stdout_file) {
   int pipe_ends[2];
   if (pipe(pipe_ends) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addclose(&actions, pipe_ends[0]);
-  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDOUT_FILENO);
+  if (stdout_file.empty()) {
+    posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDOUT_FILENO);
+  } else {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
   posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, pipe_ends[1]);
   if (!folder.empty()) posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
