@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The mutation score (issue 16): each patch of mutants/ (DESIGN.md's known defects D1-D13 written into the
-# production code, one small change each) is applied to a worktree of HEAD, built incrementally, and judged by the
-# gate (`hpsf check`: the default gate, then .ci/gate.json) and ctest (-LE slow, stopping at the first failure). A
-# mutant is killed when anything fails, survived when everything passes, and stillborn when it does not apply or
-# build (a patch to refresh, not a kill). Prints one line per mutant with what caught it, then the score; exits 1
-# unless every mutant was killed.
+# production code, and N1.. for the features built since, one small change each) is applied to a worktree of HEAD,
+# built incrementally, and judged by the gate (`hpsf check`: the default gate, then .ci/gate.json) and, when the
+# gate passes it, by ctest (-LE "slow|in-gate", stopping at the first failure, then the gate's own command-line
+# test, label gate-cli). A mutant is killed when anything fails or warns, survived when everything passes, and
+# stillborn when it does not apply or build (a patch to refresh, not a kill). Prints one line per mutant with what
+# caught it, then the score; exits 1 unless every mutant was killed. HPSF_MUTATION_CTEST=always runs ctest after a
+# gate kill too, to see which tests would also catch it.
 #
 #   scripts/mutation-score.sh [NAME...]   names are patch names or prefixes (D7, D11-truncated-fixed-point)
 #
@@ -59,13 +61,16 @@ for patch in "${patches[@]}"; do
     out=$work/gate-$name-$([ -z "$gate" ] && echo default || echo project)
     rm -rf "$out"
     if ! (cd "$tree" && "$hpsf" check $gate --out "$out") > "$log.gate" 2>&1; then
-      caught+=("gate: $(grep -m1 -E '^(FAIL|ERROR) ' "$log.gate" | cut -c1-110 || echo 'exit code')")
+      caught+=("gate: $(grep -m1 -E '^(FAIL|WARN|ERROR) ' "$log.gate" | cut -c1-110 || echo 'exit code')")
       break
     fi
   done
-  if ! (cd "$tree/build/default" && ctest -j2 -LE slow --stop-on-failure --timeout 600) > "$log.ctest" 2>&1; then
-    first=$(grep -m1 -E '\*\*\*(Failed|Timeout|Exception)' "$log.ctest" | sed -E 's/^ *[0-9]+\/[0-9]+ Test +#[0-9]+: ([^ ]+).*/\1/')
-    caught+=("ctest: ${first:-failed}")
+  if [ ${#caught[@]} -eq 0 ] || [ "${HPSF_MUTATION_CTEST:-}" = always ]; then
+    if ! (cd "$tree/build/default" && ctest -j2 -LE "slow|in-gate" --stop-on-failure --timeout 600 &&
+          ctest -L gate-cli --timeout 600) > "$log.ctest" 2>&1; then
+      first=$(grep -m1 -E '\*\*\*(Failed|Timeout|Exception)' "$log.ctest" | sed -E 's/^ *[0-9]+\/[0-9]+ Test +#[0-9]+: ([^ ]+).*/\1/')
+      caught+=("ctest: ${first:-failed}")
+    fi
   fi
   if [ ${#caught[@]} -gt 0 ]; then
     killed=$((killed + 1))
