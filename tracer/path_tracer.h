@@ -14,6 +14,10 @@
 
 namespace hpsf {
 
+// Bumped by every change that alters the records the tracer makes from the same scene and options: converged
+// reference images (`hpsf reference`) are cached under it, so a new tracer never reads an old tracer's image.
+inline constexpr int kTracerVersion = 1;
+
 struct TraceOptions {
   std::uint32_t width = 256;
   std::uint32_t height = 256;

@@ -1,0 +1,63 @@
+#include "tools/hpsf/reference_cache.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace hpsf {
+namespace {
+
+std::string Hex(std::uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+std::uint64_t Fnv1a(const std::string& text) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  return hash;
+}
+
+}  // namespace
+
+std::string DefaultReferenceCache() {
+  if (const char* explicit_folder = std::getenv("HPSF_CACHE"); explicit_folder && *explicit_folder) {
+    return explicit_folder;
+  }
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/hpsf/references";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/hpsf/references";
+  return ".hpsf-cache/references";
+}
+
+CachedReference ReferenceCacheEntry(const std::string& folder, const std::string& description) {
+  const std::string key = Hex(Fnv1a(description));
+  const std::filesystem::path base = std::filesystem::path(folder) / key;
+  return {key, base.string() + ".exr", base.string() + ".json"};
+}
+
+std::optional<std::string> FindCachedReference(const CachedReference& entry, const std::string& description) {
+  std::ifstream in(entry.sidecar);
+  if (!in || !std::filesystem::exists(entry.image)) return std::nullopt;
+  const nlohmann::json sidecar = nlohmann::json::parse(in, nullptr, false);
+  if (sidecar.is_discarded() || sidecar.value("description", "") != description) return std::nullopt;
+  return entry.image;
+}
+
+void WriteReferenceSidecar(const CachedReference& entry, const std::string& description, double seconds) {
+  const nlohmann::json sidecar = {{"version", 1}, {"description", description}, {"seconds", seconds}};
+  const std::string temporary = entry.sidecar + ".partial";
+  {
+    std::ofstream out(temporary);
+    out << sidecar.dump(2) << "\n";
+    if (!out) throw InputError(entry.sidecar + ": cannot write the cache's sidecar");
+  }
+  std::filesystem::rename(temporary, entry.sidecar);
+}
+
+}  // namespace hpsf
