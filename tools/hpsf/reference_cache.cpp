@@ -1,5 +1,6 @@
 #include "tools/hpsf/reference_cache.h"
 
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "tools/hpsf/image_file.h"
+#include "tools/hpsf/seconds_since.h"
+#include "tracer/scene_digest.h"
 
 namespace hpsf {
 namespace {
@@ -58,6 +62,32 @@ void WriteReferenceSidecar(const CachedReference& entry, const std::string& desc
     if (!out) throw InputError(entry.sidecar + ": cannot write the cache's sidecar");
   }
   std::filesystem::rename(temporary, entry.sidecar);
+}
+
+ReferenceImage GetReferenceImage(const Scene& scene, const std::string& scene_name, const ReferenceRequest& request,
+                                 const std::string& folder, bool refresh,
+                                 const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  ReferenceImage result;
+  result.description = request.Description(SceneDigest(scene, request.trace.frame));
+  result.entry = ReferenceCacheEntry(folder, result.description);
+  result.cached = !refresh && FindCachedReference(result.entry, result.description).has_value();
+  if (!result.cached) {
+    const ConvergedImage image = RenderConverged(scene, request, progress);
+    std::filesystem::create_directories(folder);
+    WriteImageFiles(result.entry.image, image.mean,
+                    {{"scene", scene_name},
+                     {"backend", "path tracing"},
+                     {"spp", std::to_string(request.samples_per_pixel)},
+                     {"seed", std::to_string(request.trace.seed)},
+                     {"frame", std::to_string(request.trace.frame)},
+                     {"tracer_version", std::to_string(kTracerVersion)},
+                     {"reference", result.description}},
+                    &image.variance);
+    WriteReferenceSidecar(result.entry, result.description, SecondsSince(start));
+  }
+  result.seconds = SecondsSince(start);
+  return result;
 }
 
 }  // namespace hpsf

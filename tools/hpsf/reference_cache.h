@@ -6,8 +6,13 @@
 #ifndef HPSF_TOOLS_HPSF_REFERENCE_CACHE_H
 #define HPSF_TOOLS_HPSF_REFERENCE_CACHE_H
 
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
+
+#include "tools/hpsf/converged_reference.h"
+#include "tracer/scene.h"
 
 namespace hpsf {
 
@@ -26,6 +31,20 @@ std::optional<std::string> FindCachedReference(const CachedReference& entry, con
 
 // Writes the sidecar after the image is in place (so a sidecar always names a whole image).
 void WriteReferenceSidecar(const CachedReference& entry, const std::string& description, double seconds);
+
+struct ReferenceImage {
+  CachedReference entry;
+  std::string description;
+  bool cached = false;  // read from the cache, not rendered
+  double seconds = 0.0;
+};
+
+// The converged image of `scene` for `request` (tools/hpsf/converged_reference.h): read from the cache in `folder`
+// when it holds it (and `refresh` is false), else rendered and stored there. `scene_name` goes into the EXR's
+// metadata only; progress(done, total) after each pass of a render.
+ReferenceImage GetReferenceImage(const Scene& scene, const std::string& scene_name, const ReferenceRequest& request,
+                                 const std::string& folder, bool refresh,
+                                 const std::function<void(std::uint32_t, std::uint32_t)>& progress = {});
 
 }  // namespace hpsf
 

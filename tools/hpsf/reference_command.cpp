@@ -2,19 +2,15 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "tools/hpsf/converged_reference.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/image_size.h"
 #include "tools/hpsf/reference_cache.h"
-#include "tools/hpsf/seconds_since.h"
-#include "tracer/scene_digest.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf {
@@ -35,39 +31,22 @@ int Run(ReferenceOptions& o, bool options_only) {
   o.request.Validate();
   if (options_only) return kExitOk;
   const Scene scene = LoadScene(o.scene);
-  const std::string description = o.request.Description(SceneDigest(scene, o.request.trace.frame));
   const std::string folder = o.cache.empty() ? DefaultReferenceCache() : o.cache;
-  const CachedReference entry = ReferenceCacheEntry(folder, description);
-  const auto start = std::chrono::steady_clock::now();
-  std::optional<std::string> cached = o.refresh ? std::nullopt : FindCachedReference(entry, description);
-  if (!cached) {
-    const bool terminal = isatty(STDERR_FILENO) && !o.json;
-    const ConvergedImage image = RenderConverged(scene, o.request, [&](std::uint32_t done, std::uint32_t total) {
-      if (terminal) std::fprintf(stderr, "\rreference: pass %u of %u", done, total);
-    });
-    if (terminal) std::fprintf(stderr, "\r%40s\r", "");
-    std::filesystem::create_directories(folder);
-    WriteImageFiles(entry.image, image.mean,
-                    {{"scene", o.scene},
-                     {"backend", "path tracing"},
-                     {"spp", std::to_string(o.request.samples_per_pixel)},
-                     {"seed", std::to_string(o.request.trace.seed)},
-                     {"frame", std::to_string(o.request.trace.frame)},
-                     {"tracer_version", std::to_string(kTracerVersion)},
-                     {"reference", description}},
-                    &image.variance);
-    WriteReferenceSidecar(entry, description, SecondsSince(start));
-  }
-  const double seconds = SecondsSince(start);
+  const bool terminal = isatty(STDERR_FILENO) && !o.json;
+  const ReferenceImage reference =
+      GetReferenceImage(scene, o.scene, o.request, folder, o.refresh, [&](std::uint32_t done, std::uint32_t total) {
+        if (terminal) std::fprintf(stderr, "\rreference: pass %u of %u", done, total);
+      });
+  if (terminal && !reference.cached) std::fprintf(stderr, "\r%40s\r", "");
+  const CachedReference& entry = reference.entry;
+  const std::string& description = reference.description;
+  const bool cached = reference.cached;
+  const double seconds = reference.seconds;
   if (!o.output.empty()) CopyImageFiles(entry.image, o.output);
   if (o.json) {
-    nlohmann::json report = {{"version", 1},
-                             {"command", "reference"},
-                             {"key", entry.key},
-                             {"image", entry.image},
-                             {"cached", cached.has_value()},
-                             {"seconds", seconds},
-                             {"description", description}};
+    nlohmann::json report = {
+        {"version", 1},     {"command", "reference"}, {"key", entry.key},          {"image", entry.image},
+        {"cached", cached}, {"seconds", seconds},     {"description", description}};
     if (!o.output.empty()) report["output"] = o.output;
     std::cout << report.dump(2) << "\n";
   } else {
