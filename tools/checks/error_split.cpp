@@ -1,0 +1,55 @@
+#include "tools/checks/error_split.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace hpsf {
+
+ErrorSplit SplitError(std::span<const Image> images, const Image& reference, const Image* reference_variance) {
+  if (images.size() < 2) throw std::invalid_argument("SplitError: the variance needs two images or more");
+  for (const Image& image : images) {
+    if (image.width != reference.width || image.height != reference.height) {
+      throw std::invalid_argument("SplitError: an image of another size than the reference");
+    }
+  }
+  const double k = double(images.size());
+  ErrorSplit split;
+  double mse = 0.0, bias2 = 0.0, variance = 0.0, reference_noise = 0.0;
+  for (std::size_t p = 0; p < reference.pixels.size(); ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double r = reference.pixels[p][c];
+      const double q = reference_variance ? double(reference_variance->pixels[p][c]) : 0.0;
+      bool finite = std::isfinite(r) && std::isfinite(q);
+      double sum = 0.0, squares = 0.0;
+      for (const Image& image : images) {
+        const double x = image.pixels[p][c];
+        finite = finite && std::isfinite(x);
+        sum += x;
+        squares += (x - r) * (x - r);
+      }
+      if (!finite) {
+        ++split.nonfinite;
+        continue;
+      }
+      const double m = sum / k;
+      double deviations = 0.0;
+      for (const Image& image : images) deviations += (image.pixels[p][c] - m) * (image.pixels[p][c] - m);
+      const double s2 = deviations / (k - 1.0);
+      mse += squares / k;
+      variance += s2;
+      bias2 += (m - r) * (m - r) - s2 / k - q;
+      reference_noise += q;
+      ++split.values;
+    }
+  }
+  if (split.values > 0) {
+    const double n = double(split.values);
+    split.mse = mse / n;
+    split.bias2 = bias2 / n;
+    split.variance = variance / n;
+    split.reference_variance = reference_noise / n;
+  }
+  return split;
+}
+
+}  // namespace hpsf

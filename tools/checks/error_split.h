@@ -1,0 +1,32 @@
+// The error of an estimator split into bias and variance (Celarek et al. 2019, "Quantifying the error of light
+// transport algorithms"), from K images of one configuration rendered with K independent seeds and a converged
+// reference with its own per-pixel variance. Per value v (pixel and colour channel), with m_v the mean of the K
+// images, s2_v their unbiased sample variance and r_v, q_v the reference and its variance:
+//   MSE      = (1/K) sum_k mean_v (x_kv - r_v)^2
+//   variance = mean_v s2_v                         (the estimator's noise)
+//   bias^2   = mean_v [(m_v - r_v)^2 - s2_v / K - q_v]  (unbiased: the noise of m and of r taken out)
+// so that MSE = bias^2 + variance + mean_v q_v exactly, up to rounding. bias^2 may come out slightly negative when
+// the bias is below what K seeds resolve. Values not finite in any image are left out and counted.
+#ifndef HPSF_TOOLS_CHECKS_ERROR_SPLIT_H
+#define HPSF_TOOLS_CHECKS_ERROR_SPLIT_H
+
+#include <cstdint>
+#include <span>
+
+#include "core/image.h"
+
+namespace hpsf {
+
+struct ErrorSplit {
+  double mse = 0.0, bias2 = 0.0, variance = 0.0;
+  double reference_variance = 0.0;  // mean_v q_v
+  std::uint64_t values = 0, nonfinite = 0;
+};
+
+// At least two images, all the reference's size; reference_variance may be empty (taken as 0). An
+// std::invalid_argument otherwise.
+ErrorSplit SplitError(std::span<const Image> images, const Image& reference, const Image* reference_variance);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_CHECKS_ERROR_SPLIT_H
