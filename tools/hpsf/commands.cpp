@@ -9,6 +9,7 @@
 #include "tools/hpsf/reference_command.h"
 #include "tools/hpsf/render_command.h"
 #include "tools/hpsf/stats_command.h"
+#include "tools/hpsf/sweep_command.h"
 
 namespace hpsf {
 
@@ -24,6 +25,7 @@ void AddCommands(CLI::App& app, CommandContext& context) {
   AddFuzzCommand(app, context);
   AddCheckCommand(app, context);
   AddReferenceCommand(app, context);
+  AddSweepCommand(app, context);
 }
 
 }  // namespace hpsf

@@ -1,0 +1,106 @@
+#include "tools/hpsf/sweep_grid.h"
+
+#include <algorithm>
+#include <charconv>
+#include <set>
+
+#include "core/error.h"
+
+namespace hpsf {
+namespace {
+
+std::string Trimmed(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t\n");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t\n") - first + 1);
+}
+
+std::vector<std::string> Split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = text.find(separator, start);
+    parts.push_back(Trimmed(text.substr(start, end == std::string::npos ? std::string::npos : end - start)));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+void CheckValue(const std::string& axis, const std::string& value) {
+  const auto refuse = [&](const std::string& why) { throw ConfigError("--grid", axis + "=" + value + ": " + why); };
+  if (axis == "spp") {
+    std::uint32_t spp = 0;
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), spp);
+    if (error != std::errc() || end != value.data() + value.size() || spp == 0) refuse("a positive sample count");
+  } else if (axis == "method") {
+    if (value != "pt" && value != "hpsf" && value != "radius" && value != "screen") {
+      refuse("expected pt, hpsf, radius or screen");
+    }
+  } else if (axis == "backend") {
+    if (value != "reference" && value != "emulated" && value != "vulkan") {
+      refuse("expected reference, emulated or vulkan");
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> SweepConfig::FilterArguments() const {
+  std::vector<std::string> words;
+  for (const auto& [name, value] : filter) words.insert(words.end(), {"--" + name, value});
+  return words;
+}
+
+std::vector<GridAxis> ParseGrid(const std::string& text) {
+  std::vector<GridAxis> axes;
+  std::set<std::string> names;
+  for (const std::string& part : Split(text, ';')) {
+    if (part.empty()) continue;
+    const std::size_t equals = part.find('=');
+    if (equals == std::string::npos) throw ConfigError("--grid", "'" + part + "': expected NAME=V1,V2,...");
+    GridAxis axis{Trimmed(part.substr(0, equals)), Split(part.substr(equals + 1), ',')};
+    if (axis.name.empty() || axis.name[0] == '-') {
+      throw ConfigError("--grid", "'" + part + "': an axis is an option's name without its dashes");
+    }
+    if (!names.insert(axis.name).second) throw ConfigError("--grid", "the axis " + axis.name + " is given twice");
+    for (const std::string& value : axis.values) {
+      if (value.empty()) throw ConfigError("--grid", axis.name + ": an empty value");
+      CheckValue(axis.name, value);
+    }
+    axes.push_back(std::move(axis));
+  }
+  if (axes.empty()) throw ConfigError("--grid", "no axis: expected e.g. \"spp=1,4; method=pt,hpsf\"");
+  return axes;
+}
+
+std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
+  std::vector<SweepConfig> configs;
+  std::set<std::string> seen;
+  std::vector<std::size_t> at(axes.size(), 0);
+  for (;;) {
+    SweepConfig c;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const std::string& value = axes[a].values[at[a]];
+      if (axes[a].name == "spp") {
+        c.spp = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "method") {
+        c.method = value;
+      } else if (axes[a].name == "backend") {
+        c.backend = value;
+      } else {
+        c.filter.emplace_back(axes[a].name, value);
+      }
+    }
+    // What the method ignores does not make another configuration.
+    if (c.method != "hpsf") c.backend = "-";
+    if (c.method == "pt") c.filter.clear();
+    c.id = "method=" + c.method + " backend=" + c.backend + " spp=" + std::to_string(c.spp);
+    for (const auto& [name, value] : c.filter) c.id += " " + name + "=" + value;
+    if (seen.insert(c.id).second) configs.push_back(std::move(c));
+    std::size_t a = axes.size();
+    while (a > 0 && ++at[a - 1] == axes[a - 1].values.size()) at[--a] = 0;
+    if (a == 0) return configs;
+  }
+}
+
+}  // namespace hpsf
