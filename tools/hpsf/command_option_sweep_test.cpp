@@ -27,7 +27,9 @@ TEST_F(CommandOptions, EveryOptionWithEveryEdgeValueParsesOrFailsAsBadInput) {
       for (const std::string& value : values) {
         std::vector<std::string> line = path;
         std::vector<std::string> required = RequiredArguments(path);
-        if (option.name == "--output") required.resize(required.size() - 2);  // the option swept is -o
+        if (option.name == "--output" && required.size() >= 2 && required[required.size() - 2] == "-o") {
+          required.resize(required.size() - 2);  // the option swept is the required -o
+        }
         for (const std::string& r : required) line.push_back(r);
         line.push_back(option.name);
         line.push_back(value);

@@ -4,14 +4,14 @@
 // is written. The libFuzzer target fuzz_cli covers the shared option groups with coverage guidance; these tests
 // cover every command, diff, golden, fuzz and device included, in every build (the asan one too).
 // command_option_sweep_test.cpp sweeps every option with every edge value.
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+
 #include <cstdio>
 #include <map>
 #include <string>
 #include <typeinfo>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <rapidcheck.h>
 
 #include "tools/hpsf/command_options_testing.h"
 
@@ -33,6 +33,10 @@ TEST_F(CommandOptions, EveryCommandParsesItsRequiredArgumentsAndStopsBeforeItsIn
       {"golden", "bless", "--manifest", "missing.json"},
       {"fuzz", "--backend", "vulkan", "--accumulate-spv", "missing.spv", "--accum", "fixed64", "--runs", "3"},
       {"fuzz", "--inject-defect", "D9", "--time", "0.5"},
+      {"check", "--shard", "2/3", "--list"},
+      {"check", "--merge", "missing-shard-1", "missing-shard-2", "--html", "gate.html"},
+      {"reference", "cornell", "--spp", "64", "--pass-spp", "8", "-o", "ref.exr"},
+      {"sweep", "missing-scene.json", "--grid", "spp=1,2; method=pt,radius; filter-width=2,4", "--seeds", "2"},
   };
   for (const auto& line : lines) {
     const Parse p = ParseOptionsOnly(line);
@@ -69,6 +73,14 @@ TEST_F(CommandOptions, BadValuesAreInputErrorsNamingTheirOption) {
       {{"fuzz", "--backend", "vulkan", "--accumulate-spv", "my.spv"}, "--accum"},
       {{"fuzz", "--accum", "float64"}, "--accum"},
       {{"device", "--vk-staging", "sometimes"}, "--vk-staging"},
+      {{"check", "--shard", "4/3"}, "--shard"},
+      {{"check", "--merge", "a", "--shard", "1/2"}, "--merge"},
+      {{"reference", "cornell", "--spp", "24", "--pass-spp", "16"}, "--spp"},
+      {{"reference", "cornell", "--pass-spp", "0"}, "--pass-spp"},
+      {{"sweep", "cornell", "--grid", "method=kd"}, "--grid"},
+      {{"sweep", "cornell", "--grid", "jitter=x"}, "--grid"},
+      {{"sweep", "cornell", "--grid", "spp=1", "--seeds", "0"}, "--seeds"},
+      {{"sweep", "cornell", "--grid", "spp=1", "--reference-spp", "20"}, "--spp"},
   };
   for (const auto& [line, option] : cases) {
     const Parse p = ParseOptionsOnly(line);

@@ -1,13 +1,12 @@
 // The option-layer tests' shared parts: see command_options_testing.h.
 #include "tools/hpsf/command_options_testing.h"
 
-#include <map>
-#include <string>
-#include <vector>
-
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "tools/hpsf/commands.h"
@@ -83,7 +82,7 @@ const std::vector<std::string>& EdgeValues() {
       "octahedral:24", "on", "off", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13", "D1", "reference", "emulated",
       "vulkan", "reference,emulated", "emulated,,vulkan", ",", "always", "never", "auto", "mse", "psnr", "ssim",
       "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help", "integrate", "adaptive",
-      "strict"};
+      "strict", "2/3", "spp=1,2; method=pt,radius"};
   // clang-format on
   return values;
 }
@@ -97,9 +96,8 @@ const std::vector<std::string>& CompoundValues() {
     // clang-format on
     std::vector<std::string> v;
     for (const std::string& n : numbers) {
-      for (const std::string& s :
-           {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n,
-            "ema:" + n, "ema:0.5:" + n, "stale:" + n}) {
+      for (const std::string& s : {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2",
+                                   "pct:1:" + n, "ema:" + n, "ema:0.5:" + n, "stale:" + n}) {
         v.push_back(s);
       }
     }
@@ -113,15 +111,17 @@ std::vector<std::string> RequiredArguments(const std::vector<std::string>& path)
                                                                            {"replay", {"r.hpsfv", "-o", "o.exr"}},
                                                                            {"crosscheck", {"cornell"}},
                                                                            {"stats", {"furnace"}},
-                                                                           {"diff", {"a.exr", "b.exr"}}};
+                                                                           {"diff", {"a.exr", "b.exr"}},
+                                                                           {"reference", {"cornell"}},
+                                                                           {"sweep", {"cornell", "--grid", "spp=1"}}};
   const auto given = required.find(path.back());
   return given == required.end() ? std::vector<std::string>{} : given->second;
 }
 
 const std::vector<std::vector<std::string>>& CommandPaths() {
-  static const std::vector<std::vector<std::string>> paths = {{"device"},          {"render"},          {"replay"},
-                                                              {"crosscheck"},      {"stats"},           {"diff"},
-                                                              {"golden", "check"}, {"golden", "bless"}, {"fuzz"}};
+  static const std::vector<std::vector<std::string>> paths = {
+      {"device"},          {"render"},          {"replay"}, {"crosscheck"}, {"stats"},     {"diff"},
+      {"golden", "check"}, {"golden", "bless"}, {"fuzz"},   {"check"},      {"reference"}, {"sweep"}};
   return paths;
 }
 

@@ -392,7 +392,8 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--grid", o->grid,
                 "Axes and values, e.g. \"spp=1,4; filter-width=2,4; method=pt,hpsf,radius,screen; "
                 "backend=reference,emulated\" (other axes: any filter option without its dashes)")
-      ->required();
+      ->required()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // a later --grid replaces an earlier one
   c->add_option("--seeds", o->seeds, "Independent seeds per configuration (1..K); 2 or more split the error")
       ->capture_default_str();
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
