@@ -19,6 +19,7 @@
 #include "tools/checks/channel_image.h"
 #include "tools/checks/error_split.h"
 #include "tools/checks/image_metrics.h"
+#include "tools/checks/pareto.h"
 #include "tools/checks/ssim.h"
 #include "tools/gate/gate_file.h"
 #include "tools/hpsf/backend_options.h"
@@ -223,6 +224,29 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
   return result;
 }
 
+// Each finished configuration's place against time: whether it is on its method's frontier of relMSE against total
+// time (hpsf per backend), and the relMSE plain path tracing's frontier reaches in the same time, the line to beat
+// (null when no pt configuration is that fast).
+void MarkFrontiers(std::vector<json>& results) {
+  std::vector<TimedError> points;
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    if (results[i].is_null()) continue;
+    const json& r = results[i];
+    const std::string backend = r["backend"].get<std::string>();
+    points.push_back({r["method"].get<std::string>() + (backend == "-" ? "" : "/" + backend),
+                      r["total_s"].get<double>(), r["relmse"].get<double>()});
+    at.push_back(i);
+  }
+  const std::vector<bool> frontier = ParetoFrontier(points);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    json& r = results[at[k]];
+    r["frontier"] = bool(frontier[k]);
+    const double pt = FrontierErrorAt(points, frontier, "pt", points[k].seconds);
+    r["pt_relmse_at_equal_time"] = pt < 0.0 ? json() : json(pt);
+  }
+}
+
 std::string CsvField(const json& value) {
   if (value.is_null()) return "";
   if (value.is_string()) return value.get<std::string>();
@@ -238,9 +262,20 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
   std::ofstream csv(out / "sweep.csv");
   csv << "id,method,backend,spp";
   for (const std::string& a : filter_axes) csv << "," << a;
-  const std::vector<std::string> figures = {
-      "seeds", "trace_s",  "filter_s",           "total_s",        "mse",          "relmse", "ssim",
-      "bias2", "variance", "reference_variance", "probe_failures", "aliased_slots"};
+  const std::vector<std::string> figures = {"seeds",
+                                            "trace_s",
+                                            "filter_s",
+                                            "total_s",
+                                            "mse",
+                                            "relmse",
+                                            "ssim",
+                                            "bias2",
+                                            "variance",
+                                            "reference_variance",
+                                            "probe_failures",
+                                            "aliased_slots",
+                                            "frontier",
+                                            "pt_relmse_at_equal_time"};
   for (const std::string& f : figures) csv << "," << f;
   csv << "\n";
   json all = json::array();
@@ -348,6 +383,7 @@ int Run(SweepOptions& o, bool options_only) {
       }
     }
   }
+  MarkFrontiers(results);
   WriteSummaries(out, configs, results, axes);
   std::size_t finished = 0;
   for (const json& r : results) finished += !r.is_null();

@@ -21,9 +21,10 @@ function(figures csv result)
   file(STRINGS ${csv} lines)
   set(kept)
   foreach(line IN LISTS lines)
-    # Drop the three times (trace_s, filter_s, total_s): the columns after id, method, backend, spp, filter-width
-    # and seeds.
+    # Drop the three times (trace_s, filter_s, total_s: the columns after id, method, backend, spp, filter-width
+    # and seeds) and what follows from them (the last two: frontier, pt_relmse_at_equal_time).
     string(REGEX REPLACE "^(\"[^\"]*\",[^,]*,[^,]*,[^,]*,[^,]*,[^,]*),[^,]*,[^,]*,[^,]*," "\\1,T,T,T," line "${line}")
+    string(REGEX REPLACE ",[^,]*,[^,]*$" ",F,P" line "${line}")
     list(APPEND kept "${line}")
   endforeach()
   set(${result} "${kept}" PARENT_SCOPE)
@@ -39,7 +40,7 @@ if(NOT count EQUAL 15)
   message(FATAL_ERROR "sweep.csv has ${count} lines, expected a header and 14 rows")
 endif()
 list(GET rows 0 header)
-if(NOT header STREQUAL "id,method,backend,spp,filter-width,seeds,trace_s,filter_s,total_s,mse,relmse,ssim,bias2,variance,reference_variance,probe_failures,aliased_slots")
+if(NOT header STREQUAL "id,method,backend,spp,filter-width,seeds,trace_s,filter_s,total_s,mse,relmse,ssim,bias2,variance,reference_variance,probe_failures,aliased_slots,frontier,pt_relmse_at_equal_time")
   message(FATAL_ERROR "the header: ${header}")
 endif()
 figures(${dir}/whole/sweep.csv first)
