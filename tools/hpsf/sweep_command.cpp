@@ -25,7 +25,9 @@
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/filter_options.h"
+#include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/image_size.h"
+#include "tools/hpsf/pareto_plot.h"
 #include "tools/hpsf/reference_cache.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/sweep_grid.h"
@@ -226,8 +228,8 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
 
 // Each finished configuration's place against time: whether it is on its method's frontier of relMSE against total
 // time (hpsf per backend), and the relMSE plain path tracing's frontier reaches in the same time, the line to beat
-// (null when no pt configuration is that fast).
-void MarkFrontiers(std::vector<json>& results) {
+// (null when no pt configuration is that fast); and the plot of them all, OUT/pareto.png.
+void MarkFrontiers(std::vector<json>& results, const std::string& scene, const fs::path& out) {
   std::vector<TimedError> points;
   std::vector<std::size_t> at;
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -245,6 +247,7 @@ void MarkFrontiers(std::vector<json>& results) {
     const double pt = FrontierErrorAt(points, frontier, "pt", points[k].seconds);
     r["pt_relmse_at_equal_time"] = pt < 0.0 ? json() : json(pt);
   }
+  if (!points.empty()) WritePng((out / "pareto.png").string(), RenderParetoPlot(scene, points, frontier));
 }
 
 std::string CsvField(const json& value) {
@@ -383,7 +386,7 @@ int Run(SweepOptions& o, bool options_only) {
       }
     }
   }
-  MarkFrontiers(results);
+  MarkFrontiers(results, o.scene, out);
   WriteSummaries(out, configs, results, axes);
   std::size_t finished = 0;
   for (const json& r : results) finished += !r.is_null();

@@ -1,4 +1,4 @@
-# `hpsf sweep`: a small grid writes one CSV row per configuration; run again it resumes every one and gives the
+# `hpsf sweep`: a small grid writes one CSV row per configuration and the Pareto plot; run again it resumes every one and gives the
 # same figures; two shards into a fresh folder, then the whole grid there, give the same figures, times aside
 # (the sweep's figures reproduce); a bad axis value is bad input naming --grid.
 include(${CMAKE_CURRENT_LIST_DIR}/hpsf_run.cmake)
@@ -44,6 +44,10 @@ if(NOT header STREQUAL "id,method,backend,spp,filter-width,seeds,trace_s,filter_
   message(FATAL_ERROR "the header: ${header}")
 endif()
 figures(${dir}/whole/sweep.csv first)
+execute_process(COMMAND oiiotool --info ${dir}/whole/pareto.png OUTPUT_VARIABLE plot)
+if(NOT plot MATCHES "960 x +600, 3 channel")
+  message(FATAL_ERROR "no Pareto plot of 960x600: ${plot}")
+endif()
 string(REGEX MATCHALL ",T,T,T,[0-9]" masked "${first}")
 list(LENGTH masked masked)
 if(NOT masked EQUAL 14)
