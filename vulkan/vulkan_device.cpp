@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "vulkan/driver_pinning.h"
 #include "vulkan/vulkan_internal.h"
 
 namespace hpsf {
@@ -150,6 +151,7 @@ VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging
                               "); install mesa-vulkan-drivers for lavapipe, or check VK_ICD_FILENAMES");
     }
     vk::raii::PhysicalDevices physicals(d.instance);
+    KeepVulkanDriversLoadedUnderSanitizers();
 
     // Candidates in preference order; the first that has every feature wins.
     std::vector<std::size_t> order;
