@@ -23,7 +23,8 @@ phase() {
 
 if [[ $which != tsan ]]; then
   # Every report ends the process that makes it with a non-zero code, so the test that ran it fails; leaks are
-  # reported at exit. No suppression is needed: lavapipe and LLVM run clean under it.
+  # reported at exit. No suppression is needed: lavapipe and LLVM run clean under it, once the Vulkan drivers stay
+  # loaded until exit (vulkan/driver_pinning.h: unloaded, lavapipe's one-time allocations read as leaks).
   export ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   phase "asan configure" cmake --preset asan
