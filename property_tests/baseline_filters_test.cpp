@@ -20,13 +20,15 @@ namespace {
 
 NeighbourFilterResult BruteForce(const RecordBatch& batch, const FilterConfig& config, double radius_scale) {
   const std::vector<FilterVertex> v = FilterVertices(batch, config, radius_scale);
-  std::vector<std::vector<std::uint32_t>> neighbours(v.size());
+  NeighbourMeans means(v.size());
   for (std::size_t i = 0; i < v.size(); ++i) {
+    std::vector<std::uint32_t> neighbours;
     for (std::size_t j = 0; j < v.size(); ++j) {
-      if (IsNeighbour(v[i], v[j])) neighbours[i].push_back(std::uint32_t(j));
+      if (IsNeighbour(v[i], v[j])) neighbours.push_back(std::uint32_t(j));
     }
+    means.Set(batch, i, neighbours);
   }
-  return ResolveNeighbourMeans(batch, neighbours);
+  return ResolveNeighbourMeans(batch, means);
 }
 
 struct Case {

@@ -39,25 +39,28 @@ bool IsNeighbour(const FilterVertex& i, const FilterVertex& j) {
          SquaredDistance(i.position, j.position) <= i.radius * i.radius;
 }
 
-NeighbourFilterResult ResolveNeighbourMeans(const RecordBatch& batch,
-                                            const std::vector<std::vector<std::uint32_t>>& neighbours) {
+void NeighbourMeans::Set(const RecordBatch& batch, std::size_t i, std::span<const std::uint32_t> neighbours) {
+  counts[i] = std::uint32_t(neighbours.size());
+  if (neighbours.empty()) return;
+  glm::dvec3 sum(0.0);
+  for (const std::uint32_t j : neighbours) {
+    const auto& c = batch.records[j].contribution;
+    sum += glm::dvec3(c.x, c.y, c.z);
+  }
+  means[i] = sum / double(neighbours.size());
+}
+
+NeighbourFilterResult ResolveNeighbourMeans(const RecordBatch& batch, const NeighbourMeans& means) {
   NeighbourFilterResult result;
   std::uint64_t total = 0;
-  std::vector<std::optional<glm::dvec3>> means(batch.records.size());
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    if (neighbours[i].empty()) continue;
+  for (const std::uint32_t count : means.counts) {
+    if (count == 0) continue;
     ++result.filtered_records;
-    total += neighbours[i].size();
-    result.max_neighbours = std::max<std::uint64_t>(result.max_neighbours, neighbours[i].size());
-    glm::dvec3 sum(0.0);
-    for (const std::uint32_t j : neighbours[i]) {
-      const auto& c = batch.records[j].contribution;
-      sum += glm::dvec3(c.x, c.y, c.z);
-    }
-    means[i] = sum / double(neighbours[i].size());
+    total += count;
+    result.max_neighbours = std::max<std::uint64_t>(result.max_neighbours, count);
   }
   result.mean_neighbours = result.filtered_records ? double(total) / double(result.filtered_records) : 0.0;
-  result.image = ResolvePixels(batch, means);
+  result.image = ResolvePixels(batch, means.means);
   return result;
 }
 

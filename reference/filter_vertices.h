@@ -40,11 +40,20 @@ struct NeighbourFilterResult {
   std::uint64_t max_neighbours = 0;
 };
 
-// The image from each filtered record's neighbours (ascending record indices, itself included): the mean of their
-// contributions, summed in index order so that no bit depends on threads, resolved as every backend resolves
-// (core/resolve.h). A record without neighbours keeps its own contribution.
-NeighbourFilterResult ResolveNeighbourMeans(const RecordBatch& batch,
-                                            const std::vector<std::vector<std::uint32_t>>& neighbours);
+// What each record found: the mean of its neighbours' contributions and how many they were (0: none, the record
+// keeps its own contribution). Filled per record, so no neighbour list outlives its record: a radius of a few cells
+// at 64 spp finds thousands of neighbours per record, too many to keep for a million records.
+struct NeighbourMeans {
+  std::vector<std::optional<glm::dvec3>> means;
+  std::vector<std::uint32_t> counts;
+  explicit NeighbourMeans(std::size_t records) : means(records), counts(records, 0) {}
+  // Record i's neighbours, ascending record indices, itself included: their contributions summed in that order,
+  // so that no bit depends on threads.
+  void Set(const RecordBatch& batch, std::size_t i, std::span<const std::uint32_t> neighbours);
+};
+
+// The image from the means, resolved as every backend resolves (core/resolve.h), with the neighbour counts.
+NeighbourFilterResult ResolveNeighbourMeans(const RecordBatch& batch, const NeighbourMeans& means);
 
 }  // namespace hpsf
 

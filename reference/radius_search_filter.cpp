@@ -35,13 +35,14 @@ NeighbourFilterResult RadiusSearchFilter(const RecordBatch& batch, const FilterC
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     if (vertices[i].filtered) filtered.push_back(std::uint32_t(i));
   }
-  std::vector<std::vector<std::uint32_t>> neighbours(batch.records.size());
+  NeighbourMeans means(batch.records.size());
   if (!filtered.empty()) {
     const VertexCloud cloud{&vertices, &filtered};
     Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     tree.buildIndex();
     ParallelFor(filtered.size(), 256, [&](std::size_t begin, std::size_t end) {
       std::vector<std::pair<std::uint32_t, double>> found;
+      std::vector<std::uint32_t> mine;
       for (std::size_t k = begin; k < end; ++k) {
         const FilterVertex& v = vertices[filtered[k]];
         const double query[3] = {v.position.x, v.position.y, v.position.z};
@@ -50,16 +51,17 @@ NeighbourFilterResult RadiusSearchFilter(const RecordBatch& batch, const FilterC
         const double bound = std::nextafter(v.radius * v.radius * (1.0 + 1e-9), HUGE_VAL);
         found.clear();
         tree.radiusSearch(query, bound, found, nanoflann::SearchParams(32, 0.0f, false));
-        std::vector<std::uint32_t>& mine = neighbours[filtered[k]];
+        mine.clear();
         for (const auto& [index, distance] : found) {
           const std::uint32_t j = filtered[index];
           if (IsNeighbour(v, vertices[j])) mine.push_back(j);
         }
         std::sort(mine.begin(), mine.end());
+        means.Set(batch, filtered[k], mine);
       }
     });
   }
-  return ResolveNeighbourMeans(batch, neighbours);
+  return ResolveNeighbourMeans(batch, means);
 }
 
 }  // namespace hpsf

@@ -17,13 +17,14 @@ NeighbourFilterResult ScreenSpaceFilter(const RecordBatch& batch, const FilterCo
   // Records are stored pixel by pixel, each pixel's samples together (core/record.h).
   const std::size_t spp = batch.samples_per_pixel;
   const int width = int(batch.width), height = int(batch.height);
-  std::vector<std::vector<std::uint32_t>> neighbours(batch.records.size());
+  NeighbourMeans means(batch.records.size());
   ParallelFor(batch.records.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> mine;
     for (std::size_t i = begin; i < end; ++i) {
       if (!vertices[i].filtered) continue;
       const int pixel = int(i / spp);
       const int px = pixel % width, py = pixel / width;
-      std::vector<std::uint32_t>& mine = neighbours[i];
+      mine.clear();
       for (int y = std::max(0, py - window_radius_px); y <= std::min(height - 1, py + window_radius_px); ++y) {
         for (int x = std::max(0, px - window_radius_px); x <= std::min(width - 1, px + window_radius_px); ++x) {
           const std::size_t first = (std::size_t(y) * std::size_t(width) + std::size_t(x)) * spp;
@@ -32,9 +33,10 @@ NeighbourFilterResult ScreenSpaceFilter(const RecordBatch& batch, const FilterCo
           }
         }
       }
+      means.Set(batch, i, mine);  // rows, then columns, then samples: ascending record indices
     }
   });
-  return ResolveNeighbourMeans(batch, neighbours);
+  return ResolveNeighbourMeans(batch, means);
 }
 
 }  // namespace hpsf
