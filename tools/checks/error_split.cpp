@@ -1,5 +1,6 @@
 #include "tools/checks/error_split.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,7 +15,7 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
   }
   const double k = double(images.size());
   ErrorSplit split;
-  double mse = 0.0, bias2 = 0.0, variance = 0.0, reference_noise = 0.0;
+  double mse = 0.0, bias2 = 0.0, bias2_squares = 0.0, variance = 0.0, reference_noise = 0.0;
   for (std::size_t p = 0; p < reference.pixels.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
       const double r = reference.pixels[p][c];
@@ -37,7 +38,9 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
       const double s2 = deviations / (k - 1.0);
       mse += squares / k;
       variance += s2;
-      bias2 += (m - r) * (m - r) - s2 / k - q;
+      const double term = (m - r) * (m - r) - s2 / k - q;
+      bias2 += term;
+      bias2_squares += term * term;
       reference_noise += q;
       ++split.values;
     }
@@ -46,6 +49,10 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
     const double n = double(split.values);
     split.mse = mse / n;
     split.bias2 = bias2 / n;
+    if (n > 1.0) {
+      split.bias2_standard_error =
+          std::sqrt(std::max(0.0, (bias2_squares - n * split.bias2 * split.bias2) / (n - 1.0)) / n);
+    }
     split.variance = variance / n;
     split.reference_variance = reference_noise / n;
   }

@@ -19,6 +19,9 @@ namespace hpsf {
 
 struct ErrorSplit {
   double mse = 0.0, bias2 = 0.0, variance = 0.0;
+  // The standard error of bias2 from the spread of its per-value terms (values taken as independent, which
+  // neighbouring pixels of a filtered image are not quite): a bias2 within about two of it is no bias resolved.
+  double bias2_standard_error = 0.0;
   double reference_variance = 0.0;  // mean_v q_v
   std::uint64_t values = 0, nonfinite = 0;
 };

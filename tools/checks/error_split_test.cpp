@@ -58,6 +58,10 @@ TEST(ErrorSplit, AKnownBiasAndVarianceComeOut) {
   EXPECT_NEAR(split.bias2, bias * bias, 5.0 * 2.0 * bias * std::sqrt(s2 / 200.0 / 12288.0));
   const ErrorSplit unbiased = SplitError(Estimates(200, 0.0, a, truth), truth, nullptr);
   EXPECT_NEAR(unbiased.bias2, 0.0, 5.0 * s2 / 200.0 / std::sqrt(12288.0));
+  // The stated standard error is the one expected: Var((m - r)^2 - s2 / K) = 2 (s2 / K)^2 for nearly normal m
+  // (200 uniform draws), over 12,288 values.
+  const double expected = std::sqrt(2.0) * s2 / 200.0 / std::sqrt(12288.0);
+  EXPECT_NEAR(unbiased.bias2_standard_error, expected, 0.1 * expected);
 }
 
 TEST(ErrorSplit, TheReferenceNoiseLeavesTheBias) {

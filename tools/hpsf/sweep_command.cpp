@@ -220,6 +220,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
   if (images.size() >= 2) {
     const ErrorSplit split = SplitError(images, reference, &reference_variance);
     result["bias2"] = split.bias2;
+    result["bias2_standard_error"] = split.bias2_standard_error;
     result["variance"] = split.variance;
     result["reference_variance"] = split.reference_variance;
   }
@@ -273,6 +274,7 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
                                             "relmse",
                                             "ssim",
                                             "bias2",
+                                            "bias2_standard_error",
                                             "variance",
                                             "reference_variance",
                                             "probe_failures",
