@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace hpsf {
 
@@ -15,7 +16,8 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
   }
   const double k = double(images.size());
   ErrorSplit split;
-  double mse = 0.0, bias2 = 0.0, bias2_squares = 0.0, variance = 0.0, reference_noise = 0.0;
+  double mse = 0.0, bias2 = 0.0, bias2_squares = 0.0, variance = 0.0, reference_noise = 0.0, reference_sum = 0.0;
+  std::vector<double> image_sums(images.size(), 0.0);
   for (std::size_t p = 0; p < reference.pixels.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
       const double r = reference.pixels[p][c];
@@ -42,6 +44,8 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
       bias2 += term;
       bias2_squares += term * term;
       reference_noise += q;
+      reference_sum += r;
+      for (std::size_t i = 0; i < images.size(); ++i) image_sums[i] += images[i].pixels[p][c];
       ++split.values;
     }
   }
@@ -55,6 +59,15 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
     }
     split.variance = variance / n;
     split.reference_variance = reference_noise / n;
+    double errors = 0.0, error_squares = 0.0;
+    for (const double sum : image_sums) {
+      const double e = (sum - reference_sum) / n;
+      errors += e;
+      error_squares += e * e;
+    }
+    split.mean_error = errors / k;
+    const double spread = std::max(0.0, (error_squares - k * split.mean_error * split.mean_error) / (k - 1.0));
+    split.mean_error_standard_error = std::sqrt(spread / k + reference_noise / (n * n));
   }
   return split;
 }

@@ -23,6 +23,11 @@ struct ErrorSplit {
   // neighbouring pixels of a filtered image are not quite): a bias2 within about two of it is no bias resolved.
   double bias2_standard_error = 0.0;
   double reference_variance = 0.0;  // mean_v q_v
+  // The bias of the image mean: the mean over the K images of (image mean - reference mean), and its standard error
+  // from the spread of those K differences and the reference mean's own variance (sum_v q_v / n^2). An image-wide
+  // statistic, so the correlation between neighbouring pixels of a filtered image is in its spread: the test of
+  // "no bias" a furnace must pass (|mean_error| within a few standard errors).
+  double mean_error = 0.0, mean_error_standard_error = 0.0;
   std::uint64_t values = 0, nonfinite = 0;
 };
 

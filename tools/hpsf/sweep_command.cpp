@@ -221,6 +221,8 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
     const ErrorSplit split = SplitError(images, reference, &reference_variance);
     result["bias2"] = split.bias2;
     result["bias2_standard_error"] = split.bias2_standard_error;
+    result["mean_error"] = split.mean_error;
+    result["mean_error_standard_error"] = split.mean_error_standard_error;
     result["variance"] = split.variance;
     result["reference_variance"] = split.reference_variance;
   }
@@ -275,6 +277,8 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
                                             "ssim",
                                             "bias2",
                                             "bias2_standard_error",
+                                            "mean_error",
+                                            "mean_error_standard_error",
                                             "variance",
                                             "reference_variance",
                                             "probe_failures",
