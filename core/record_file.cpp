@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/fnv1a.h"
 
 namespace hpsf {
 namespace {
@@ -30,12 +31,6 @@ struct Header {
 };
 static_assert(sizeof(Header) == 56);
 constexpr std::uint32_t kVersion1HeaderSize = 48;
-
-std::uint64_t Fnv1a(const void* data, std::size_t size, std::uint64_t hash = 0xcbf29ce484222325ull) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull;
-  return hash;
-}
 
 }  // namespace
 

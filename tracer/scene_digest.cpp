@@ -1,33 +1,33 @@
 #include "tracer/scene_digest.h"
 
-#include <cstring>
 #include <type_traits>
+
+#include "core/fnv1a.h"
 
 namespace hpsf {
 namespace {
 
-class Fnv1a {
+// FNV-1a over a value's bytes, as they are (floats bit for bit).
+class Digest {
  public:
   template <typename T>
   void Add(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    unsigned char bytes[sizeof(T)];
-    std::memcpy(bytes, &value, sizeof(T));
-    for (const unsigned char b : bytes) hash_ = (hash_ ^ b) * 0x100000001b3ull;
+    hash_ = Fnv1a(&value, sizeof(T), hash_);
   }
   std::uint64_t value() const { return hash_; }
 
  private:
-  std::uint64_t hash_ = 0xcbf29ce484222325ull;
+  std::uint64_t hash_ = kFnv1aOffset;
 };
 
-void AddVec(Fnv1a& h, const glm::vec3& v) {
+void AddVec(Digest& h, const glm::vec3& v) {
   h.Add(v.x);
   h.Add(v.y);
   h.Add(v.z);
 }
 
-void AddVec(Fnv1a& h, const glm::dvec3& v) {
+void AddVec(Digest& h, const glm::dvec3& v) {
   h.Add(v.x);
   h.Add(v.y);
   h.Add(v.z);
@@ -37,7 +37,7 @@ void AddVec(Fnv1a& h, const glm::dvec3& v) {
 
 std::uint64_t SceneDigest(const Scene& scene, std::uint32_t frame) {
   const Scene at = scene.AtFrame(frame);
-  Fnv1a h;
+  Digest h;
   AddVec(h, at.camera.position);
   AddVec(h, at.camera.look_at);
   AddVec(h, at.camera.up);

@@ -11,30 +11,14 @@
 #include "reference/radius_search_filter.h"
 #include "reference/reference_filter.h"
 #include "reference/screen_space_filter.h"
+#include "tools/benchmarks/cornell_batch.h"
 #include "tools/checks/channel_image.h"
 #include "tools/checks/image_metrics.h"
 #include "tools/hpsf/converged_reference.h"
-#include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf {
 namespace {
-
-const RecordBatch& CornellBatch() {
-  static const RecordBatch batch = [] {
-    TraceOptions options;
-    options.width = options.height = 256;
-    options.samples_per_pixel = 4;
-    return TraceRecords(LoadScene("cornell"), options).batch;
-  }();
-  return batch;
-}
-
-ChannelImage Channels(const Image& image) {
-  ChannelImage c{"", int(image.width), int(image.height), {"R", "G", "B"}, {}, {}};
-  for (const glm::vec3& p : image.pixels) c.values.insert(c.values.end(), {p.x, p.y, p.z});
-  return c;
-}
 
 const ChannelImage& Converged() {
   static const ChannelImage converged = [] {
@@ -43,14 +27,14 @@ const ChannelImage& Converged() {
     request.trace.seed = 1000;  // not the batch's seed: the error of an image is measured against other samples
     request.samples_per_pixel = 1024;
     request.pass_samples = 16;
-    return Channels(RenderConverged(LoadScene("cornell"), request).mean);
+    return ColourChannels(RenderConverged(LoadScene("cornell"), request).mean);
   }();
   return converged;
 }
 
 void Finish(benchmark::State& state, const RecordBatch& batch, const Image& image) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * batch.records.size()));
-  state.counters["relmse"] = ComputeMetrics(Channels(image), Converged()).relmse;
+  state.counters["relmse"] = ComputeMetrics(ColourChannels(image), Converged()).relmse;
 }
 
 void BM_PlainPathTracing(benchmark::State& state) {

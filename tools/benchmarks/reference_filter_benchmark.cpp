@@ -1,23 +1,13 @@
 // Records per second through the exact-key reference filter, on a Cornell box batch (256x256, 4 spp, traced
-// once). Run: build/default/bin/reference_filter_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// once). Run: build/default/bin/reference_filter_benchmark --benchmark_repetitions=5
+// --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include "reference/reference_filter.h"
-#include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
+#include "tools/benchmarks/cornell_batch.h"
 
 namespace hpsf {
 namespace {
-
-const RecordBatch& CornellBatch() {
-  static const RecordBatch batch = [] {
-    TraceOptions options;
-    options.width = options.height = 256;
-    options.samples_per_pixel = 4;
-    return TraceRecords(LoadScene("cornell"), options).batch;
-  }();
-  return batch;
-}
 
 void BM_ReferenceFilter(benchmark::State& state) {
   const RecordBatch& batch = CornellBatch();

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+
 namespace hpsf {
 
 struct ChannelImage {
@@ -33,6 +35,14 @@ struct ChannelImage {
 // The channels the plain metrics compare: every channel but the variance estimate (`variance.*`), which only
 // the statistical comparison reads.
 inline bool IsColorChannel(const std::string& name) { return name.rfind("variance.", 0) != 0; }
+
+// An in-memory image (a filter's output) as the checks compare it: channels R, G, B, no path, no metadata.
+inline ChannelImage ColourChannels(const Image& image) {
+  ChannelImage c{"", int(image.width), int(image.height), {"R", "G", "B"}, {}, {}};
+  c.values.reserve(image.pixels.size() * 3);
+  for (const glm::vec3& p : image.pixels) c.values.insert(c.values.end(), {p.x, p.y, p.z});
+  return c;
+}
 
 }  // namespace hpsf
 

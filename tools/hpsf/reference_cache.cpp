@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tracer/scene_digest.h"
@@ -20,12 +21,6 @@ std::string Hex(std::uint64_t value) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
   return text;
-}
-
-std::uint64_t Fnv1a(const std::string& text) {
-  std::uint64_t hash = 0xcbf29ce484222325ull;
-  for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
-  return hash;
 }
 
 }  // namespace
@@ -40,7 +35,7 @@ std::string DefaultReferenceCache() {
 }
 
 CachedReference ReferenceCacheEntry(const std::string& folder, const std::string& description) {
-  const std::string key = Hex(Fnv1a(description));
+  const std::string key = Hex(Fnv1a(description.data(), description.size()));
   const std::filesystem::path base = std::filesystem::path(folder) / key;
   return {key, base.string() + ".exr", base.string() + ".json"};
 }

@@ -76,13 +76,6 @@ FilterConfig FilterConfigOf(const SweepConfig& c) {
   }
 }
 
-ChannelImage Channels(const Image& image) {
-  ChannelImage c{"", int(image.width), int(image.height), {"R", "G", "B"}, {}, {}};
-  c.values.reserve(image.pixels.size() * 3);
-  for (const glm::vec3& p : image.pixels) c.values.insert(c.values.end(), {p.x, p.y, p.z});
-  return c;
-}
-
 Image ColourOf(const ChannelImage& c, const std::string& prefix) {
   Image image(std::uint32_t(c.width), std::uint32_t(c.height));
   const int r = c.ChannelIndex(prefix + "R"), g = c.ChannelIndex(prefix + "G"), b = c.ChannelIndex(prefix + "B");
@@ -176,7 +169,7 @@ std::string ConfigFile(const fs::path& out, std::size_t index, const SweepConfig
 
 json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::vector<Traced>& traced,
                    const Image& reference, const Image& reference_variance, Runner& runner) {
-  const ChannelImage reference_channels = Channels(reference);
+  const ChannelImage reference_channels = ColourChannels(reference);
   std::vector<Image> images;
   std::vector<double> trace_s, filter_s, mse, relmse, ssim;
   std::map<std::string, std::vector<double>> phases;
@@ -185,12 +178,13 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
     FilterConfig seeded = config;
     seeded.seed = std::uint32_t(k + 1);
     SeedRun run = runner.Run(c, seeded, traced[k].batch);
-    const ImageMetrics metrics = ComputeMetrics(Channels(run.image), reference_channels);
+    const ChannelImage channels = ColourChannels(run.image);
+    const ImageMetrics metrics = ComputeMetrics(channels, reference_channels);
     trace_s.push_back(traced[k].seconds);
     filter_s.push_back(run.filter_s);
     mse.push_back(metrics.mse);
     relmse.push_back(metrics.relmse);
-    ssim.push_back(SrgbSsim(Channels(run.image), reference_channels));
+    ssim.push_back(SrgbSsim(channels, reference_channels));
     for (auto it = run.phases.begin(); it != run.phases.end(); ++it) phases[it.key()].push_back(it.value());
     probe_failures += run.probe_failures;
     aliased += run.aliased_slots;
