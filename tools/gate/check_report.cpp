@@ -36,7 +36,8 @@ CaseOutcome CheckReport::Worst() const {
 std::vector<FamilyTotals> CheckReport::Families() const {
   std::vector<FamilyTotals> families;
   for (const GateCaseResult& r : results) {
-    auto it = std::find_if(families.begin(), families.end(), [&](const FamilyTotals& f) { return f.family == r.family; });
+    auto it = std::find_if(families.begin(), families.end(),
+                           [&](const FamilyTotals& f) { return f.family == r.family; });
     if (it == families.end()) it = families.insert(families.end(), FamilyTotals{r.family});
     ++it->cases;
     it->passed += r.outcome == CaseOutcome::kPassed;

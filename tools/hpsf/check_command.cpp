@@ -156,8 +156,10 @@ int Finish(const CheckReport& report, const CheckOptions& o) {
     std::cerr << "hpsf: " << r.id << " reproduces with: " << r.reproduce
               << (r.bundle.empty() ? "" : " (repro bundle: " + r.bundle + ")") << "\n";
   }
-  if (std::any_of(report.results.begin(), report.results.end(),
-                  [](const GateCaseResult& r) { return r.outcome == CaseOutcome::kError && r.message == kBadInputMessage; })) {
+  const auto bad_input = [](const GateCaseResult& r) {
+    return r.outcome == CaseOutcome::kError && r.message == kBadInputMessage;
+  };
+  if (std::any_of(report.results.begin(), report.results.end(), bad_input)) {
     return kExitBadInput;
   }
   switch (report.Worst()) {
@@ -227,8 +229,9 @@ int RunCheck(const CheckOptions& o, bool options_only) {
 
 void AddCheckCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<CheckOptions>();
-  CLI::App* c = app.add_subcommand("check", "The CI correctness gate: run a gate file's cross-checks, statistics, goldens and fuzzing: exit 0 pass, 1 warn, "
-                                   "2 fail, 3 bad input");
+  CLI::App* c = app.add_subcommand("check",
+                                   "The CI correctness gate: run a gate file's cross-checks, statistics, goldens and "
+                                   "fuzzing: exit 0 pass, 1 warn, 2 fail, 3 bad input");
   c->add_option("gate", o->gate_file, "The gate file (JSON, \"hpsf_gate\": 1); none: the default gate");
   c->add_option("--shard", o->shard, "Run shard I of N: cases I, I + N, I + 2N, ...")->capture_default_str();
   c->add_option("--junit", o->junit, "Write the JUnit XML report to FILE");
