@@ -16,7 +16,7 @@ const Image& Backend::FilterFrame(const RecordBatch& batch, const FilterConfig& 
   config.Validate();
   const bool first = !sequence_;
   if (!first) CheckSameSequence(*sequence_, config);
-  const Image& image = FilterFrameInto(batch, config, first);
+  const Image& image = FilterFrameInto(batch, config, frames_filtered_);
   if (first) sequence_ = config;  // only once the first frame has gone in: a failed one leaves the table empty
   ++frames_filtered_;
   return image;
@@ -43,6 +43,7 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.frames == next.frames, "--frames");
   require(first.eviction == next.eviction, "--eviction");
   require(first.temporal == next.temporal, "--temporal");
+  require(first.forced == next.forced, "--force-effect");
 }
 
 }  // namespace hpsf

@@ -109,6 +109,16 @@ void FilterConfig::Validate() const {
   if (level_seed.enabled && !lod) {
     throw ConfigError("--level-change", "seeds cells across levels, which needs --lod on");
   }
+  // Forcing runs a pass the options ask for where the plan skips it; a pass not asked for has nothing to run.
+  if (forced.Has(Effect::kTemporal) && !temporal.blends()) {
+    throw ConfigError("--force-effect", "temporal needs a blending --temporal (ema or adaptive)");
+  }
+  if (forced.Has(Effect::kLevelSeed) && !level_seed.enabled) {
+    throw ConfigError("--force-effect", "level-seed needs --level-change seed");
+  }
+  if (forced.Has(Effect::kEviction) && !eviction.enabled()) {
+    throw ConfigError("--force-effect", "eviction needs an --eviction policy");
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }
@@ -128,7 +138,8 @@ std::string FilterConfig::ToString() const {
          (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) +
          (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) +
          (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) +
-         (level_seed.enabled ? " level_change: " + level_seed.ToString() : std::string()) + " ]";
+         (level_seed.enabled ? " level_change: " + level_seed.ToString() : std::string()) +
+         (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {

@@ -4,9 +4,11 @@
 
 namespace hpsf {
 
-const Image& EmulatedBackend::FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) {
-  EmulatedRun next =
-      EmulatedFilter(batch, config, options_, kernel_, first ? nullptr : &run_->table, eviction_kernels_);
+const Image& EmulatedBackend::FilterFrameInto(const RecordBatch& batch, const FilterConfig& config,
+                                              std::uint32_t index) {
+  const FrameEffects effects = PlanFrameEffects(config, index);
+  const HashTableDump* previous = index == 0 ? nullptr : &run_->table;
+  EmulatedRun next = EmulatedFilter(batch, config, options_, kernel_, previous, eviction_kernels_, &effects);
   run_ = std::move(next);
   return run_->image;
 }

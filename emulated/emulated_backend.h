@@ -22,7 +22,7 @@ class EmulatedBackend : public Backend {
   const EmulatedRun& run() const { return *run_; }
 
  protected:
-  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) override;
+  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override;
   void ForgetTable() override { run_.reset(); }
 
  private:

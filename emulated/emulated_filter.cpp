@@ -49,7 +49,7 @@ void EmulatorOptions::Validate() const {
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn accumulate, const HashTableDump* previous,
-                           EvictionKernels eviction_kernels) {
+                           EvictionKernels eviction_kernels, const FrameEffects* effects) {
   CheckBatchShape(batch);
   config.Validate();
   options.Validate();
@@ -104,15 +104,18 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   b.counts = memory.Allocate64("counts", config.capacity);
   b.placements = memory.Allocate32("placements", n);
   b.wraps = memory.Allocate64("wraps", 2);
-  const bool evicting = config.eviction.enabled();
-  if (evicting) {
+  const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
+  // Last-seen frames are tracked whenever eviction is asked for; the pass runs where the plan says.
+  const bool tracking = config.eviction.enabled();
+  const bool evicting = planned.eviction;
+  if (tracking) {
     b.last_seen = memory.Allocate32("last_seen", config.capacity);
     args.track_last_seen = true;
     args.frame = config.frame;
     args.claim_tombstones = config.eviction.by_priority();
   }
   // The double buffer (emulated/temporal_kernel.h): the table before the frame, which the blend reads.
-  const bool blending = previous && config.temporal.blends();
+  const bool blending = planned.temporal;  // forced on a first frame, it blends with an empty history
   TemporalArgs temporal{config.capacity, fixed, MakeTemporalParams(config.temporal), b, 0, 0};
   if (blending) {
     temporal.previous_sums = fixed ? memory.Allocate64("previous_sums", std::size_t(config.capacity) * 3)
@@ -128,7 +131,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
     if (blending)
       std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(temporal.previous_counts).begin());
-    if (evicting)
+    if (tracking)
       std::copy(previous->last_seen.begin(), previous->last_seen.end(), memory.Words32(b.last_seen).begin());
     if (fixed) {
       const std::span<std::uint64_t> sums = memory.Words64(b.sums);
@@ -183,9 +186,20 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     simt::LaunchFaithful(memory, threads, options.warp_size, kernel, *schedule, {});
   };
   const auto launch_per_slot = [&](const simt::Kernel& kernel) { launch(config.capacity, kernel); };
-  const bool seeding = previous && config.level_seed.enabled;
+  const bool seeding = planned.level_seed;
+  HashTableDump empty_table;  // a first frame's table before it, where the seed is forced
+  if (seeding && !previous) {
+    empty_table.capacity = config.capacity;
+    empty_table.probe_limit = config.probe_limit;
+    empty_table.fingerprint_bits = config.fingerprint_bits;
+    empty_table.accumulation = config.accumulation;
+    empty_table.tags.resize(config.capacity);
+    empty_table.counts.resize(config.capacity);
+    (fixed ? empty_table.fixed_sums.resize(config.capacity) : empty_table.float_sums.resize(config.capacity));
+  }
   if (seeding) {
-    LevelSeedArgs seed{run.keys, config.capacity, fixed, config.normal_in_index, config.level_seed, previous, b, 0, 0};
+    LevelSeedArgs seed{run.keys,           config.capacity, fixed, config.normal_in_index, config.level_seed,
+                       previous ? previous : &empty_table, b,   0,     0};
     seed.seeded = memory.Allocate32("seeded", config.capacity);
     seed.seeded_count = memory.Allocate64("seeded_count", 1);
     launch(n, [&](simt::ThreadContext& ctx) { return LevelSeedKernel(ctx, seed); });
@@ -194,9 +208,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     run.seeded_slots.resize(config.capacity);
     for (std::size_t s = 0; s < config.capacity; ++s) run.seeded_slots[s] = flags[s] == 2;
   }
-  run.timings.level_seed = clock.Lap();
+  // A skipped pass reads zero, not the clock's few nanoseconds between two laps.
+  run.timings.level_seed = seeding ? clock.Lap() : 0.0;
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
-  run.timings.temporal = clock.Lap();
+  run.timings.temporal = blending ? clock.Lap() : 0.0;
   if (evicting) {
     if (config.eviction.by_priority()) {
       launch(n, [&](simt::ThreadContext& ctx) { return eviction_kernels.select(ctx, eviction); });
@@ -204,9 +219,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
     launch_per_slot([&](simt::ThreadContext& ctx) { return eviction_kernels.reclaim(ctx, eviction); });
     run.evicted = memory.Words64(eviction.evicted)[0];
-    table.last_seen = memory.TakeWords32(b.last_seen);
   }
-  run.timings.eviction = clock.Lap();
+  if (tracking) table.last_seen = memory.TakeWords32(b.last_seen);
+  run.timings.eviction = evicting ? clock.Lap() : 0.0;
   // The dump: the final state of the device buffers, moved out where the layouts agree.
   table.tags = memory.TakeWords32(b.tags);
   table.counts = memory.TakeWords64(b.counts);
@@ -272,7 +287,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
         return a;
       });
   run.probe_failures = tally.probe_failures;
-  if (evicting) {
+  if (tracking) {
     for (std::size_t s = 0; s < config.capacity; ++s)
       run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
   }

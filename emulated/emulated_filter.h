@@ -60,9 +60,11 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 // With a blending config.temporal and a previous table, the temporal launch (emulated/temporal_kernel.h) follows
 // the accumulate. With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow, with
 // `eviction_kernels` as the selection and reclaim kernels; the run's table is the state after them.
+// effects: the passes the frame runs (core/effect_plan.h); null plans them for the first frame or, with `previous`,
+// for a later one.
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr,
-                           EvictionKernels eviction_kernels = {});
+                           EvictionKernels eviction_kernels = {}, const FrameEffects* effects = nullptr);
 
 }  // namespace hpsf
 

@@ -4,8 +4,10 @@
 
 namespace hpsf {
 
-const Image& ReferenceBackend::FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) {
-  result_ = ReferenceFilter(batch, config, first ? nullptr : &*result_);
+const Image& ReferenceBackend::FilterFrameInto(const RecordBatch& batch, const FilterConfig& config,
+                                               std::uint32_t index) {
+  const FrameEffects effects = PlanFrameEffects(config, index);
+  result_ = ReferenceFilter(batch, config, index == 0 ? nullptr : &*result_, &effects);
   return result_->image;
 }
 

@@ -18,7 +18,7 @@ class ReferenceBackend : public Backend {
   const FilterResult& result() const { return *result_; }
 
  protected:
-  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) override;
+  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override;
   void ForgetTable() override { result_.reset(); }
 
  private:

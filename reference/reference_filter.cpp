@@ -81,7 +81,8 @@ void SeedNewCells(const FilterConfig& config, const FilterResult* previous,
 
 }  // namespace
 
-FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous) {
+FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous,
+                             const FrameEffects* effects) {
   CheckBatchShape(batch);
   config.Validate();
   const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
@@ -138,9 +139,10 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
     cell.last_seen = config.frame;
     result.placement[i] = it->second;
   }
-  if (config.level_seed.enabled) SeedNewCells(config, previous, cell_of_key, result);
-  if (previous && config.temporal.blends()) BlendCells(config, previous->cells, result);
-  if (config.eviction.enabled()) EvictCells(config, result);
+  const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
+  if (planned.level_seed) SeedNewCells(config, previous, cell_of_key, result);
+  if (planned.temporal) BlendCells(config, previous ? previous->cells : std::vector<TableCell>{}, result);
+  if (planned.eviction) EvictCells(config, result);
 
   std::vector<glm::dvec3> averages(result.cells.size());
   for (std::size_t c = 0; c < result.cells.size(); ++c) {

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -27,7 +31,9 @@ constexpr int kRouletteStart = 4;
 
 double MaxComponent(glm::dvec3 v) { return std::max({v.x, v.y, v.z}); }
 
-// Emitting triangles, picked in proportion to their area.
+}  // namespace
+
+// Emitting triangles, picked in proportion to their area. Outside the anonymous namespace: PreparedScene holds one.
 class EmitterSampler {
  public:
   explicit EmitterSampler(const Scene& scene) {
@@ -54,22 +60,42 @@ class EmitterSampler {
   double total_area_ = 0.0;
 };
 
+namespace {
+
 struct SurfacePoint {
   glm::dvec3 position;
   glm::dvec3 normal;  // unit, facing the incoming ray
   const Material* material;
 };
 
+}  // namespace
+
+// What tracing needs of a scene at a frame, built once: its triangles' ray-tracing structure, its emitters and its
+// unit normals.
+struct PreparedScene::Built {
+  explicit Built(Scene at_frame) : scene(std::move(at_frame)), embree(scene), emitters(scene), extent(scene.Extent()) {
+    // Unit geometric normals once per triangle, not once per hit.
+    normals.reserve(scene.triangles.size());
+    for (const Triangle& t : scene.triangles) {
+      const glm::dvec3 p0(t.p0);
+      normals.push_back(glm::normalize(glm::cross(glm::dvec3(t.p1) - p0, glm::dvec3(t.p2) - p0)));
+    }
+  }
+  Scene scene;
+  EmbreeScene embree;
+  EmitterSampler emitters;
+  double extent;
+  std::vector<glm::dvec3> normals;
+};
+
+namespace {
+
 class Tracer {
  public:
-  Tracer(const Scene& scene, const TraceOptions& options)
-      : scene_(scene), options_(options), embree_(scene), emitters_(scene), extent_(scene.Extent()) {
-    // Unit geometric normals once per triangle, not once per hit.
-    normals_.reserve(scene.triangles.size());
-    for (const Triangle& t : scene.triangles) {
-      normals_.push_back(glm::normalize(glm::cross(glm::dvec3(t.p1) - glm::dvec3(t.p0), glm::dvec3(t.p2) - glm::dvec3(t.p0))));
-    }
-    const Camera& c = scene.camera;
+  Tracer(const PreparedScene::Built& built, const TraceOptions& options)
+      : scene_(built.scene), options_(options), embree_(built.embree), emitters_(built.emitters),
+        normals_(built.normals), extent_(built.extent) {
+    const Camera& c = scene_.camera;
     forward_ = glm::normalize(c.look_at - c.position);
     right_ = glm::normalize(glm::cross(forward_, c.up));
     up_ = glm::cross(right_, forward_);
@@ -156,9 +182,9 @@ class Tracer {
 
   const Scene& scene_;
   const TraceOptions& options_;
-  EmbreeScene embree_;
-  EmitterSampler emitters_;
-  std::vector<glm::dvec3> normals_;
+  const EmbreeScene& embree_;
+  const EmitterSampler& emitters_;
+  const std::vector<glm::dvec3>& normals_;
   double extent_;
   glm::dvec3 forward_, right_, up_;
   double tan_half_fov_;
@@ -270,13 +296,30 @@ void TraceOptions::Validate() const {
   if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
 }
 
+PreparedScene::PreparedScene(const Scene& scene, std::uint32_t frame)
+    : frame_(frame), animated_(!scene.animation.Static()), built_(std::make_unique<Built>(scene.AtFrame(frame))) {}
+
+PreparedScene::~PreparedScene() = default;
+
+const Scene& PreparedScene::scene() const { return built_->scene; }
+
 TraceResult TraceRecords(const Scene& animated, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
   options.Validate();
+  return TraceRecords(PreparedScene(animated, options.frame), options, progress);
+}
+
+TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+  options.Validate();
+  if (prepared.animated() && prepared.frame() != options.frame) {
+    throw std::logic_error("an animated scene prepared at frame " + std::to_string(prepared.frame()) +
+                           " traced at frame " + std::to_string(options.frame));
+  }
   const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const Scene scene = animated.AtFrame(options.frame);
-  const Tracer tracer(scene, options);
+  const Scene& scene = prepared.scene();
+  const Tracer tracer(*prepared.built_, options);
 
   TraceResult result;
   RecordBatch& batch = result.batch;

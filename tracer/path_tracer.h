@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 
 #include "core/record.h"
 #include "tracer/scene.h"
@@ -45,8 +46,36 @@ struct TraceResult {
   TraceStats stats;
 };
 
+// A scene as it stands at one frame, built for tracing (its ray-tracing structure, emitters and normals). A static
+// scene's is the same at every frame, so one serves a whole sequence; an animated scene's is built per frame
+// (effect "animation", core/effect_plan.h).
+class PreparedScene {
+ public:
+  PreparedScene(const Scene& scene, std::uint32_t frame);
+  ~PreparedScene();
+  PreparedScene(const PreparedScene&) = delete;
+  PreparedScene& operator=(const PreparedScene&) = delete;
+
+  std::uint32_t frame() const { return frame_; }
+  bool animated() const { return animated_; }
+  const Scene& scene() const;
+
+  struct Built;
+
+ private:
+  friend TraceResult TraceRecords(const PreparedScene&, const TraceOptions&,
+                                  const std::function<void(std::uint32_t, std::uint32_t)>&);
+  std::uint32_t frame_;
+  bool animated_;
+  std::unique_ptr<Built> built_;
+};
+
 // progress(done, total) is called now and then from the calling thread's view of finished tiles.
 TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress = {});
+// Traces a prepared scene: any frame of a static one, only its own frame of an animated one (a logic_error
+// otherwise). The same records as TraceRecords of the scene.
+TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress = {});
 
 }  // namespace hpsf

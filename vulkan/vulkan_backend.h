@@ -24,8 +24,9 @@ class VulkanBackend : public Backend {
   const VulkanRun& run() const { return *run_; }
 
  protected:
-  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, bool first) override {
-    run_ = filter_.Run(batch, config, !first);
+  const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override {
+    const FrameEffects effects = PlanFrameEffects(config, index);
+    run_ = filter_.Run(batch, config, index > 0, &effects);
     return run_->image;
   }
   void ForgetTable() override { run_.reset(); }

@@ -275,7 +275,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   p.table = Impl::TableShape{table.capacity, table.accumulation, table.fixed_point_bits};
 }
 
-VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table) {
+VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table,
+                            const FrameEffects* effects) {
   CheckBatchShape(batch);
   config.Validate();
   Impl& p = *impl_;
@@ -318,7 +319,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.stats, 16);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
-  const bool evicting = config.eviction.enabled();
+  const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, keep_table ? kLaterFrame : 0);
+  // Last-seen frames are tracked whenever eviction is asked for; the pass runs where the plan says.
+  const bool tracking = config.eviction.enabled();
+  const bool evicting = planned.eviction;
   p.Ensure(p.last_seen, vk::DeviceSize(config.capacity) * 4);  // bound always (binding 8), written with eviction only
   p.Ensure(p.evicted, 8);
   const bool by_priority = config.eviction.by_priority();
@@ -345,9 +349,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
   // The double buffer of the temporal blend and the level seed: the table as the previous frame left it, copied
-  // before the accumulate (the seed needs its tags too).
-  const bool blending = keep_table && config.temporal.blends();
-  const bool seeding = keep_table && config.level_seed.enabled;
+  // before the accumulate (the seed needs its tags too); on a first frame where a pass is forced, an empty table.
+  const bool blending = planned.temporal;
+  const bool seeding = planned.level_seed;
   const bool double_buffer = blending || seeding;
   const vk::DeviceSize sum_bytes_on_device = vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4);
   // Bound always (bindings 9 and 10 of the stable interface), sized for the table when the frame needs them.
@@ -368,24 +372,32 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   AccumulatePush push{
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
       {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
-       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, evicting ? 1u : 0u,
+       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, tracking ? 1u : 0u,
        blending ? 1u : 0u, by_priority ? 1u : 0u},
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
     if (seeding) {
-      cb.copyBuffer(*p.tags.buffer, *p.previous_tags.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 4));
+      if (keep_table) {
+        cb.copyBuffer(*p.tags.buffer, *p.previous_tags.buffer,
+                      vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 4));
+      } else {
+        cb.fillBuffer(*p.previous_tags.buffer, 0, VK_WHOLE_SIZE, 0);
+      }
       cb.fillBuffer(*p.seeded.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.seeded_count.buffer, 0, VK_WHOLE_SIZE, 0);
     }
-    if (double_buffer) {
+    if (double_buffer && keep_table) {
       cb.copyBuffer(*p.sums.buffer, *p.previous_sums.buffer, vk::BufferCopy(0, 0, sum_bytes_on_device));
       cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer,
                     vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 8));
+    } else if (double_buffer) {
+      for (DeviceBuffer* cleared : {&p.previous_sums, &p.previous_counts})
+        cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
     }
     if (!keep_table) {
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
-      if (evicting) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
+      if (tracking) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
     }
     const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared, nullptr, nullptr);
@@ -501,7 +513,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_counts = download.Download(p.counts, std::size_t(config.capacity) * 8);
   const void* from_sums = download.Download(p.sums, sum_bytes);
   const void* from_stats = download.Download(p.stats, 16);
-  const void* from_last_seen = evicting ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
+  const void* from_last_seen = tracking ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
   const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
   const void* from_seeded = seeding ? download.Download(p.seeded_count, 8) : nullptr;
   run.timings.read_back_copy_ms = download.Submit();
@@ -528,10 +540,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                        CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
-  if (evicting) {
+  if (evicting) std::memcpy(&run.evicted, from_evicted, 8);
+  if (tracking) {
     ResizeOnHugePages(table.last_seen, config.capacity);
     ParallelCopy({table.last_seen.data(), from_last_seen, std::size_t(config.capacity) * 4});
-    std::memcpy(&run.evicted, from_evicted, 8);
     for (std::size_t s = 0; s < config.capacity; ++s)
       run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
   }

@@ -57,7 +57,10 @@ class VulkanFilter {
   // keep_table: the frame adds to the device table the previous Run left, and keeps its F (a sequence of frames,
   // core/backend.h); a ConfigError when there is none of this shape. Else the table starts empty and F is chosen
   // for this batch (and config.frames).
-  VulkanRun Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table = false);
+  // effects: the passes the frame runs (core/effect_plan.h); null plans them for the first frame or, with
+  // keep_table, for a later one.
+  VulkanRun Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table = false,
+                const FrameEffects* effects = nullptr);
 
   // Makes `table` the device table a Run with keep_table carries on from, as if a frame had left it: its tags,
   // sums, counts and last-seen frames (zero when it has none), and its F. For tables no frame reaches in a test's

@@ -1,8 +1,10 @@
 #include "tools/hpsf/batch_input.h"
 
 #include <filesystem>
+#include <optional>
 
 #include "core/record_file.h"
+#include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/image_size.h"
 #include "tracer/scene_file.h"
 
@@ -22,14 +24,21 @@ RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace
   return TraceRecords(LoadScene(input), trace).batch;
 }
 
-std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const TraceOptions& trace, std::uint32_t frames) {
+std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const TraceOptions& trace, std::uint32_t frames,
+                                           const FilterConfig& config) {
   if (IsRecordFile(input)) return ReadRecordFrames(input);
   const Scene scene = LoadScene(input);
   std::vector<RecordBatch> sequence;
   TraceOptions frame_trace = trace;
+  // A static scene is built once for every frame, an animated one for each (core/effect_plan.h, "animation").
+  std::optional<PreparedScene> prepared;
   for (std::uint32_t k = 0; k < frames; ++k) {
     frame_trace.frame = trace.frame + k;
-    sequence.push_back(TraceRecords(scene, frame_trace).batch);
+    if (!prepared || RebuildsScenePerFrame(config, FactsOf(scene))) {
+      prepared.reset();
+      prepared.emplace(scene, frame_trace.frame);
+    }
+    sequence.push_back(TraceRecords(*prepared, frame_trace).batch);
   }
   return sequence;
 }

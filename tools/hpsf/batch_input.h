@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/filter_config.h"
 #include "core/record.h"
 #include "tracer/path_tracer.h"
 
@@ -22,8 +23,10 @@ RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace
 // Whether the input names a recorded .hpsfv file rather than a scene.
 bool IsRecordFile(const std::string& input);
 
-// A sequence: every frame of a record file, or `frames` frames of a scene traced from trace.frame on.
-std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const TraceOptions& trace, std::uint32_t frames);
+// A sequence: every frame of a record file, or `frames` frames of a scene traced from trace.frame on (the scene built
+// as config's effect plan says).
+std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const TraceOptions& trace, std::uint32_t frames,
+                                           const FilterConfig& config);
 
 }  // namespace hpsf
 

@@ -82,7 +82,7 @@ const std::vector<std::string>& EdgeValues() {
       "octahedral:24", "on", "off", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13", "D1", "reference", "emulated",
       "vulkan", "reference,emulated", "emulated,,vulkan", ",", "always", "never", "auto", "mse", "psnr", "ssim",
       "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help", "integrate", "adaptive",
-      "strict", "2/3", "spp=1,2; method=pt,radius"};
+      "strict", "2/3", "spp=1,2; method=pt,radius", "animation", "temporal"};
   // clang-format on
   return values;
 }

@@ -47,11 +47,12 @@ ConvergedImage RenderConverged(const Scene& scene, const ReferenceRequest& reque
   const std::size_t pixels = std::size_t(request.trace.width) * request.trace.height;
   // Welford's running mean and sum of squared deviations per pixel and channel, over the pass means, in pass order.
   std::vector<glm::dvec3> mean(pixels, glm::dvec3(0.0)), squares(pixels, glm::dvec3(0.0));
+  const PreparedScene prepared(scene, request.trace.frame);  // every pass traces the same frame
   for (std::uint32_t p = 0; p < passes; ++p) {
     TraceOptions trace = request.trace;
     trace.samples_per_pixel = request.pass_samples;
     trace.seed = PassSeed(request, p);
-    const Image pass = UnfilteredImage(TraceRecords(scene, trace).batch);
+    const Image pass = UnfilteredImage(TraceRecords(prepared, trace).batch);
     for (std::size_t i = 0; i < pixels; ++i) {
       const glm::dvec3 x(pass.pixels[i]);
       const glm::dvec3 delta = x - mean[i];

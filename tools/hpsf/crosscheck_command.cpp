@@ -78,7 +78,7 @@ int Run(CrosscheckOptions& o, bool options_only) {
   ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
   CheckFrameOptions(o);
   if (options_only) return kExitOk;
-  const std::vector<RecordBatch> frames = LoadOrTraceFrames(o.input, o.trace, o.frames);
+  const std::vector<RecordBatch> frames = LoadOrTraceFrames(o.input, o.trace, o.frames, config);
   if (o.frames_given && frames.size() != o.frames) {
     throw ConfigError("--frames", o.input + " holds " + std::to_string(frames.size()) + " frames, not " +
                                       std::to_string(o.frames));

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -23,6 +24,7 @@ struct FilterOptions {
   std::string eviction = "none";
   std::string level_change = "none";
   std::string temporal = "integrate";
+  std::vector<std::string> force_effects;  // --force-effect, repeatable
   bool no_filter = false;
   bool variance = false;  // also write each pixel's variance (tools/checks/pixel_variance.h)
 };

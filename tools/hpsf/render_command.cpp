@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,9 +12,11 @@
 
 #include "core/error.h"
 #include "core/record_file.h"
+#include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/filter_output.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/image_size.h"
+#include "tools/hpsf/seconds_since.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
@@ -116,17 +119,29 @@ void RunRender(RenderOptions& o, bool options_only) {
   if (!o.dump_records.empty()) dump.emplace(o.dump_records, o.frames);
   TraceResult traced;
   double trace_seconds = 0.0;
+  // A static scene is built for tracing once for the whole sequence, an animated one for each frame (the effect
+  // "animation", core/effect_plan.h); scene_s is the build's time, zero where it was skipped.
+  const SceneFacts facts = FactsOf(scene);
+  const std::vector<EffectDecision> plan = PlanSequenceEffects(config, facts, o.frames);
+  std::optional<PreparedScene> prepared;
   for (std::uint32_t k = 0; k < o.frames; ++k) {
     o.trace.frame = first + k;
     config.frame = o.trace.frame;  // the jitter's random numbers follow the frame too
+    const auto build_start = std::chrono::steady_clock::now();
+    double scene_seconds = 0.0;
+    if (!prepared || RebuildsScenePerFrame(config, facts)) {
+      prepared.reset();
+      prepared.emplace(scene, o.trace.frame);
+      scene_seconds = SecondsSince(build_start);
+    }
     const auto start = std::chrono::steady_clock::now();
     const auto progress = TerminalProgress();
-    traced = TraceRecords(scene, o.trace, progress);
+    traced = TraceRecords(*prepared, o.trace, progress);
     if (progress) std::fprintf(stderr, "\r              \r");
     trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool last = k + 1 == o.frames;
     if (dump) dump->Append(traced.batch);
-    nlohmann::json frame = {{"frame", o.trace.frame}, {"trace_s", trace_seconds}};
+    nlohmann::json frame = {{"frame", o.trace.frame}, {"scene_s", scene_seconds}, {"trace_s", trace_seconds}};
     nlohmann::json written = FilterSequenceFrame(backend, traced.batch, config, o.filter,
                                                  {scene.name, o.backend, o.output}, o.frame_out, last, frame);
     if (last) report = std::move(written);
@@ -146,11 +161,14 @@ void RunRender(RenderOptions& o, bool options_only) {
                      {"first_frame", first},
                      {"frames", o.frames}};
   if (o.frames > 1) report["frames"] = per_frame;
+  report["effects"] = EffectsJson(plan);
+  report["timings"]["scene_s"] = per_frame.back()["scene_s"];
   report["rays"] = traced.stats.Rays();
   report["timings"]["trace_s"] = trace_seconds;
   report["rays_per_s"] = trace_seconds > 0.0 ? double(traced.stats.Rays()) / trace_seconds : 0.0;
   if (!o.dump_records.empty()) report["records_file"] = o.dump_records;
   PrintReport(report, o.json);
+  if (!o.json && !EffectsLine(plan, o.frames).empty()) std::cout << EffectsLine(plan, o.frames) << "\n";
 }
 
 struct ReplayOptions {
@@ -176,6 +194,8 @@ void RunReplay(ReplayOptions& o, bool options_only) {
   o.filter.config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
   FilterConfig config = ResolveFilterConfig(o.filter);
   BackendInstance backend = MakeBackend(o.backend, emulator, defect, o.emulator.vulkan);
+  // Records bring no scene: nothing is traced, and whether it moved is not known.
+  const std::vector<EffectDecision> plan = PlanSequenceEffects(config, SceneFacts{false, false}, config.frames);
   nlohmann::json report, per_frame = nlohmann::json::array();
   for (std::size_t k = 0; k < frames.size(); ++k) {
     config.frame = frames[k].frame;
@@ -190,7 +210,9 @@ void RunReplay(ReplayOptions& o, bool options_only) {
   report["command"] = "replay";
   report["records_file"] = o.records;
   if (frames.size() > 1) report["frames"] = per_frame;
+  report["effects"] = EffectsJson(plan);
   PrintReport(report, o.json);
+  if (!o.json && !EffectsLine(plan, config.frames).empty()) std::cout << EffectsLine(plan, config.frames) << "\n";
 }
 
 }  // namespace

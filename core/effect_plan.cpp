@@ -1,0 +1,158 @@
+#include "core/effect_plan.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/filter_config.h"
+
+namespace hpsf {
+namespace {
+
+// The first frame index (within a sequence) on which the eviction pass can evict anything: a cell is evicted by age
+// once unseen for `unseen_frames`, and by priority only if the frame did not touch it, which needs a frame before.
+std::uint32_t FirstEvictingFrame(const Eviction& eviction) {
+  return eviction.by_priority() ? 1u : std::max(eviction.unseen_frames, 1u);
+}
+
+std::string Frames(std::uint32_t n) { return std::to_string(n) + (n == 1 ? " frame" : " frames"); }
+
+EffectDecision DecideAnimation(const FilterConfig& config, const SceneFacts& scene, std::uint32_t frames) {
+  EffectDecision d{Effect::kAnimation, scene.traced, config.forced.Has(Effect::kAnimation), 0, ""};
+  if (!scene.traced) {
+    d.reason = "the records come from a file: nothing is traced";
+  } else if (scene.animated) {
+    d.frames_run = frames;
+    d.reason = "the scene has keyframes: evaluated and rebuilt for each frame";
+  } else if (d.forced) {
+    d.frames_run = frames;
+    d.reason = "forced: the static scene rebuilt for each frame";
+  } else {
+    d.reason = "the scene has no keyframes: built once for " + Frames(frames);
+  }
+  return d;
+}
+
+EffectDecision DecideTemporal(const FilterConfig& config, const SceneFacts& scene, std::uint32_t frames) {
+  EffectDecision d{Effect::kTemporal, config.temporal.blends(), config.forced.Has(Effect::kTemporal), 0, ""};
+  if (!d.asked) {
+    d.reason = "--temporal integrate: the table's sums are the blend";
+    return d;
+  }
+  for (std::uint32_t k = 0; k < frames; ++k) d.frames_run += PlanFrameEffects(config, k).temporal;
+  if (d.forced && frames == 1) {
+    d.reason = "forced: blends the first frame with an empty history";
+  } else if (frames == 1) {
+    d.reason = "a single frame has no history to blend";
+  } else if (scene.traced && !scene.animated) {
+    d.reason =
+        "runs as asked on frames after the first, though the scene is static: its history never goes stale, "
+        "so forgetting it only adds variance";
+  } else {
+    d.reason = "frames after the first blend their history";
+  }
+  return d;
+}
+
+EffectDecision DecideLevelSeed(const FilterConfig& config, const SceneFacts& scene, std::uint32_t frames) {
+  EffectDecision d{Effect::kLevelSeed, config.level_seed.enabled, config.forced.Has(Effect::kLevelSeed), 0, ""};
+  if (!d.asked) {
+    d.reason = "--level-change none";
+    return d;
+  }
+  for (std::uint32_t k = 0; k < frames; ++k) d.frames_run += PlanFrameEffects(config, k).level_seed;
+  const bool one_level = config.level_min == config.level_max;
+  const std::string skipped = one_level ? "a single level in use (--level-min = --level-max): no cell has a parent "
+                                          "or child in the table"
+                                        : "a single frame has no table to seed from";
+  if (d.frames_run == 0) {
+    d.reason = skipped;
+  } else if (d.forced && (one_level || frames == 1)) {
+    d.reason = "forced, though " + skipped;
+  } else if (scene.traced && !scene.animated) {
+    d.reason =
+        "runs as asked on frames after the first, though the scene is static: a location's level never "
+        "changes";
+  } else {
+    d.reason = "frames after the first seed a cell new at another level from its parent or children";
+  }
+  return d;
+}
+
+EffectDecision DecideEviction(const FilterConfig& config, const SceneFacts& scene, std::uint32_t frames) {
+  EffectDecision d{Effect::kEviction, config.eviction.enabled(), config.forced.Has(Effect::kEviction), 0, ""};
+  if (!d.asked) {
+    d.reason = "--eviction none";
+    return d;
+  }
+  for (std::uint32_t k = 0; k < frames; ++k) d.frames_run += PlanFrameEffects(config, k).eviction;
+  const std::uint32_t first = FirstEvictingFrame(config.eviction);
+  const std::string none_evictable = "no cell can be evicted before frame " + std::to_string(first) +
+                                     " of the sequence (" + config.eviction.ToString() + ")";
+  if (frames <= first && !d.forced) {
+    d.reason = Frames(frames) + ": " + none_evictable;
+  } else if (d.forced) {
+    d.reason = "forced on every frame, though " + none_evictable;
+  } else if (scene.traced && !scene.animated) {
+    d.reason = "runs as asked from frame " + std::to_string(first) +
+               " on, though the scene is static: its cells never go stale, so evicting them loses samples";
+  } else {
+    d.reason = "runs from frame " + std::to_string(first) + " of the sequence on";
+  }
+  return d;
+}
+
+}  // namespace
+
+std::string EffectName(Effect effect) {
+  switch (effect) {
+    case Effect::kAnimation:
+      return "animation";
+    case Effect::kTemporal:
+      return "temporal";
+    case Effect::kLevelSeed:
+      return "level-seed";
+    case Effect::kEviction:
+      return "eviction";
+  }
+  return "?";
+}
+
+Effect ParseEffect(const std::string& name) {
+  for (Effect effect : kEffects) {
+    if (EffectName(effect) == name) return effect;
+  }
+  throw ConfigError("--force-effect", "is not an effect: '" + name + "' (animation, temporal, level-seed, eviction)");
+}
+
+bool ForcedEffects::Any() const { return std::find(forced.begin(), forced.end(), true) != forced.end(); }
+
+std::string ForcedEffects::ToString() const {
+  std::string text;
+  for (Effect effect : kEffects) {
+    if (Has(effect)) text += (text.empty() ? "" : ",") + EffectName(effect);
+  }
+  return text.empty() ? "none" : text;
+}
+
+FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index) {
+  const ForcedEffects& forced = config.forced;
+  FrameEffects e;
+  e.temporal = config.temporal.blends() && (index > 0 || forced.Has(Effect::kTemporal));
+  e.level_seed = config.level_seed.enabled &&
+                 ((index > 0 && config.level_min < config.level_max) || forced.Has(Effect::kLevelSeed));
+  e.eviction =
+      config.eviction.enabled() && (index >= FirstEvictingFrame(config.eviction) || forced.Has(Effect::kEviction));
+  return e;
+}
+
+std::vector<EffectDecision> PlanSequenceEffects(const FilterConfig& config, const SceneFacts& scene,
+                                                std::uint32_t frames) {
+  return {DecideAnimation(config, scene, frames), DecideTemporal(config, scene, frames),
+          DecideLevelSeed(config, scene, frames), DecideEviction(config, scene, frames)};
+}
+
+bool RebuildsScenePerFrame(const FilterConfig& config, const SceneFacts& scene) {
+  return scene.animated || config.forced.Has(Effect::kAnimation);
+}
+
+}  // namespace hpsf
