@@ -17,6 +17,7 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
   const double k = double(images.size());
   ErrorSplit split;
   double mse = 0.0, bias2 = 0.0, bias2_squares = 0.0, variance = 0.0, reference_noise = 0.0, reference_sum = 0.0;
+  double relmse = 0.0, rel_bias2 = 0.0, rel_variance = 0.0, rel_reference_noise = 0.0;
   std::vector<double> image_sums(images.size(), 0.0);
   for (std::size_t p = 0; p < reference.pixels.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
@@ -45,6 +46,11 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
       bias2_squares += term * term;
       reference_noise += q;
       reference_sum += r;
+      const double w = 1.0 / (r * r + 0.01);
+      relmse += w * squares / k;
+      rel_bias2 += w * term;
+      rel_variance += w * s2;
+      rel_reference_noise += w * q;
       for (std::size_t i = 0; i < images.size(); ++i) image_sums[i] += images[i].pixels[p][c];
       ++split.values;
     }
@@ -59,6 +65,10 @@ ErrorSplit SplitError(std::span<const Image> images, const Image& reference, con
     }
     split.variance = variance / n;
     split.reference_variance = reference_noise / n;
+    split.relmse = relmse / n;
+    split.rel_bias2 = rel_bias2 / n;
+    split.rel_variance = rel_variance / n;
+    split.rel_reference_variance = rel_reference_noise / n;
     double errors = 0.0, error_squares = 0.0;
     for (const double sum : image_sums) {
       const double e = (sum - reference_sum) / n;

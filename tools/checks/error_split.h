@@ -6,7 +6,10 @@
 //   variance = mean_v s2_v                         (the estimator's noise)
 //   bias^2   = mean_v [(m_v - r_v)^2 - s2_v / K - q_v]  (unbiased: the noise of m and of r taken out)
 // so that MSE = bias^2 + variance + mean_v q_v exactly, up to rounding. bias^2 may come out slightly negative when
-// the bias is below what K seeds resolve. Values not finite in any image are left out and counted.
+// the bias is below what K seeds resolve. Values not finite in any image are left out and counted. The same split
+// of relMSE weighs each value's terms by w_v = 1 / (r_v^2 + 0.01), as relMSE weighs its squared error
+// (tools/checks/image_metrics.h): relMSE = rel_bias2 + rel_variance + rel_reference_variance, so a few bright
+// pixels do not hide what the filter does everywhere else.
 #ifndef HPSF_TOOLS_CHECKS_ERROR_SPLIT_H
 #define HPSF_TOOLS_CHECKS_ERROR_SPLIT_H
 
@@ -23,6 +26,7 @@ struct ErrorSplit {
   // neighbouring pixels of a filtered image are not quite): a bias2 within about two of it is no bias resolved.
   double bias2_standard_error = 0.0;
   double reference_variance = 0.0;  // mean_v q_v
+  double relmse = 0.0, rel_bias2 = 0.0, rel_variance = 0.0, rel_reference_variance = 0.0;  // weighted by w_v
   // The bias of the image mean: the mean over the K images of (image mean - reference mean), and its standard error
   // from the spread of those K differences and the reference mean's own variance (sum_v q_v / n^2). An image-wide
   // statistic, so the correlation between neighbouring pixels of a filtered image is in its spread: the test of

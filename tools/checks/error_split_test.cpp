@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -45,6 +46,7 @@ TEST(ErrorSplit, TheTermsSumToTheMse) {
   for (glm::vec3& p : noise.pixels) p = glm::vec3(0.01f);
   const ErrorSplit split = SplitError(images, truth, &noise);
   EXPECT_NEAR(split.mse, split.bias2 + split.variance + split.reference_variance, 1e-12 * split.mse);
+  EXPECT_NEAR(split.relmse, split.rel_bias2 + split.rel_variance + split.rel_reference_variance, 1e-12 * split.relmse);
   EXPECT_EQ(split.values, 64u * 64u * 3u);
 }
 
@@ -56,6 +58,18 @@ TEST(ErrorSplit, AKnownBiasAndVarianceComeOut) {
   // noise's kurtosis 1.8), the bias^2's about 2 b sqrt(s2 / 200 / 12288).
   EXPECT_NEAR(split.variance, s2, 5.0 * s2 * std::sqrt(0.8 / 12288.0 / 199.0));
   EXPECT_NEAR(split.bias2, bias * bias, 5.0 * 2.0 * bias * std::sqrt(s2 / 200.0 / 12288.0));
+  // The relative split weighs each value by 1 / (r^2 + 0.01): a uniform bias and noise come out at b^2 and s2
+  // times the mean weight, within the same five standard errors scaled by the largest weight.
+  double weights = 0.0, largest = 0.0;
+  for (const glm::vec3& r : truth.pixels) {
+    for (int c = 0; c < 3; ++c) {
+      weights += 1.0 / (double(r[c]) * r[c] + 0.01);
+      largest = std::max(largest, 1.0 / (double(r[c]) * r[c] + 0.01));
+    }
+  }
+  const double mean_weight = weights / double(truth.pixels.size() * 3);
+  EXPECT_NEAR(split.rel_variance, s2 * mean_weight, 5.0 * s2 * std::sqrt(0.8 / 12288.0 / 199.0) * largest);
+  EXPECT_NEAR(split.rel_bias2, bias * bias * mean_weight, 5.0 * 2.0 * bias * std::sqrt(s2 / 200.0 / 12288.0) * largest);
   const ErrorSplit unbiased = SplitError(Estimates(200, 0.0, a, truth), truth, nullptr);
   EXPECT_NEAR(unbiased.bias2, 0.0, 5.0 * s2 / 200.0 / std::sqrt(12288.0));
   // The stated standard error is the one expected: Var((m - r)^2 - s2 / K) = 2 (s2 / K)^2 for nearly normal m

@@ -27,6 +27,7 @@
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/image_size.h"
+#include "tools/hpsf/bias_variance_plot.h"
 #include "tools/hpsf/pareto_plot.h"
 #include "tools/hpsf/reference_cache.h"
 #include "tools/hpsf/seconds_since.h"
@@ -219,6 +220,9 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
     result["mean_error_standard_error"] = split.mean_error_standard_error;
     result["variance"] = split.variance;
     result["reference_variance"] = split.reference_variance;
+    result["rel_bias2"] = split.rel_bias2;
+    result["rel_variance"] = split.rel_variance;
+    result["rel_reference_variance"] = split.rel_reference_variance;
   }
   return result;
 }
@@ -245,6 +249,44 @@ void MarkFrontiers(std::vector<json>& results, const std::string& scene, const f
     r["pt_relmse_at_equal_time"] = pt < 0.0 ? json() : json(pt);
   }
   if (!points.empty()) WritePng((out / "pareto.png").string(), RenderParetoPlot(scene, points, frontier));
+}
+
+// The second plot, OUT/bias-variance.png: relMSE's bias^2 and variance against filter width for each group of
+// configurations that differ only in their filter width, when the grid sweeps two widths or more.
+void PlotBiasAgainstWidth(const std::vector<json>& results, const std::string& scene, const fs::path& out) {
+  std::map<std::string, WidthSeries> groups;
+  std::vector<std::string> order;
+  for (const json& r : results) {
+    if (r.is_null() || !r["filter"].contains("filter-width")) continue;
+    std::string label = r["id"].get<std::string>();
+    const std::string token = "filter-width=" + r["filter"]["filter-width"].get<std::string>();
+    const std::size_t at = label.find(token);
+    if (at != std::string::npos) label.erase(at > 0 ? at - 1 : at, token.size() + (at > 0 ? 1 : 0));
+    auto [it, inserted] = groups.try_emplace(label);
+    if (inserted) order.push_back(label);
+    WidthSeries& s = it->second;
+    s.label = label;
+    s.method = r["method"].get<std::string>();
+    s.widths.push_back(std::stod(r["filter"]["filter-width"].get<std::string>()));
+    s.bias2.push_back(r.value("rel_bias2", 0.0));
+    s.variance.push_back(r.value("rel_variance", 0.0));
+  }
+  std::vector<WidthSeries> series;
+  for (const std::string& label : order) {
+    WidthSeries s = groups[label];
+    if (s.widths.size() < 2) continue;
+    std::vector<std::size_t> by_width(s.widths.size());
+    for (std::size_t k = 0; k < by_width.size(); ++k) by_width[k] = k;
+    std::sort(by_width.begin(), by_width.end(), [&](std::size_t a, std::size_t b) { return s.widths[a] < s.widths[b]; });
+    WidthSeries sorted{s.label, s.method, {}, {}, {}};
+    for (std::size_t k : by_width) {
+      sorted.widths.push_back(s.widths[k]);
+      sorted.bias2.push_back(s.bias2[k]);
+      sorted.variance.push_back(s.variance[k]);
+    }
+    series.push_back(std::move(sorted));
+  }
+  if (!series.empty()) WritePng((out / "bias-variance.png").string(), RenderBiasVariancePlot(scene, series));
 }
 
 std::string CsvField(const json& value) {
@@ -275,6 +317,9 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
                                             "mean_error_standard_error",
                                             "variance",
                                             "reference_variance",
+                                            "rel_bias2",
+                                            "rel_variance",
+                                            "rel_reference_variance",
                                             "probe_failures",
                                             "aliased_slots",
                                             "frontier",
@@ -387,6 +432,7 @@ int Run(SweepOptions& o, bool options_only) {
     }
   }
   MarkFrontiers(results, o.scene, out);
+  PlotBiasAgainstWidth(results, o.scene, out);
   WriteSummaries(out, configs, results, axes);
   std::size_t finished = 0;
   for (const json& r : results) finished += !r.is_null();

@@ -1,6 +1,6 @@
-# `hpsf sweep`: a small grid writes one CSV row per configuration and the Pareto plot; run again it resumes every one and gives the
-# same figures; two shards into a fresh folder, then the whole grid there, give the same figures, times aside
-# (the sweep's figures reproduce); a bad axis value is bad input naming --grid.
+# `hpsf sweep`: a small grid writes one CSV row per configuration, the Pareto plot and the bias and variance plot; run
+# again it resumes every one and gives the same figures; two shards into a fresh folder, then the whole grid there,
+# give the same figures, times aside (the sweep's figures reproduce); a bad axis value is bad input naming --grid.
 include(${CMAKE_CURRENT_LIST_DIR}/hpsf_run.cmake)
 set(dir ${OUT}/sweep_cli)
 file(REMOVE_RECURSE ${dir})
@@ -40,13 +40,18 @@ if(NOT count EQUAL 15)
   message(FATAL_ERROR "sweep.csv has ${count} lines, expected a header and 14 rows")
 endif()
 list(GET rows 0 header)
-if(NOT header STREQUAL "id,method,backend,spp,filter-width,seeds,trace_s,filter_s,total_s,mse,relmse,ssim,bias2,bias2_standard_error,mean_error,mean_error_standard_error,variance,reference_variance,probe_failures,aliased_slots,frontier,pt_relmse_at_equal_time")
+if(NOT header STREQUAL "id,method,backend,spp,filter-width,seeds,trace_s,filter_s,total_s,mse,relmse,ssim,bias2,bias2_standard_error,mean_error,mean_error_standard_error,variance,reference_variance,rel_bias2,rel_variance,rel_reference_variance,probe_failures,aliased_slots,frontier,pt_relmse_at_equal_time")
   message(FATAL_ERROR "the header: ${header}")
 endif()
 figures(${dir}/whole/sweep.csv first)
 execute_process(COMMAND oiiotool --info ${dir}/whole/pareto.png OUTPUT_VARIABLE plot)
 if(NOT plot MATCHES "960 x +600, 3 channel")
   message(FATAL_ERROR "no Pareto plot of 960x600: ${plot}")
+endif()
+# Two filter widths: the plot of bias^2 and variance against them.
+execute_process(COMMAND oiiotool --info ${dir}/whole/bias-variance.png OUTPUT_VARIABLE plot)
+if(NOT plot MATCHES "960 x +600, 3 channel")
+  message(FATAL_ERROR "no bias and variance plot of 960x600: ${plot}")
 endif()
 string(REGEX MATCHALL ",T,T,T,[0-9]" masked "${first}")
 list(LENGTH masked masked)

@@ -1,0 +1,83 @@
+#include "tools/hpsf/plot_canvas.h"
+
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "core/error.h"
+
+namespace hpsf::plot {
+namespace {
+
+constexpr const char* kPlotFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+}  // namespace
+
+Colour MethodColour(const std::string& method, std::size_t index) {
+  if (method == "pt") return {{0.85f, 0.85f, 0.85f}};
+  static const Colour palette[] = {{{0.97f, 0.55f, 0.16f}}, {{0.35f, 0.70f, 0.95f}}, {{0.45f, 0.85f, 0.40f}},
+                                   {{0.90f, 0.40f, 0.75f}}, {{0.95f, 0.85f, 0.30f}}, {{0.60f, 0.50f, 0.95f}}};
+  return palette[index % (sizeof palette / sizeof palette[0])];
+}
+
+int LogAxis::At(double value) const {
+  return from + int(std::lround((std::log10(value) - low) / (high - low) * (to - from)));
+}
+
+LogAxis AxisOver(double smallest, double largest, int from, int to) {
+  LogAxis axis{std::floor(std::log10(smallest)), std::ceil(std::log10(largest)), from, to};
+  if (axis.high <= axis.low) axis.high = axis.low + 1.0;
+  return axis;
+}
+
+Canvas::Canvas(int width, int height, std::string plot)
+    : canvas_(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)), plot_(std::move(plot)) {
+  Check(OIIO::ImageBufAlgo::fill(canvas_, {kBackground.rgb, 3}));
+}
+
+void Canvas::Check(bool ok) const {
+  if (!ok) throw InputError(plot_ + ": " + canvas_.geterror());
+}
+
+void Canvas::Line(int x0, int y0, int x1, int y1, const Colour& colour) {
+  Check(OIIO::ImageBufAlgo::render_line(canvas_, x0, y0, x1, y1, {colour.rgb, 3}));
+}
+
+void Canvas::Box(int x0, int y0, int x1, int y1, const Colour& colour, bool fill) {
+  Check(OIIO::ImageBufAlgo::render_box(canvas_, x0, y0, x1, y1, {colour.rgb, 3}, fill));
+}
+
+void Canvas::Text(int x, int y, const std::string& text, int size, const Colour& colour,
+                  OIIO::ImageBufAlgo::TextAlignX align) {
+  Check(OIIO::ImageBufAlgo::render_text(canvas_, x, y, text, size, kPlotFont, {colour.rgb, 3}, align));
+}
+
+void Canvas::DecadeGrid(const LogAxis& x, const LogAxis& y, int left, int right, int top, int bottom) {
+  for (int e = int(x.low); e <= int(x.high); ++e) {
+    const int px = x.At(std::pow(10.0, e));
+    Line(px, top, px, bottom, kGrid);
+    Text(px, bottom + 20, Decade(e), 13, kMuted, OIIO::ImageBufAlgo::TextAlignX::Center);
+  }
+  for (int e = int(y.low); e <= int(y.high); ++e) {
+    const int py = y.At(std::pow(10.0, e));
+    Line(left, py, right, py, kGrid);
+    Text(left - 8, py + 5, Decade(e), 13, kMuted, OIIO::ImageBufAlgo::TextAlignX::Right);
+  }
+}
+
+Rgb8Image Canvas::Pixels() const {
+  Rgb8Image out;
+  out.width = canvas_.spec().width;
+  out.height = canvas_.spec().height;
+  out.bytes.resize(std::size_t(out.width) * out.height * 3);
+  Check(canvas_.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, out.bytes.data()));
+  return out;
+}
+
+std::string Decade(int exponent) {
+  char text[16];
+  std::snprintf(text, sizeof text, "1e%d", exponent);
+  return text;
+}
+
+}  // namespace hpsf::plot
