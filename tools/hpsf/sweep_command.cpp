@@ -28,7 +28,9 @@
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/image_size.h"
 #include "tools/hpsf/bias_variance_plot.h"
+#include "tools/hpsf/html_report.h"
 #include "tools/hpsf/pareto_plot.h"
+#include "tools/hpsf/sweep_html_report.h"
 #include "tools/hpsf/reference_cache.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/sweep_grid.h"
@@ -296,7 +298,7 @@ std::string CsvField(const json& value) {
 }
 
 void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs, const std::vector<json>& results,
-                    const std::vector<GridAxis>& axes) {
+                    const std::vector<GridAxis>& axes, const std::string& scene, const std::string& reference) {
   std::vector<std::string> filter_axes;
   for (const GridAxis& a : axes) {
     if (a.name != "spp" && a.name != "method" && a.name != "backend") filter_axes.push_back(a.name);
@@ -339,6 +341,7 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
   }
   std::ofstream(out / "sweep.json") << json{{"version", 1}, {"command", "sweep"}, {"configurations", all}}.dump(2)
                                     << "\n";
+  WriteHtmlReport((out / "sweep.html").string(), RenderSweepHtml(scene, all, reference));
 }
 
 int Run(SweepOptions& o, bool options_only) {
@@ -433,7 +436,8 @@ int Run(SweepOptions& o, bool options_only) {
   }
   MarkFrontiers(results, o.scene, out);
   PlotBiasAgainstWidth(results, o.scene, out);
-  WriteSummaries(out, configs, results, axes);
+  WriteSummaries(out, configs, results, axes, o.scene,
+                 "a converged image of " + std::to_string(o.reference_spp) + " spp (" + reference.entry.image + ")");
   std::size_t finished = 0;
   for (const json& r : results) finished += !r.is_null();
   if (o.json) {

@@ -1,0 +1,115 @@
+// The charts of hpsf sweep's page (sweep.tpl), drawn with uPlot from the sweep's JSON. uPlot's aligned mode wants
+// one x array for all series, so the x values of every series are merged and each series holds null where it has no
+// point; a frontier line spans those gaps, a scatter series draws no line at all. When done, <body> gets
+// data-ready="1" and data-charts (how many charts were drawn); an error is recorded in data-errors, so a headless
+// browser can tell.
+(function () {
+  "use strict";
+  var errors = [];
+  window.addEventListener("error", function (e) {
+    errors.push(String(e.message));
+    document.body.setAttribute("data-errors", errors.join(" | "));
+  });
+  var palette = ["#f78c29", "#59b3f2", "#73d966", "#e666bf", "#f2d94d", "#9980f2", "#4dd9c7", "#f26d6d",
+                 "#b3b34d", "#c78cf2"];
+  function colourOf(method, index) { return method === "pt" ? "#d9d9d9" : palette[index % palette.length]; }
+
+  // Merges the series' x values (sorted, unique) and spreads each series' y over them.
+  function aligned(seriesPoints) {
+    var xs = [];
+    seriesPoints.forEach(function (points) { points.forEach(function (p) { xs.push(p[0]); }); });
+    xs.sort(function (a, b) { return a - b; });
+    xs = xs.filter(function (x, i) { return i === 0 || x !== xs[i - 1]; });
+    var data = [xs];
+    seriesPoints.forEach(function (points) {
+      var ys = xs.map(function () { return null; });
+      points.forEach(function (p) { ys[xs.indexOf(p[0])] = p[1]; });
+      data.push(ys);
+    });
+    return data;
+  }
+
+  // Tick labels that stay readable over many decades: 1e-4 rather than uPlot's 0.
+  function ticks(u, values) {
+    return values.map(function (v) { return v === null ? "" : v >= 0.01 && v < 1e4 ? String(v) : v.toExponential(0); });
+  }
+
+  // xLog: the x axis's logarithm base (2 for filter widths, which a sweep doubles; 10 for times).
+  function chart(id, xLabel, yLabel, xLog, series, points) {
+    var target = document.getElementById(id);
+    var width = Math.min(1100, target.clientWidth || 1100);
+    var options = {
+      width: width, height: 460,
+      scales: { x: { time: false, distr: 3, log: xLog }, y: { distr: 3 } },
+      axes: [{ label: xLabel, stroke: "#c9ccd1", grid: { stroke: "#3a3d42" }, values: ticks },
+             { label: yLabel, stroke: "#c9ccd1", grid: { stroke: "#3a3d42" }, values: ticks, size: 60 }],
+      series: [{ label: xLabel }].concat(series),
+      legend: { live: false }
+    };
+    return new uPlot(options, aligned(points), target);
+  }
+
+  function noLine() { return null; }
+  function positive(v) { return typeof v === "number" && v > 0 && isFinite(v); }
+
+  var configs = JSON.parse(document.getElementById("sweep-data").textContent);
+  var drawn = 0;
+  var methods = [];
+  configs.forEach(function (c) {
+    var key = c.method + (c.backend === "-" ? "" : "/" + c.backend);
+    if (methods.indexOf(key) < 0) methods.push(key);
+  });
+  var series = [], points = [];
+  methods.forEach(function (key, m) {
+    var mine = configs.filter(function (c) {
+      return c.method + (c.backend === "-" ? "" : "/" + c.backend) === key &&
+             positive(c.total_s) && positive(c.relmse);
+    });
+    var colour = colourOf(key, m);
+    series.push({ label: key, stroke: colour, paths: noLine, points: { show: true, size: 7, fill: colour } });
+    points.push(mine.map(function (c) { return [c.total_s, c.relmse]; }));
+    series.push({ label: key + " frontier", stroke: colour, width: 1.5, spanGaps: true, points: { show: false } });
+    points.push(mine.filter(function (c) { return c.frontier; }).map(function (c) { return [c.total_s, c.relmse]; }));
+  });
+  chart("pareto", "seconds per frame", "relMSE", 10, series, points);
+  ++drawn;
+
+  // Groups of configurations that differ only in their filter width.
+  var groups = {}, order = [];
+  configs.forEach(function (c) {
+    if (!c.filter || c.filter["filter-width"] === undefined) return;
+    var width = Number(c.filter["filter-width"]);
+    var label = c.id.replace(" filter-width=" + c.filter["filter-width"], "").replace(" backend=-", "");
+    if (!groups[label]) { groups[label] = []; order.push(label); }
+    groups[label].push(c);
+    c.width = width;
+  });
+  order = order.filter(function (label) { return groups[label].length >= 2; });
+  // The legend names what tells the groups apart: the words every group shares are left out.
+  var shared = order.length > 1 ? order[0].split(" ").filter(function (word) {
+    return order.every(function (label) { return label.split(" ").indexOf(word) >= 0; });
+  }) : [];
+  function short(label) {
+    var words = label.split(" ").filter(function (word) { return shared.indexOf(word) < 0; });
+    return words.length > 0 ? words.join(" ") : label;
+  }
+  if (order.length > 0) {
+    var widthSeries = [], widthPoints = [];
+    order.forEach(function (label, g) {
+      var colour = palette[g % palette.length];
+      var group = groups[label];
+      widthSeries.push({ label: short(label) + " bias^2", stroke: colour, width: 2, points: { show: true, fill: colour } });
+      widthPoints.push(group.filter(function (c) { return positive(c.rel_bias2); })
+                            .map(function (c) { return [c.width, c.rel_bias2]; }));
+      widthSeries.push({ label: short(label) + " variance", stroke: colour, dash: [6, 4], points: { show: true } });
+      widthPoints.push(group.filter(function (c) { return positive(c.rel_variance); })
+                            .map(function (c) { return [c.width, c.rel_variance]; }));
+    });
+    chart("width", "filter width (px)", "relMSE term", 2, widthSeries, widthPoints);
+    ++drawn;
+  } else {
+    document.getElementById("no-width").hidden = false;
+  }
+  document.body.setAttribute("data-charts", String(drawn));
+  document.body.setAttribute("data-ready", "1");
+})();
