@@ -7,9 +7,6 @@
 set(dir ${OUT}/html_report)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
-if(NOT CHROMIUM)
-  message(FATAL_ERROR "no Chromium (chromium, chromium-browser or google-chrome); scripts/install-deps.sh installs it")
-endif()
 
 function(run_hpsf)
   execute_process(COMMAND ${HPSF} ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -58,38 +55,8 @@ foreach(reference "http://" "https://")
   endif()
 endforeach()
 
-# Chromium as root needs --no-sandbox; a profile of its own so that parallel tests do not share one.
-set(chromium ${CHROMIUM} --headless=new --no-sandbox --disable-gpu --no-first-run --disable-extensions
-  --user-data-dir=${dir}/profile --virtual-time-budget=10000)
-
-execute_process(COMMAND ${chromium} --enable-logging=stderr --v=0 --dump-dom file://${page}
-  RESULT_VARIABLE code OUTPUT_VARIABLE dom ERROR_VARIABLE log TIMEOUT 120)
-file(WRITE ${dir}/dom.html "${dom}")
-file(WRITE ${dir}/chromium.log "${log}")
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "chromium --dump-dom: exit ${code}\n${log}")
-endif()
-string(REGEX MATCH "<body[^>]*>" body "${dom}")
-message("the page's body after its script ran: ${body}")
-# The page logs nothing when it works: any console line from it is a failure, as is any uncaught exception.
-string(REGEX MATCHALL "[^\n]*(CONSOLE[^\n]*report\\.html|Uncaught)[^\n]*" console "${log}")
-if(console)
-  string(REPLACE ";" "\n" console "${console}")
-  message(FATAL_ERROR "the page wrote to the console or threw:\n${console}")
-endif()
-if(body MATCHES "data-errors=\"([^\"]*)\"")
-  message(FATAL_ERROR "the page recorded errors: ${CMAKE_MATCH_1}")
-endif()
-if(NOT body MATCHES "data-ready=\"1\"" OR NOT body MATCHES "data-canvases=\"4\"")
-  message(FATAL_ERROR "the page's script did not finish drawing its 4 canvases: ${body}")
-endif()
-
-set(screenshot ${dir}/report.png)
-execute_process(COMMAND ${chromium} --hide-scrollbars --window-size=1400,1000 --screenshot=${screenshot} file://${page}
-  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE log TIMEOUT 120)
-if(NOT code EQUAL 0 OR NOT EXISTS ${screenshot})
-  message(FATAL_ERROR "chromium --screenshot: exit ${code}, no ${screenshot}\n${log}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/chromium_page.cmake)
+chromium_check_page(${page} ${dir} 1400 1000 "data-ready=\"1\"" "data-canvases=\"4\"")
 # A PNG of the window's size, and not an empty page: the dark page with a heading compresses to about 16 kB,
 # the report with its images to about 150 kB (measured with Chromium 156).
 file(READ ${screenshot} header LIMIT 24 HEX)

@@ -7,9 +7,6 @@
 set(dir ${OUT}/sweep_html)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
-if(NOT CHROMIUM)
-  message(FATAL_ERROR "no Chromium (chromium, chromium-browser or google-chrome); scripts/install-deps.sh installs it")
-endif()
 # The grid goes in quoted: as a list argument it would split at its semicolons.
 execute_process(COMMAND ${HPSF} sweep cornell --grid "spp=1,4; filter-width=2,4; method=pt,hpsf,radius"
                         --size 24x24 --seeds 2 --reference-spp 32 --cache ${dir}/cache --out ${dir}/sweep
@@ -30,39 +27,13 @@ if(NOT rows EQUAL 10)  # pt at 2 spp values, hpsf and radius at 2 spp values x 2
   message(FATAL_ERROR "the page's table has ${rows} configurations, not 10")
 endif()
 
-set(chromium ${CHROMIUM} --headless=new --no-sandbox --disable-gpu --no-first-run --disable-extensions
-  --user-data-dir=${dir}/profile --virtual-time-budget=10000)
-execute_process(COMMAND ${chromium} --enable-logging=stderr --v=0 --dump-dom file://${page}
-  RESULT_VARIABLE code OUTPUT_VARIABLE dom ERROR_VARIABLE log TIMEOUT 120)
-file(WRITE ${dir}/chromium.log "${log}")
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "chromium --dump-dom: exit ${code}\n${log}")
-endif()
-string(REGEX MATCH "<body[^>]*>" body "${dom}")
-message("the page's body after its script ran: ${body}")
-string(REGEX MATCHALL "[^\n]*(CONSOLE[^\n]*sweep\\.html|Uncaught)[^\n]*" console "${log}")
-if(console)
-  string(REPLACE ";" "\n" console "${console}")
-  message(FATAL_ERROR "the page wrote to the console or threw:\n${console}")
-endif()
-if(body MATCHES "data-errors=\"([^\"]*)\"")
-  message(FATAL_ERROR "the page recorded errors: ${CMAKE_MATCH_1}")
-endif()
-if(NOT body MATCHES "data-ready=\"1\"" OR NOT body MATCHES "data-charts=\"2\"")
-  message(FATAL_ERROR "the page's script did not draw its 2 charts: ${body}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/chromium_page.cmake)
+chromium_check_page(${page} ${dir} 1400 1300 "data-ready=\"1\"" "data-charts=\"2\"")
 # uPlot draws each chart on a canvas.
 string(REGEX MATCHALL "<canvas" canvases "${dom}")
 list(LENGTH canvases canvases)
 if(NOT canvases EQUAL 2)
   message(FATAL_ERROR "the page has ${canvases} canvases, not 2")
-endif()
-
-set(screenshot ${dir}/sweep.png)
-execute_process(COMMAND ${chromium} --hide-scrollbars --window-size=1400,1300 --screenshot=${screenshot} file://${page}
-  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE log TIMEOUT 120)
-if(NOT code EQUAL 0 OR NOT EXISTS ${screenshot})
-  message(FATAL_ERROR "chromium --screenshot: exit ${code}, no ${screenshot}\n${log}")
 endif()
 file(SIZE ${screenshot} bytes)
 message("screenshot: ${screenshot}, ${bytes} bytes")
