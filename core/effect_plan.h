@@ -8,6 +8,8 @@
 //               history; the first frame of a sequence has none, so its blend is the identity.
 //   level-seed  new cells seeded from another level (--level-change seed): called for by a frame with history and a
 //               level range of more than one level; otherwise no cell's parent or children can be in the table.
+//               (A hashed table looks a neighbour up by fingerprint, so a seed forced on one level could find an
+//               aliased fingerprint where the exact map finds nothing: the plan's skip is the oracle's answer.)
 //   eviction    the eviction pass after a frame (--eviction): called for from the frame `unseen` frames into the
 //               sequence on (1 for strict and priority, N for stale:N); before it, every live cell was seen
 //               recently enough. Each cell's last-seen frame is tracked whenever eviction is asked for.
