@@ -11,11 +11,9 @@
 #include "tools/checks/crosscheck.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/batch_input.h"
-#include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"
 #include "tracer/path_tracer.h"
-#include "tracer/scene_file.h"
 
 namespace hpsf {
 namespace {
@@ -87,13 +85,9 @@ int Run(CrosscheckOptions& o, bool options_only) {
   }
   config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
   const CrosscheckReport report = checker.CheckFrames(frames, config, emulator);
-  // The effects every backend ran or skipped: the same plan for all (core/effect_plan.h).
-  const SceneFacts facts = IsRecordFile(o.input) ? SceneFacts{false, false} : FactsOf(LoadScene(o.input));
-  nlohmann::json json_report = report.ToJson();
-  json_report["effects"] = EffectsJson(PlanSequenceEffects(config, facts, config.frames));
-  if (!o.report_file.empty()) std::ofstream(o.report_file) << json_report.dump(2) << "\n";
+  if (!o.report_file.empty()) std::ofstream(o.report_file) << report.ToJson().dump(2) << "\n";
   if (o.json) {
-    std::cout << json_report.dump(2) << "\n";
+    std::cout << report.ToJson().dump(2) << "\n";
   } else {
     for (const LevelVerdict& v : report.levels) {
       std::cout << "level " << v.level << " " << v.name << ": " << (!v.applicable ? "n/a" : v.passed ? "PASS" : "FAIL") << " ("

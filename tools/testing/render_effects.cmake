@@ -3,7 +3,7 @@
 # zero) while the asked-for ema blend runs on frames 1 and 2; the JSON report lists each effect, whether it ran and
 # why. Forcing the skipped ones gives the same pixels, with the build and the pass timed on every frame. The
 # animated box rebuilds every frame. A name that is not an effect, or forcing a pass the options do not ask for,
-# exits 3. hpsf crosscheck --json lists the plan too.
+# exits 3.
 set(dir ${OUT}/effects)
 file(REMOVE_RECURSE ${dir})
 set(common render cornell --size 24x24 --spp 2 --frames 3 --capacity 16384 --backend emulated --json
@@ -83,11 +83,3 @@ foreach(bad "glossy" "level-seed")
     message(FATAL_ERROR "--force-effect ${bad}: exit ${code}, '${errors}'")
   endif()
 endforeach()
-
-# hpsf crosscheck's report lists the same plan: strict over 2 frames evicts from frame 1 on.
-render(crosscheck crosscheck cornell --size 16x16 --spp 1 --frames 2 --eviction strict --backends reference,emulated
-       --json)
-effect("${report}" eviction frames_run evicted)
-if(NOT evicted EQUAL 1)
-  message(FATAL_ERROR "crosscheck: the eviction ran on ${evicted} of 2 frames, not 1")
-endif()
