@@ -14,6 +14,13 @@ std::uint32_t FirstEvictingFrame(const Eviction& eviction) {
   return eviction.by_priority() ? 1u : std::max(eviction.unseen_frames, 1u);
 }
 
+// How many of a sequence's frames run the pass `pass` of their plan.
+std::uint32_t FramesRunning(const FilterConfig& config, std::uint32_t frames, bool FrameEffects::*pass) {
+  std::uint32_t running = 0;
+  for (std::uint32_t k = 0; k < frames; ++k) running += PlanFrameEffects(config, k).*pass;
+  return running;
+}
+
 std::string Frames(std::uint32_t n) { return std::to_string(n) + (n == 1 ? " frame" : " frames"); }
 
 EffectDecision DecideAnimation(const FilterConfig& config, const SceneFacts& scene, std::uint32_t frames) {
@@ -38,7 +45,7 @@ EffectDecision DecideTemporal(const FilterConfig& config, const SceneFacts& scen
     d.reason = "--temporal integrate: the table's sums are the blend";
     return d;
   }
-  for (std::uint32_t k = 0; k < frames; ++k) d.frames_run += PlanFrameEffects(config, k).temporal;
+  d.frames_run = FramesRunning(config, frames, &FrameEffects::temporal);
   if (d.forced && frames == 1) {
     d.reason = "forced: blends the first frame with an empty history";
   } else if (frames == 1) {
@@ -59,7 +66,7 @@ EffectDecision DecideLevelSeed(const FilterConfig& config, const SceneFacts& sce
     d.reason = "--level-change none";
     return d;
   }
-  for (std::uint32_t k = 0; k < frames; ++k) d.frames_run += PlanFrameEffects(config, k).level_seed;
+  d.frames_run = FramesRunning(config, frames, &FrameEffects::level_seed);
   const bool one_level = config.level_min == config.level_max;
   const std::string skipped = one_level ? "a single level in use (--level-min = --level-max): no cell has a parent "
                                           "or child in the table"
@@ -84,7 +91,7 @@ EffectDecision DecideEviction(const FilterConfig& config, const SceneFacts& scen
     d.reason = "--eviction none";
     return d;
   }
-  for (std::uint32_t k = 0; k < frames; ++k) d.frames_run += PlanFrameEffects(config, k).eviction;
+  d.frames_run = FramesRunning(config, frames, &FrameEffects::eviction);
   const std::uint32_t first = FirstEvictingFrame(config.eviction);
   const std::string none_evictable = "no cell can be evicted before frame " + std::to_string(first) +
                                      " of the sequence (" + config.eviction.ToString() + ")";

@@ -76,9 +76,8 @@ Rgb8Image RenderBiasVariancePlot(const std::string& title, const std::vector<Wid
   }
   if (!(max_width > 0.0)) throw InputError("the bias and variance plot: no positive bias^2 or variance");
   // The widths' own axis: log2 spacing, each swept width labelled.
-  LogAxis x = AxisOver(min_width, max_width, kMarginLeft + 30, kPlotWidth - kMarginRight - 30);
-  x.low = std::log10(min_width);
-  x.high = max_width > min_width ? std::log10(max_width) : x.low + 1.0;
+  const double low = std::log10(min_width), high = max_width > min_width ? std::log10(max_width) : low + 1.0;
+  const LogAxis x{low, high, kMarginLeft + 30, kPlotWidth - kMarginRight - 30};
   const LogAxis y = AxisOver(min_value, max_value, kPlotHeight - kMarginBottom, kMarginTop);
 
   Canvas canvas(kPlotWidth, kPlotHeight, "the bias and variance plot");

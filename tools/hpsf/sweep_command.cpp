@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -275,18 +276,18 @@ void PlotBiasAgainstWidth(const std::vector<json>& results, const std::string& s
   }
   std::vector<WidthSeries> series;
   for (const std::string& label : order) {
-    WidthSeries s = groups[label];
+    const WidthSeries& s = groups[label];
     if (s.widths.size() < 2) continue;
-    std::vector<std::size_t> by_width(s.widths.size());
-    for (std::size_t k = 0; k < by_width.size(); ++k) by_width[k] = k;
-    std::sort(by_width.begin(), by_width.end(), [&](std::size_t a, std::size_t b) { return s.widths[a] < s.widths[b]; });
-    WidthSeries sorted{s.label, s.method, {}, {}, {}};
-    for (std::size_t k : by_width) {
-      sorted.widths.push_back(s.widths[k]);
-      sorted.bias2.push_back(s.bias2[k]);
-      sorted.variance.push_back(s.variance[k]);
+    // In increasing width: a grid may list its widths in any order.
+    std::vector<std::array<double, 3>> points;
+    for (std::size_t k = 0; k < s.widths.size(); ++k) points.push_back({s.widths[k], s.bias2[k], s.variance[k]});
+    std::sort(points.begin(), points.end());
+    WidthSeries& sorted = series.emplace_back(WidthSeries{s.label, s.method, {}, {}, {}});
+    for (const auto& [width, bias2, variance] : points) {
+      sorted.widths.push_back(width);
+      sorted.bias2.push_back(bias2);
+      sorted.variance.push_back(variance);
     }
-    series.push_back(std::move(sorted));
   }
   if (!series.empty()) WritePng((out / "bias-variance.png").string(), RenderBiasVariancePlot(scene, series));
 }

@@ -6,7 +6,8 @@
 # Inputs: CHROMIUM (empty when CMake found none).
 function(chromium_check_page page dir width height)
   if(NOT CHROMIUM)
-    message(FATAL_ERROR "no Chromium (chromium, chromium-browser or google-chrome); scripts/install-deps.sh installs it")
+    message(FATAL_ERROR
+            "no Chromium (chromium, chromium-browser or google-chrome); scripts/install-deps.sh installs it")
   endif()
   # Chromium as root needs --no-sandbox; a profile of its own so that parallel tests do not share one.
   set(chromium ${CHROMIUM} --headless=new --no-sandbox --disable-gpu --no-first-run --disable-extensions

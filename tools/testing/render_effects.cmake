@@ -46,7 +46,8 @@ foreach(frame 1 2)
   string(JSON scene_s GET "${report}" frames ${frame} scene_s)
   string(JSON eviction_s GET "${report}" frames ${frame} eviction eviction_s)
   if(NOT scene_s EQUAL 0 OR NOT eviction_s EQUAL 0)
-    message(FATAL_ERROR "planned frame ${frame}: scene_s ${scene_s}, eviction_s ${eviction_s}: a skipped effect took time")
+    message(FATAL_ERROR
+            "planned frame ${frame}: scene_s ${scene_s}, eviction_s ${eviction_s}: a skipped effect took time")
   endif()
 endforeach()
 
@@ -61,7 +62,8 @@ foreach(frame 1 2)
   string(JSON scene_s GET "${report}" frames ${frame} scene_s)
   string(JSON eviction_s GET "${report}" frames ${frame} eviction eviction_s)
   if(scene_s EQUAL 0 OR eviction_s EQUAL 0)
-    message(FATAL_ERROR "forced frame ${frame}: scene_s ${scene_s}, eviction_s ${eviction_s}: a forced effect did not run")
+    message(FATAL_ERROR
+            "forced frame ${frame}: scene_s ${scene_s}, eviction_s ${eviction_s}: a forced effect did not run")
   endif()
 endforeach()
 execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/planned.exr ${dir}/forced.exr

@@ -98,7 +98,8 @@
     order.forEach(function (label, g) {
       var colour = palette[g % palette.length];
       var group = groups[label];
-      widthSeries.push({ label: short(label) + " bias^2", stroke: colour, width: 2, points: { show: true, fill: colour } });
+      widthSeries.push({ label: short(label) + " bias^2", stroke: colour, width: 2,
+                         points: { show: true, fill: colour } });
       widthPoints.push(group.filter(function (c) { return positive(c.rel_bias2); })
                             .map(function (c) { return [c.width, c.rel_bias2]; }));
       widthSeries.push({ label: short(label) + " variance", stroke: colour, dash: [6, 4], points: { show: true } });

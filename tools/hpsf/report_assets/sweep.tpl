@@ -36,8 +36,8 @@ line. Plain path tracing's frontier is the line to beat at equal time.</p>
 <thead><tr><th>configuration</th><th>method</th><th>spp</th><th>s per frame</th><th>relMSE</th><th>SSIM</th>
 <th>bias^2</th><th>variance</th><th>on its frontier</th><th>pt's relMSE at equal time</th></tr></thead>
 <tbody>
-{{#CONFIG}}<tr><td>{{ID}}</td><td>{{METHOD}}</td><td>{{SPP}}</td><td>{{TOTAL_S}}</td><td>{{RELMSE}}</td><td>{{SSIM}}</td>
-<td>{{REL_BIAS2}}</td><td>{{REL_VARIANCE}}</td><td>{{FRONTIER}}</td><td>{{PT_AT_EQUAL_TIME}}</td></tr>
+{{#CONFIG}}<tr><td>{{ID}}</td><td>{{METHOD}}</td><td>{{SPP}}</td><td>{{TOTAL_S}}</td><td>{{RELMSE}}</td>
+<td>{{SSIM}}</td><td>{{REL_BIAS2}}</td><td>{{REL_VARIANCE}}</td><td>{{FRONTIER}}</td><td>{{PT_AT_EQUAL_TIME}}</td></tr>
 {{/CONFIG}}
 </tbody>
 </table>
