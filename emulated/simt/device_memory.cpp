@@ -9,16 +9,9 @@
 #include "emulated/simt/kernel_fault.h"
 
 namespace hpsf::simt {
-namespace {
 
 template <typename Word>
-Word AddFloatBits(Word bits, std::uint64_t operand) {
-  const float sum = std::bit_cast<float>(static_cast<std::uint32_t>(bits)) + std::bit_cast<float>(static_cast<std::uint32_t>(operand));
-  return static_cast<Word>(std::bit_cast<std::uint32_t>(sum));
-}
-
-template <typename Word>
-void ApplyTo(Word& word, MemoryOp& op) {
+void DeviceMemory::ApplyTo(Word& word, MemoryOp& op) {
   const Word old = word;
   op.result = old;
   switch (op.kind) {
@@ -30,41 +23,6 @@ void ApplyTo(Word& word, MemoryOp& op) {
     case OpKind::kAtomicMin: if (static_cast<Word>(op.value) < old) word = static_cast<Word>(op.value); break;
   }
 }
-
-template <typename Word>
-void ApplyAtomically(Word& word, MemoryOp& op) {
-  std::atomic_ref<Word> ref(word);
-  switch (op.kind) {
-    case OpKind::kLoad: op.result = ref.load(std::memory_order_relaxed); break;
-    case OpKind::kStore:
-      op.result = 0;
-      ref.store(static_cast<Word>(op.value), std::memory_order_relaxed);
-      break;
-    case OpKind::kAtomicAdd: op.result = ref.fetch_add(static_cast<Word>(op.value), std::memory_order_relaxed); break;
-    case OpKind::kAtomicAddFloat: {
-      Word old = ref.load(std::memory_order_relaxed);
-      while (!ref.compare_exchange_weak(old, AddFloatBits(old, op.value), std::memory_order_relaxed)) {
-      }
-      op.result = old;
-      break;
-    }
-    case OpKind::kAtomicCas: {
-      Word expected = static_cast<Word>(op.compare);
-      ref.compare_exchange_strong(expected, static_cast<Word>(op.value), std::memory_order_relaxed);
-      op.result = expected;  // the old value, whether or not the swap happened
-      break;
-    }
-    case OpKind::kAtomicMin: {
-      Word old = ref.load(std::memory_order_relaxed);
-      while (static_cast<Word>(op.value) < old && !ref.compare_exchange_weak(old, static_cast<Word>(op.value), std::memory_order_relaxed)) {
-      }
-      op.result = old;
-      break;
-    }
-  }
-}
-
-}  // namespace
 
 const char* ToString(OpKind kind) {
   switch (kind) {
@@ -86,13 +44,22 @@ std::string MemoryOp::ToString() const {
 std::uint32_t DeviceMemory::Allocate32(std::string name, std::size_t count) {
   buffers_.push_back({std::move(name), false, {}, {}});
   ResizeOnHugePages(buffers_.back().narrow_words, count);
+  UpdateView(static_cast<std::uint32_t>(buffers_.size() - 1));
   return static_cast<std::uint32_t>(buffers_.size() - 1);
 }
 
 std::uint32_t DeviceMemory::Allocate64(std::string name, std::size_t count) {
   buffers_.push_back({std::move(name), true, {}, {}});
   ResizeOnHugePages(buffers_.back().wide_words, count);
+  UpdateView(static_cast<std::uint32_t>(buffers_.size() - 1));
   return static_cast<std::uint32_t>(buffers_.size() - 1);
+}
+
+void DeviceMemory::UpdateView(std::uint32_t buffer) {
+  if (views_.size() <= buffer) views_.resize(buffer + 1);
+  Buffer& b = buffers_[buffer];
+  views_[buffer] = b.wide ? View{b.wide_words.data(), b.wide_words.size(), true}
+                          : View{b.narrow_words.data(), b.narrow_words.size(), false};
 }
 
 std::span<std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) { return buffers_.at(buffer).narrow_words; }
@@ -100,35 +67,41 @@ std::span<std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) { return bu
 std::span<const std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) const { return buffers_.at(buffer).narrow_words; }
 std::span<const std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) const { return buffers_.at(buffer).wide_words; }
 
-std::vector<std::uint32_t> DeviceMemory::TakeWords32(std::uint32_t buffer) { return std::move(buffers_.at(buffer).narrow_words); }
-std::vector<std::uint64_t> DeviceMemory::TakeWords64(std::uint32_t buffer) { return std::move(buffers_.at(buffer).wide_words); }
-
-DeviceMemory::Buffer& DeviceMemory::Checked(const Address& address) {
-  Buffer& b = buffers_.at(address.buffer);
-  const std::size_t size = b.wide ? b.wide_words.size() : b.narrow_words.size();
-  // An out-of-bounds access is a kernel defect (DESIGN.md D8); the emulator reports it instead of corrupting memory.
-  if (address.index >= size) {
-    throw KernelFault("out-of-bounds access to buffer '" + b.name + "' at index " + std::to_string(address.index) +
-                            " of " + std::to_string(size));
-  }
-  return b;
+std::vector<std::uint32_t> DeviceMemory::TakeWords32(std::uint32_t buffer) {
+  std::vector<std::uint32_t> words = std::move(buffers_.at(buffer).narrow_words);
+  UpdateView(buffer);
+  return words;
+}
+std::vector<std::uint64_t> DeviceMemory::TakeWords64(std::uint32_t buffer) {
+  std::vector<std::uint64_t> words = std::move(buffers_.at(buffer).wide_words);
+  UpdateView(buffer);
+  return words;
 }
 
-void DeviceMemory::Apply(MemoryOp& op) {
-  Buffer& b = Checked(op.address);
-  if (b.wide) {
-    ApplyTo(b.wide_words[op.address.index], op);
-  } else {
-    ApplyTo(b.narrow_words[op.address.index], op);
-  }
+void DeviceMemory::ThrowOutOfBounds(const Address& address) const {
+  if (address.buffer >= buffers_.size()) throw KernelFault("access to buffer " + std::to_string(address.buffer) + ", which was never allocated");
+  // An out-of-bounds access is a kernel defect (DESIGN.md D8); the emulator reports it instead of corrupting memory.
+  throw KernelFault("out-of-bounds access to buffer '" + buffers_[address.buffer].name + "' at index " +
+                    std::to_string(address.index) + " of " + std::to_string(views_[address.buffer].size));
 }
 
 void DeviceMemory::ApplyConcurrently(MemoryOp& op) {
-  Buffer& b = Checked(op.address);
-  if (b.wide) {
-    ApplyAtomically(b.wide_words[op.address.index], op);
+  switch (op.kind) {
+    case OpKind::kLoad: return ApplyConcurrently<OpKind::kLoad>(op);
+    case OpKind::kStore: return ApplyConcurrently<OpKind::kStore>(op);
+    case OpKind::kAtomicAdd: return ApplyConcurrently<OpKind::kAtomicAdd>(op);
+    case OpKind::kAtomicAddFloat: return ApplyConcurrently<OpKind::kAtomicAddFloat>(op);
+    case OpKind::kAtomicCas: return ApplyConcurrently<OpKind::kAtomicCas>(op);
+    case OpKind::kAtomicMin: return ApplyConcurrently<OpKind::kAtomicMin>(op);
+  }
+}
+
+void DeviceMemory::Apply(MemoryOp& op) {
+  const View& view = CheckedView(op.address);
+  if (view.wide) {
+    ApplyTo(static_cast<std::uint64_t*>(view.words)[op.address.index], op);
   } else {
-    ApplyAtomically(b.narrow_words[op.address.index], op);
+    ApplyTo(static_cast<std::uint32_t*>(view.words)[op.address.index], op);
   }
 }
 

@@ -66,44 +66,47 @@ class ThreadContext {
 
   std::uint32_t Thread() const { return thread_; }
 
+  // The kind is a template argument so that fast mode's path through DeviceMemory has no switch on it.
+  template <OpKind kKind>
   class Operation {
    public:
-    Operation(ThreadContext& context, MemoryOp op) : context_(context), op_(op) {}
+    Operation(ThreadContext& context, Address address, std::uint64_t value = 0, std::uint64_t compare = 0)
+        : context_(context), op_{kKind, address, value, compare} {}
     bool await_ready() {
       if (context_.mode_ != Mode::kFast) return false;
-      context_.memory_->ApplyConcurrently(op_);
+      context_.memory_->ApplyConcurrently<kKind>(op_);
       return true;
     }
     void await_suspend(std::coroutine_handle<>) { context_.pending_ = &op_; }
-    std::uint64_t await_resume() {
-      context_.pending_ = nullptr;
-      return op_.result;
-    }
+    std::uint64_t await_resume() const { return op_.result; }
 
    private:
     ThreadContext& context_;
     MemoryOp op_;
   };
 
-  Operation Load(std::uint32_t buffer, std::uint64_t index) { return {*this, {OpKind::kLoad, {buffer, index}}}; }
-  Operation Store(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
-    return {*this, {OpKind::kStore, {buffer, index}, value}};
+  Operation<OpKind::kLoad> Load(std::uint32_t buffer, std::uint64_t index) { return {*this, {buffer, index}}; }
+  Operation<OpKind::kStore> Store(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
+    return {*this, {buffer, index}, value};
   }
-  Operation AtomicAdd(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
-    return {*this, {OpKind::kAtomicAdd, {buffer, index}, value}};
+  Operation<OpKind::kAtomicAdd> AtomicAdd(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
+    return {*this, {buffer, index}, value};
   }
-  Operation AtomicAddFloat(std::uint32_t buffer, std::uint64_t index, std::uint32_t float_bits) {
-    return {*this, {OpKind::kAtomicAddFloat, {buffer, index}, float_bits}};
+  Operation<OpKind::kAtomicAddFloat> AtomicAddFloat(std::uint32_t buffer, std::uint64_t index, std::uint32_t float_bits) {
+    return {*this, {buffer, index}, float_bits};
   }
-  Operation AtomicCas(std::uint32_t buffer, std::uint64_t index, std::uint64_t compare, std::uint64_t value) {
-    return {*this, {OpKind::kAtomicCas, {buffer, index}, value, compare}};
+  Operation<OpKind::kAtomicCas> AtomicCas(std::uint32_t buffer, std::uint64_t index, std::uint64_t compare,
+                                          std::uint64_t value) {
+    return {*this, {buffer, index}, value, compare};
   }
-  Operation AtomicMin(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
-    return {*this, {OpKind::kAtomicMin, {buffer, index}, value}};
+  Operation<OpKind::kAtomicMin> AtomicMin(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
+    return {*this, {buffer, index}, value};
   }
 
-  // Faithful mode: the operation the suspended kernel waits on, or null once it finished.
+  // Faithful mode: the operation the suspended kernel waits on, or null once it finished. The launcher takes it
+  // before it resumes the kernel, so fast mode's operations never write to the context.
   MemoryOp* Pending() const { return pending_; }
+  MemoryOp& TakePending() { return *std::exchange(pending_, nullptr); }
 
  private:
   std::uint32_t thread_;
