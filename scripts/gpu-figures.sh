@@ -2,7 +2,7 @@
 # Issue 11's checks and figures on a machine with a GPU, in one device call, so that a session lent one for a
 # short while spends it measuring. Two steps:
 #   here, after a build:      scripts/gpu-figures.sh pack    (the binaries and their libraries into .gpu-bundle/)
-#   there, from the repo root: bash scripts/gpu-figures.sh run  (carry .gpu-bundle; writes into $OUT, else ./gpu-figures)
+#   there, from the repo root: bash scripts/gpu-figures.sh run  (carry .gpu-bundle; writes $OUT, else ./gpu-figures)
 # `run` records each step's exit status in status.txt and goes on after a failure, so one call shows everything.
 # It needs NVIDIA's driver: .gpu-bundle/run.sh points the Vulkan loader at it alone, so here every Vulkan step
 # fails with "no Vulkan driver could create an instance" (the emulator's steps still run).
@@ -33,7 +33,8 @@ case "${1:-}" in
     step vulkan_backend bundle vulkan_backend_tests --gtest_brief=1
     step vulkan_benchmark bundle vulkan_benchmark "${aggregates[@]}" \
       --benchmark_out="$out/vulkan_benchmark.json" --benchmark_out_format=json
-    grep -q "ERROR OCCURRED" "$out/vulkan_benchmark.txt" && echo "vulkan_benchmark: a benchmark failed" >> "$out/status.txt"
+    grep -q "ERROR OCCURRED" "$out/vulkan_benchmark.txt" &&
+      echo "vulkan_benchmark: a benchmark failed" >> "$out/status.txt"
     # The emulator on every core and on two of the same machine: its scaling with cores (target 5x from 2 to 16).
     step emulator_all_cores bundle emulator_benchmark "${aggregates[@]}" --benchmark_filter='Raw|Fast' \
       --benchmark_out="$out/emulator_all_cores.json" --benchmark_out_format=json

@@ -71,7 +71,8 @@ class DeviceMemory {
 
   template <typename Word>
   static Word AddFloatBits(Word bits, std::uint64_t operand) {
-    const float sum = std::bit_cast<float>(static_cast<std::uint32_t>(bits)) + std::bit_cast<float>(static_cast<std::uint32_t>(operand));
+    const float a = std::bit_cast<float>(static_cast<std::uint32_t>(bits));
+    const float sum = a + std::bit_cast<float>(static_cast<std::uint32_t>(operand));
     return static_cast<Word>(std::bit_cast<std::uint32_t>(sum));
   }
   template <typename Word>

@@ -92,7 +92,8 @@ class ThreadContext {
   Operation<OpKind::kAtomicAdd> AtomicAdd(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
     return {*this, {buffer, index}, value};
   }
-  Operation<OpKind::kAtomicAddFloat> AtomicAddFloat(std::uint32_t buffer, std::uint64_t index, std::uint32_t float_bits) {
+  Operation<OpKind::kAtomicAddFloat> AtomicAddFloat(std::uint32_t buffer, std::uint64_t index,
+                                                    std::uint32_t float_bits) {
     return {*this, {buffer, index}, float_bits};
   }
   Operation<OpKind::kAtomicCas> AtomicCas(std::uint32_t buffer, std::uint64_t index, std::uint64_t compare,
@@ -106,7 +107,7 @@ class ThreadContext {
   // Faithful mode: the operation the suspended kernel waits on, or null once it finished. The launcher takes it
   // before it resumes the kernel, so fast mode's operations never write to the context.
   MemoryOp* Pending() const { return pending_; }
-  MemoryOp& TakePending() { return *std::exchange(pending_, nullptr); }
+  void ClearPending() { pending_ = nullptr; }
 
  private:
   std::uint32_t thread_;

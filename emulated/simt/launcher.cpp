@@ -112,7 +112,7 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
       }
     }
     for (std::uint32_t lane : lanes) {
-      contexts[lane].TakePending();
+      contexts[lane].ClearPending();
       tasks[lane].Resume();
       if (!contexts[lane].Pending()) --pending_in_warp[warp];
     }
