@@ -66,4 +66,14 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
   co_await ctx.Store(b.placements, i, slot);
 }
 
+void PrefetchAccumulate(const simt::DeviceMemory& memory, const AccumulateArgs& args, std::uint32_t i) {
+  const std::uint32_t slot = args.keys[i].slot0;
+  const TableBuffers& b = args.buffers;
+  memory.Prefetch({b.tags, slot});
+  memory.Prefetch({b.sums, std::uint64_t(slot) * 3});
+  memory.Prefetch({b.sums, std::uint64_t(slot) * 3 + 2});  // the three sums may straddle two lines
+  memory.Prefetch({b.counts, slot});
+  if (args.track_last_seen) memory.Prefetch({b.last_seen, slot});
+}
+
 }  // namespace hpsf

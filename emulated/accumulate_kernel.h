@@ -54,6 +54,10 @@ struct AccumulateArgs {
 
 simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
+// Fast mode's prefetch for the accumulate's thread i (simt::ThreadPrefetch): the tag, sums and count of its key's
+// first slot, where most records end.
+void PrefetchAccumulate(const simt::DeviceMemory& memory, const AccumulateArgs& args, std::uint32_t i);
+
 }  // namespace hpsf
 
 #endif  // HPSF_EMULATED_ACCUMULATE_KERNEL_H

@@ -14,6 +14,7 @@
 #include "core/huge_pages.h"
 #include "core/input_check.h"
 #include "core/parallel_for.h"
+#include "core/prefetch.h"
 #include "core/resolve.h"
 #include "core/temporal.h"
 #include "emulated/level_seed_kernel.h"
@@ -159,7 +160,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.timings.clear = clock.Lap();
   const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
   if (options.mode == simt::Mode::kFast) {
-    simt::LaunchFast(memory, n, kernel, options.threads);
+    simt::LaunchFast(memory, n, kernel, options.threads,
+                     [&](std::uint32_t i) { PrefetchAccumulate(std::as_const(memory), args, i); });
   } else {
     const std::uint32_t warps = (n + options.warp_size - 1) / options.warp_size;
     std::unique_ptr<simt::Schedule> parsed;
@@ -258,6 +260,19 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.image = Image(batch.width, batch.height);
   const double unscale = std::ldexp(1.0, -table.fixed_point_bits);  // exact, as FromFixedPoint, without a call per sum
   const std::uint32_t spp = batch.samples_per_pixel;
+  // Each record reads its slot at random: the lines of a record a few ahead are asked for while this one is summed,
+  // as the accumulate's are (simt::ThreadPrefetch).
+  constexpr std::size_t kResolveLookahead = simt::kPrefetchDistance;
+  const auto prefetch_slot = [&](std::uint32_t slot) {
+    if (slot >= config.capacity) return;
+    if (fixed) {
+      PrefetchLine(&table.fixed_sums[slot][0]);
+      PrefetchLine(&table.fixed_sums[slot][2]);  // 24 bytes may straddle two lines
+    } else {
+      PrefetchLine(&table.float_sums[slot]);
+    }
+    PrefetchLine(&table.counts[slot]);
+  };
   const Tally tally = ParallelReduce(
       run.image.pixels.size(), 2048, Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0)},
       [&](std::size_t begin, std::size_t end, Tally tally) {
@@ -265,6 +280,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
           glm::dvec3 sum(0.0);
           for (std::uint32_t sample = 0; sample < spp; ++sample) {
             const std::size_t i = pixel * spp + sample;
+            if (i + kResolveLookahead < end * spp) prefetch_slot(run.placements[i + kResolveLookahead]);
             const std::uint32_t slot = run.placements[i];
             if (slot == kProbeFailure) ++tally.probe_failures;
             glm::dvec3 average;

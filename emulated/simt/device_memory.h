@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/prefetch.h"
 #include "emulated/simt/memory_op.h"
 
 namespace hpsf::simt {
@@ -35,6 +36,14 @@ class DeviceMemory {
   void Apply(MemoryOp& op);
   // The same, safe to call from many threads at once.
   void ApplyConcurrently(MemoryOp& op);
+  // Asks the cache for the line of a word a thread will access soon (core/prefetch.h); a no-op outside the
+  // buffers. A hint: no result depends on it.
+  void Prefetch(const Address& address) const {
+    if (address.buffer < views_.size() && address.index < views_[address.buffer].size) {
+      const View& view = views_[address.buffer];
+      PrefetchLine(static_cast<const char*>(view.words) + address.index * (view.wide ? 8 : 4));
+    }
+  }
   // The same for an operation whose kind is known where it is issued: fast mode's path for every operation of
   // every thread. Inline and without a switch on the kind, so the issuing kernel keeps no indirect jump.
   template <OpKind kKind>

@@ -126,9 +126,14 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
   return report;
 }
 
-void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads) {
+void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads,
+                const ThreadPrefetch& prefetch) {
   ParallelFor(threads, 1024, [&](std::size_t begin, std::size_t end) {
+    if (prefetch) {
+      for (auto t = std::uint32_t(begin); t < std::min<std::size_t>(end, begin + kPrefetchDistance); ++t) prefetch(t);
+    }
     for (auto t = std::uint32_t(begin); t < end; ++t) {
+      if (prefetch && t + kPrefetchDistance < end) prefetch(t + kPrefetchDistance);
       ThreadContext context(t, memory, Mode::kFast);
       KernelTask task = kernel(context);
       try {

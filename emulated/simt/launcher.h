@@ -37,8 +37,16 @@ using OperationObserver = std::function<void(std::uint32_t thread, const MemoryO
 
 LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
                             Schedule& schedule, const OperationObserver& observer = {});
+// Fast mode's stand-in for a GPU's latency hiding: where a GPU runs other warps while one waits on memory, a core
+// runs one emulated thread after another, each stalling on its first random access. A prefetch, called for
+// thread t + kPrefetchDistance before thread t runs, asks for the lines that thread will touch first (what the
+// kernel's arguments say of them, e.g. its key's first slot). It is a hint only: it changes no result.
+using ThreadPrefetch = std::function<void(std::uint32_t thread)>;
+inline constexpr std::uint32_t kPrefetchDistance = 24;
+
 // worker_threads: 0 for all cores.
-void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads = 0);
+void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads = 0,
+                const ThreadPrefetch& prefetch = {});
 
 }  // namespace hpsf::simt
 
