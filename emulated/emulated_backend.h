@@ -23,13 +23,16 @@ class EmulatedBackend : public Backend {
 
  protected:
   const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override;
-  void ForgetTable() override { run_.reset(); }
+  void ForgetTable() override;
 
  private:
   EmulatorOptions options_;
   AccumulateKernelFn kernel_;
   EvictionKernels eviction_kernels_;
   std::optional<EmulatedRun> run_;
+  // The arrays of the frame before the last, which the next frame reuses: a steady sequence of frames touches no
+  // fresh memory.
+  EmulatorWorkspace workspace_;
 };
 
 }  // namespace hpsf

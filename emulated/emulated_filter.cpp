@@ -50,23 +50,24 @@ void EmulatorOptions::Validate() const {
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn accumulate, const HashTableDump* previous,
-                           EvictionKernels eviction_kernels, const FrameEffects* effects) {
+                           EvictionKernels eviction_kernels, const FrameEffects* effects,
+                           EmulatorWorkspace* workspace) {
   CheckBatchShape(batch);
   config.Validate();
   options.Validate();
   const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
   const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
 
+  EmulatorWorkspace scratch;  // a run without a workspace: fresh arrays
+  EmulatorWorkspace& kept = workspace ? *workspace : scratch;
   EmulatedRun run;
   PhaseClock clock;
   // Keys on all cores: each is a function of its record alone.
   // The same pass notes which records pass the input checks and gathers, for F, the contributions of those
   // that enter the table.
-  ResizeOnHugePages(run.keys, n);
-  std::vector<std::uint8_t> accepted;
-  ResizeOnHugePages(accepted, n);
-  std::vector<glm::vec3> entering;
-  ResizeOnHugePages(entering, n);
+  run.keys = ReuseForOverwrite(kept.keys, n);
+  std::vector<std::uint8_t> accepted = ReuseForOverwrite(kept.accepted, n);
+  std::vector<glm::vec3> entering = ReuseForOverwrite(kept.entering, n);
   ParallelFor(n, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Record& r = batch.records[i];
@@ -100,10 +101,11 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   args.accumulation = config.accumulation;
   args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
   TableBuffers& b = args.buffers;
-  b.tags = memory.Allocate32("tags", config.capacity);
-  b.sums = fixed ? memory.Allocate64("sums", std::size_t(config.capacity) * 3) : memory.Allocate32("sums", std::size_t(config.capacity) * 3);
-  b.counts = memory.Allocate64("counts", config.capacity);
-  b.placements = memory.Allocate32("placements", n);
+  b.tags = memory.Allocate32("tags", config.capacity, std::move(kept.tags));
+  b.sums = fixed ? memory.Allocate64("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums64))
+                 : memory.Allocate32("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums32));
+  b.counts = memory.Allocate64("counts", config.capacity, std::move(kept.counts));
+  b.placements = memory.Allocate32("placements", n, std::move(kept.placements));
   b.wraps = memory.Allocate64("wraps", 2);
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
   // Last-seen frames are tracked whenever eviction is asked for; the pass runs where the plan says.
@@ -231,9 +233,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.wraps = memory.Words64(b.wraps)[0];
   run.count_wraps = memory.Words64(b.wraps)[1];
   if (fixed) {
-    ResizeOnHugePages(table.fixed_sums, config.capacity);
+    table.fixed_sums = ReuseForOverwrite(kept.fixed_sums, config.capacity);
   } else {
-    ResizeOnHugePages(table.float_sums, config.capacity);
+    table.float_sums = ReuseForOverwrite(kept.float_sums, config.capacity);
   }
   const std::span<const std::uint64_t> fixed_words = std::as_const(memory).Words64(b.sums);
   const std::span<const std::uint32_t> float_words = std::as_const(memory).Words32(b.sums);
@@ -248,6 +250,11 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       }
     }
   });
+  if (fixed) {
+    kept.device_sums64 = memory.TakeWords64(b.sums);
+  } else {
+    kept.device_sums32 = memory.TakeWords32(b.sums);
+  }
 
   run.timings.read_back = clock.Lap();
   // Resolve, one pixel per task as on a GPU, each record reading its slot's average; the probe-length
@@ -257,7 +264,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     std::uint64_t probe_failures = 0;
     std::vector<std::uint64_t> probe_lengths;
   };
-  run.image = Image(batch.width, batch.height);
+  run.image.width = batch.width;
+  run.image.height = batch.height;
+  run.image.pixels = ReuseForOverwrite(kept.pixels, std::size_t(batch.width) * batch.height);  // every pixel written
   const double unscale = std::ldexp(1.0, -table.fixed_point_bits);  // exact, as FromFixedPoint, without a call per sum
   const std::uint32_t spp = batch.samples_per_pixel;
   // Each record reads its slot at random: the lines of a record a few ahead are asked for while this one is summed,
@@ -308,6 +317,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
   }
   run.probe_lengths = tally.probe_lengths;
+  kept.accepted = std::move(accepted);
+  kept.entering = std::move(entering);
   run.timings.resolve = clock.Lap();
   return run;
 }

@@ -15,6 +15,7 @@
 #include "core/key_batch.h"
 #include "core/record.h"
 #include "emulated/accumulate_kernel.h"
+#include "emulated/emulator_workspace.h"
 #include "emulated/eviction_kernels.h"
 #include "emulated/simt/launcher.h"
 
@@ -61,10 +62,12 @@ using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Accu
 // the accumulate. With config.eviction, the eviction launches (emulated/eviction_kernels.h) follow, with
 // `eviction_kernels` as the selection and reclaim kernels; the run's table is the state after them.
 // effects: the passes the frame runs (core/effect_plan.h); null plans them for the first frame or, with `previous`,
-// for a later one.
+// for a later one. workspace: arrays kept from earlier runs (emulated/emulator_workspace.h), which the run takes;
+// null: fresh ones. No output bit depends on it.
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn kernel = AccumulateKernel, const HashTableDump* previous = nullptr,
-                           EvictionKernels eviction_kernels = {}, const FrameEffects* effects = nullptr);
+                           EvictionKernels eviction_kernels = {}, const FrameEffects* effects = nullptr,
+                           EmulatorWorkspace* workspace = nullptr);
 
 }  // namespace hpsf
 

@@ -41,15 +41,17 @@ std::string MemoryOp::ToString() const {
          "] value " + std::to_string(value) + " compare " + std::to_string(compare) + " -> " + std::to_string(result);
 }
 
-std::uint32_t DeviceMemory::Allocate32(std::string name, std::size_t count) {
-  buffers_.push_back({std::move(name), false, {}, {}});
+std::uint32_t DeviceMemory::Allocate32(std::string name, std::size_t count, std::vector<std::uint32_t> storage) {
+  storage.clear();  // every word value-initialised below: nothing of an earlier run shows through
+  buffers_.push_back({std::move(name), false, std::move(storage), {}});
   ResizeOnHugePages(buffers_.back().narrow_words, count);
   UpdateView(static_cast<std::uint32_t>(buffers_.size() - 1));
   return static_cast<std::uint32_t>(buffers_.size() - 1);
 }
 
-std::uint32_t DeviceMemory::Allocate64(std::string name, std::size_t count) {
-  buffers_.push_back({std::move(name), true, {}, {}});
+std::uint32_t DeviceMemory::Allocate64(std::string name, std::size_t count, std::vector<std::uint64_t> storage) {
+  storage.clear();
+  buffers_.push_back({std::move(name), true, {}, std::move(storage)});
   ResizeOnHugePages(buffers_.back().wide_words, count);
   UpdateView(static_cast<std::uint32_t>(buffers_.size() - 1));
   return static_cast<std::uint32_t>(buffers_.size() - 1);

@@ -18,9 +18,10 @@ namespace hpsf::simt {
 
 class DeviceMemory {
  public:
-  // Returns the buffer's id; words start at zero.
-  std::uint32_t Allocate32(std::string name, std::size_t count);
-  std::uint32_t Allocate64(std::string name, std::size_t count);
+  // Returns the buffer's id; words start at zero. `storage`: words a caller kept from an earlier run, whose
+  // capacity the buffer reuses (all set to zero) instead of touching fresh pages.
+  std::uint32_t Allocate32(std::string name, std::size_t count, std::vector<std::uint32_t> storage = {});
+  std::uint32_t Allocate64(std::string name, std::size_t count, std::vector<std::uint64_t> storage = {});
 
   std::span<std::uint32_t> Words32(std::uint32_t buffer);
   std::span<std::uint64_t> Words64(std::uint32_t buffer);
