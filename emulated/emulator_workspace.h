@@ -1,6 +1,6 @@
 // The large arrays of an emulated run, kept from one run to the next as a GPU backend keeps its device buffers.
 // Fresh arrays cost their first touch on every frame: a page fault per page and the kernel zeroing it, some
-// 300 MB for a 2-million-record frame, a fifth of the fast backend's time. A run takes its arrays from a
+// 300 MB for a 2-million-record frame, a quarter of the fast backend's time. A run takes its arrays from a
 // workspace and a finished run gives them back (Recycle). No contents carry over: the run's host code
 // overwrites an array whole, and device buffers are zeroed (simt::DeviceMemory::Allocate32 with storage).
 #ifndef HPSF_EMULATED_EMULATOR_WORKSPACE_H
