@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -41,8 +42,7 @@ struct EmulatorWorkspace {
 // huge pages. The elements it keeps hold whatever they held: for an array the caller overwrites whole.
 template <typename T>
 std::vector<T> ReuseForOverwrite(std::vector<T>& spare, std::size_t n) {
-  std::vector<T> v = std::move(spare);
-  spare = {};
+  std::vector<T> v = std::exchange(spare, {});
   if (v.capacity() < n) v = {};
   ResizeOnHugePages(v, n);
   return v;
