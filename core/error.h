@@ -23,6 +23,9 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitWarn = 1;
 inline constexpr int kExitCheckFailed = 2;
 inline constexpr int kExitBadInput = 3;
+// hpsf itself failed: an exception escaped a command (a bug in hpsf, or a resource it could not get). main prints
+// the message; no verdict was reached. A signal that ends the process is reported by the gate as a crash.
+inline constexpr int kExitInternalError = 4;
 
 }  // namespace hpsf
 

@@ -25,7 +25,10 @@ void CountProbes(HashedRun& run) {
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     const std::uint32_t slot = run.placements[i];
     if (slot == kProbeFailure) ++run.probe_failures;
-    if (slot < run.table.capacity) ++run.probe_lengths[(slot - run.keys[i].slot0) & (run.table.capacity - 1u)];
+    if (slot >= run.table.capacity) continue;
+    // A placement outside its window is the checker's to name (kSlotOutsideWindow); it has no probe length.
+    const std::uint32_t distance = (slot - run.keys[i].slot0) & (run.table.capacity - 1u);
+    if (distance < run.table.probe_limit) ++run.probe_lengths[distance];
   }
 }
 

@@ -17,6 +17,7 @@
 #include "core/footprint.h"
 #include "core/huge_pages.h"
 #include "core/input_check.h"
+#include "core/read_back_check.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/table_params.h"
@@ -155,6 +156,7 @@ struct VulkanFilter::Impl {
   std::vector<std::uint32_t> custom_accumulate;
   std::string accumulate_name;
   std::vector<std::uint32_t> custom_eviction;
+  std::string eviction_name;
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
   std::optional<ComputeProgram> resolve[2];
   std::optional<ComputeProgram> eviction;
@@ -212,6 +214,13 @@ struct VulkanFilter::Impl {
     }
     return *temporal;
   }
+  // Who wrote the read-back words, for a ShaderOutputError.
+  std::string ShaderNames() const {
+    if (custom_accumulate.empty() && custom_eviction.empty()) return "the built-in shaders";
+    std::string names = custom_accumulate.empty() ? "" : "the accumulate shader " + accumulate_name;
+    if (!custom_eviction.empty()) names += (names.empty() ? "" : " or ") + ("the eviction shader " + eviction_name);
+    return names;
+  }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
     if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateDeviceBuffer(device, bytes);
   }
@@ -222,6 +231,7 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
                      eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
+                     eviction_spv,
                      {},
                      {},
                      {},
@@ -544,11 +554,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   if (tracking) {
     ResizeOnHugePages(table.last_seen, config.capacity);
     ParallelCopy({table.last_seen.data(), from_last_seen, std::size_t(config.capacity) * 4});
-    for (std::size_t s = 0; s < config.capacity; ++s)
-      run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
   }
   run.timings.read_back_ms = MillisecondsSince(start);
-  CountProbes(run);
+  // Every word came from a shader, perhaps a team's: checked before any is used as an index.
+  FinishReadBack(run, config.frame, p.ShaderNames());
   p.table = Impl::TableShape{config.capacity, config.accumulation, table.fixed_point_bits};
   return run;
 }

@@ -7,6 +7,7 @@
 
 #include "core/footprint.h"
 #include "core/input_check.h"
+#include "core/read_back_check.h"
 #include "emulated/simt/kernel_fault.h"
 #include "reference/float_replay.h"
 #include "reference/reference_backend.h"
@@ -36,7 +37,7 @@ std::string WorkerThreads(int threads) {
 
 // Level 1: the backend's key words, slot0 and fingerprint for every accepted record equal core's. Returns how many
 // records were compared.
-std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, const HashedRun& run,
+std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, std::span<const KeyResult> backend_keys,
                           const std::string& prefix, LevelVerdict& keys) {
   const KeyParams params =
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height),
@@ -45,7 +46,7 @@ std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, 
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     if (CheckRecordInputs(batch.records[i]) != InputVerdict::kAccepted) continue;
     const KeyResult expected = shared::ComputeKey(params, batch.records[i]);
-    const auto want = KeyResultWords(expected), got = KeyResultWords(run.keys[i]);
+    const auto want = KeyResultWords(expected), got = KeyResultWords(backend_keys[i]);
     ++compared;
     for (int w = 0; w < int(want.size()); ++w) {
       if (want[w] != got[w]) {
@@ -129,17 +130,22 @@ void CompareFloatOrder(const RecordBatch& batch, const EmulatedRun& run, const s
   }
 }
 
-// Filters one frame; a kernel that writes outside its buffers faults, which is itself the defect: no table to
-// judge.
+// Filters one frame; a kernel that writes outside its buffers faults, and a shader whose output words cannot be
+// used (core/read_back_check.h) is refused: either is itself the defect, with no table to judge. The refused
+// run's key results, values only, go to `refused_keys` for level 1.
 const HashedRun* FilterOrFault(Backend& backend, const RecordBatch& batch, const FilterConfig& config,
-                               const std::string& who, LevelVerdict& tables) {
+                               const std::string& who, LevelVerdict& tables,
+                               std::vector<KeyResult>* refused_keys = nullptr) {
   try {
     backend.FilterFrame(batch, config);
     return backend.LastHashedRun();
   } catch (const simt::KernelFault& fault) {
     Fail(tables, who + ": the kernel faulted: " + fault.what());
-    return nullptr;
+  } catch (const ShaderOutputError& error) {
+    for (const std::string& fault : error.faults()) Fail(tables, who + ": invalid shader output: " + fault);
+    if (refused_keys && error.keys().size() == batch.records.size()) *refused_keys = error.keys();
   }
+  return nullptr;
 }
 
 // What the contract judged of one hashed backend over the sequence.
@@ -202,14 +208,18 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
       SequenceState& s = states[b];
       if (s.faulted) continue;
       const std::string who = several ? judged.name + ", frame " + std::to_string(numbers[k]) : judged.name;
-      const HashedRun* run = FilterOrFault(*judged.backend, batch, config, who, tables);
+      std::vector<KeyResult> refused_keys;
+      const HashedRun* run = FilterOrFault(*judged.backend, batch, config, who, tables, &refused_keys);
       const HashedRun* again = run ? FilterOrFault(*judged.rerun, batch, config, who + " rerun", tables) : nullptr;
+      if (judged.judge_keys && !refused_keys.empty()) {
+        s.keys_compared += CompareKeys(batch, config, refused_keys, who + ": ", keys);
+      }
       if (!run || !again) {
         s.faulted = true;
         s.fault_at = several ? " from frame " + std::to_string(numbers[k]) + " on" : "";
         continue;
       }
-      if (judged.judge_keys) s.keys_compared += CompareKeys(batch, config, *run, who + ": ", keys);
+      if (judged.judge_keys) s.keys_compared += CompareKeys(batch, config, run->keys, who + ": ", keys);
 
       CheckFrameTable(who, batch, *run, s.before, config, tables);
       CheckFrameTable(who + " rerun", batch, *again, s.rerun_before, config, tables);
@@ -262,8 +272,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
                   " accepted records compared" + over;
     }
     if (s.faulted) {
-      Note(ideal, judged.name, "not judged" + s.fault_at + ", the kernel faulted");
-      Note(determinism, judged.name, "not judged" + s.fault_at + ", the kernel faulted");
+      Note(ideal, judged.name, "not judged" + s.fault_at + ", the kernel faulted or its output was invalid");
+      Note(determinism, judged.name, "not judged" + s.fault_at + ", the kernel faulted or its output was invalid");
       continue;
     }
     const std::string sums =

@@ -123,6 +123,16 @@ void JudgeCase(const CaseRun& run, GateCaseResult& r) {
   } else {
     r.outcome = run.exit_code == kExitWarn ? CaseOutcome::kWarned : CaseOutcome::kFailed;
   }
+  if (run.signal != 0) {  // hpsf itself died: not the shader's verdict, whatever it printed
+    r.message = "hpsf crashed (signal " + std::to_string(run.signal) + ")";
+    r.details = run.output;
+    return;
+  }
+  if (run.exit_code == kExitInternalError) {
+    r.message = "hpsf failed internally (exit " + std::to_string(kExitInternalError) + ")";
+    r.details = run.output;
+    return;
+  }
   if (problems.empty()) {
     // A kernel fault exits 2 with no report; a crash leaves only what it printed.
     r.message = "exit " + std::to_string(run.exit_code);

@@ -85,6 +85,7 @@ GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out) {
   const std::filesystem::path bundle = out / "bundles" / name;
   const std::filesystem::path html = out / "html" / (name + ".html");
   std::filesystem::remove(report);
+  std::filesystem::remove_all(bundle);  // a bundle left by an earlier gate run in OUT is not this run's
   std::vector<std::string> argv = {SelfPath()};
   argv.insert(argv.end(), c.arguments.begin(), c.arguments.end());
   std::string stdout_file;
@@ -102,13 +103,14 @@ GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out) {
   const auto start = std::chrono::steady_clock::now();
   const ProcessResult process = RunProcess(argv, "", stdout_file);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  CaseRun run{process.exit_code, process.output, std::nullopt};
+  CaseRun run{process.exit_code, process.signal, process.output, std::nullopt};
   if (std::ifstream in(report); in) {
     nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     if (!j.is_discarded()) run.report = std::move(j);
   }
   JudgeCase(run, r);
-  const bool failed = r.outcome == CaseOutcome::kFailed;
+  // A crashed case keeps its bundles too: they are what reproduces the crash.
+  const bool failed = r.outcome == CaseOutcome::kFailed || r.outcome == CaseOutcome::kError;
   if (failed && (c.family == "crosscheck" || c.family == "fuzz") && std::filesystem::exists(bundle)) {
     r.bundle = bundle.string();
   }

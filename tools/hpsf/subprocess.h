@@ -10,6 +10,7 @@ namespace hpsf {
 
 struct ProcessResult {
   int exit_code = -1;  // the program's exit status, or 128 + the signal that ended it
+  int signal = 0;      // the signal that ended it, 0 when it exited
   std::string output;  // stdout and stderr together, or stderr alone when stdout went to a file
 };
 

@@ -27,7 +27,8 @@ layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
 // _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
-// --accumulate-spv: the gate must catch each.
+// --accumulate-spv: the gate must catch each. HPSF_DEFECT_SLOT0_FOR_FAILURE and HPSF_DEFECT_GARBAGE_* write words
+// the host must not trust (core/read_back_check.h): each must be named as a failure, never crash the host.
 
 #if defined(HPSF_DEFECT_D12)
 layout(std430, binding = 4) buffer CountWords { uint count_words[]; };  // binding 4 again, as 32-bit words
@@ -43,6 +44,37 @@ void EvictDuringAccumulate(uint slot, TableParams t) {
   if (tags[slot] == 0u || counts[slot] == uint64_t(0) || last_seen_read[slot] >= t.frame) return;
   for (uint c = 0u; c < 3u; ++c) sums[slot * 3u + c] = HPSF_SUMS_TYPE(0);
   counts[slot] = uint64_t(0);
+}
+#endif
+
+#if defined(HPSF_DEFECT_GARBAGE_KEYS) || defined(HPSF_DEFECT_GARBAGE_TAGS) || defined(HPSF_DEFECT_GARBAGE_SUMS) || \
+    defined(HPSF_DEFECT_GARBAGE_COUNTS) || defined(HPSF_DEFECT_GARBAGE_PLACEMENTS) ||                         \
+    defined(HPSF_DEFECT_GARBAGE_STATS) || defined(HPSF_DEFECT_GARBAGE_LAST_SEEN)
+#define HPSF_GARBAGE_OUTPUT
+// A shader that leaves garbage in one output binding, after its record's correct work: the host must name the
+// failure (exit 2), never crash on it. The words are a multiplicative hash of the record, mostly far out of range.
+uint Garbage(uint i) { return i * 2654435761u + 0x9E3779B9u; }
+
+void WriteGarbage(uint i, TableParams t) {
+  uint slot = i & (t.capacity - 1u);
+#if defined(HPSF_DEFECT_GARBAGE_KEYS)
+  for (uint v = 0u; v < 3u; ++v) key_vectors[i * 3u + v] = uvec4(Garbage(i + v), Garbage(i ^ v), Garbage(~i), Garbage(i) >> v);
+#elif defined(HPSF_DEFECT_GARBAGE_TAGS)
+  tags[slot] = Garbage(i);
+#elif defined(HPSF_DEFECT_GARBAGE_SUMS)
+  sums[slot * 3u] = HPSF_SUMS_TYPE(Garbage(i));
+#elif defined(HPSF_DEFECT_GARBAGE_COUNTS)
+  counts[slot] = uint64_t(Garbage(i)) << 20;
+#elif defined(HPSF_DEFECT_GARBAGE_PLACEMENTS)
+  placements[i] = Garbage(i);
+#elif defined(HPSF_DEFECT_GARBAGE_STATS)
+  if (i == 0u) {
+    wraps = uint64_t(Garbage(i)) << 24;
+    count_wraps = uint64_t(Garbage(i + 1u)) << 24;
+  }
+#elif defined(HPSF_DEFECT_GARBAGE_LAST_SEEN)
+  last_seen[slot] = Garbage(i);
+#endif
 }
 #endif
 
@@ -164,7 +196,13 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #endif
     }
   }
+#if defined(HPSF_DEFECT_SLOT0_FOR_FAILURE)  // a failed insert stored as slot 0, as NVIDIA SHaRC's once was
+  if (placement == kPlacementProbeFailure) placement = 0u;
+#endif
   placements[i] = placement;
+#if defined(HPSF_GARBAGE_OUTPUT)
+  WriteGarbage(i, t);
+#endif
 }
 
 void main() {

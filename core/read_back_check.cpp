@@ -1,0 +1,93 @@
+#include "core/read_back_check.h"
+
+#include "core/shared/key.h"
+
+namespace hpsf {
+namespace {
+
+std::string Joined(const std::string& shader, const std::vector<std::string>& faults) {
+  std::string text = shader + " wrote invalid output";
+  for (std::size_t f = 0; f < faults.size(); ++f) text += (f == 0 ? ": " : "; ") + faults[f];
+  return text;
+}
+
+std::string Placement(std::uint32_t placement) {
+  return placement == kProbeFailure ? "probe failure" : placement == kNotPlaced ? "not placed" : std::to_string(placement);
+}
+
+}  // namespace
+
+ShaderOutputError::ShaderOutputError(const std::string& shader, std::vector<std::string> faults,
+                                     std::vector<KeyResult> keys)
+    : std::runtime_error(Joined(shader, faults)), faults_(std::move(faults)), keys_(std::move(keys)) {}
+
+std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t frame, std::size_t limit) {
+  std::vector<std::string> faults;
+  auto fault = [&](std::string text) {
+    if (faults.size() < limit) faults.push_back(std::move(text));
+  };
+  const HashTableDump& t = run.table;
+  const std::uint32_t mask = t.capacity - 1u;
+  std::uint64_t placed = 0;
+  for (std::size_t i = 0; i < run.placements.size() && faults.size() < limit; ++i) {
+    const KeyResult& key = run.keys[i];
+    const std::string record = "record " + std::to_string(i) + ": ";
+    if (key.status != shared::kKeyed && key.status != shared::kKeyNoVertex && key.status != shared::kKeyUnkeyable) {
+      fault(record + "key status " + std::to_string(key.status) +
+            " is none of keyed (0), no vertex (1) and unkeyable (2)");
+      continue;
+    }
+    if (key.status == shared::kKeyed && key.slot0 >= t.capacity) {
+      fault(record + "slot0 " + std::to_string(key.slot0) + " is not below the capacity " + std::to_string(t.capacity));
+      continue;
+    }
+    const std::uint32_t slot = run.placements[i];
+    if (slot == kProbeFailure || slot == kNotPlaced) continue;
+    if (slot >= t.capacity) {
+      fault(record + "placement " + std::to_string(slot) + " is neither a slot below the capacity " +
+            std::to_string(t.capacity) + " nor " + Placement(kProbeFailure) + " (" + std::to_string(kProbeFailure) +
+            ") nor " + Placement(kNotPlaced) + " (" + std::to_string(kNotPlaced) + ")");
+      continue;
+    }
+    ++placed;
+    if (key.slot0 >= t.capacity || ((slot - key.slot0) & mask) >= t.probe_limit) {
+      fault(record + "placed in slot " + std::to_string(slot) + ", outside its probe window (the " +
+            std::to_string(t.probe_limit) + " slots from slot0 " + std::to_string(key.slot0) +
+            ", wrapping at the capacity " + std::to_string(t.capacity) + ")");
+    }
+  }
+  if (!t.last_seen.empty()) {
+    for (std::size_t s = 0; s < t.last_seen.size() && faults.size() < limit; ++s) {
+      if (t.last_seen[s] > frame) {
+        fault("slot " + std::to_string(s) + ": last seen in frame " + std::to_string(t.last_seen[s]) +
+              ", after this frame " + std::to_string(frame));
+      }
+    }
+  }
+  const auto counter = [&](const char* name, std::uint64_t value, std::uint64_t most, const std::string& why) {
+    if (value > most) {
+      fault(std::string("stats: ") + name + " " + std::to_string(value) + " is more than the run can produce (" +
+            std::to_string(most) + ", " + why + ")");
+    }
+  };
+  if (faults.empty()) {  // the bounds below count placed records, which only make sense once placements are valid
+    counter("fixed64 wraps", run.wraps, 3 * placed, "one per channel of each placed record");
+    counter("count wraps", run.count_wraps, placed, "one per placed record");
+    counter("evicted", run.evicted, t.capacity, "one per slot");
+    counter("seeded", run.seeded, t.capacity, "one per slot");
+  }
+  return faults;
+}
+
+void FinishReadBack(HashedRun& run, std::uint32_t frame, const std::string& shader) {
+  std::vector<std::string> faults = ReadBackFaults(run, frame);
+  if (!faults.empty()) throw ShaderOutputError(shader, std::move(faults), std::move(run.keys));
+  CountProbes(run);
+  run.tombstones = 0;
+  if (!run.table.last_seen.empty()) {
+    for (std::size_t s = 0; s < run.table.capacity; ++s)
+      run.tombstones += run.table.tags[s] != kEmptyTag && run.table.counts[s] == 0;
+  }
+}
+
+}  // namespace hpsf
