@@ -203,6 +203,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
     config.frame = numbers[k];
     const RecordBatch& batch = frames[k];
     reference.FilterFrame(batch, config);
+    const int fixed_point_bits = reference.result().stats.fixed_point_bits;
     for (std::size_t b = 0; b < hashed.size(); ++b) {
       const JudgedBackend& judged = hashed[b];
       SequenceState& s = states[b];
@@ -220,6 +221,10 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         continue;
       }
       if (judged.judge_keys) s.keys_compared += CompareKeys(batch, config, run->keys, who + ": ", keys);
+      if (run->table.fixed_point_bits != fixed_point_bits) {
+        Fail(tables, who + ": F " + std::to_string(run->table.fixed_point_bits) + ", the reference's " +
+                         std::to_string(fixed_point_bits) + ": sums of different scales cannot be compared");
+      }
 
       CheckFrameTable(who, batch, *run, s.before, config, tables);
       CheckFrameTable(who + " rerun", batch, *again, s.rerun_before, config, tables);
@@ -262,6 +267,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
                                  std::string(several ? ", each frame from the table before it" : "")
                            : "no hashed backend";
   CrosscheckReport report;
+  report.fixed_point_bits = frames.empty() ? 0 : reference.result().stats.fixed_point_bits;
+  report.accumulation = config.accumulation;
   for (std::size_t b = 0; b < hashed.size(); ++b) {
     const JudgedBackend& judged = hashed[b];
     const SequenceState& s = states[b];
@@ -316,7 +323,11 @@ std::string CrosscheckReport::FirstFailure() const {
 }
 
 nlohmann::json CrosscheckReport::ToJson() const {
-  nlohmann::json j = {{"version", 2}, {"passed", Passed()}, {"frames", frames}};
+  nlohmann::json j = {{"version", 2},
+                      {"passed", Passed()},
+                      {"frames", frames},
+                      {"accumulation", ToString(accumulation)},
+                      {"fixed_point_bits", fixed_point_bits}};
   if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
   for (const LevelVerdict& v : levels) {
     j["levels"].push_back({{"level", v.level},

@@ -44,6 +44,10 @@ struct CrosscheckReport {
   std::vector<QualityFigures> quality;
   std::string vulkan_device;  // name and driver, when the Vulkan backend ran
   std::uint32_t frames = 1;
+  // F, the fixed-point fraction bits every backend used (the reference's, chosen by the first frame or given by
+  // --fixed-point-bits); in float32 the bits its range check assumed.
+  int fixed_point_bits = 0;
+  Accumulation accumulation = Accumulation::kFixed64;
   bool Passed() const;
   // "level N NAME: " and the first failure of the first failed level (its note when it lists none); "" if passed.
   std::string FirstFailure() const;

@@ -113,6 +113,7 @@ GateCaseResult RunCase(const GateCase& c, const std::filesystem::path& out) {
   const bool failed = r.outcome == CaseOutcome::kFailed || r.outcome == CaseOutcome::kError;
   if (failed && (c.family == "crosscheck" || c.family == "fuzz") && std::filesystem::exists(bundle)) {
     r.bundle = bundle.string();
+    r.reproduce = "sh " + (bundle / "reproduce.sh").string();  // the bundle is what a CI job uploads
   }
   if (c.family == "golden" && std::filesystem::exists(html)) r.html = html.string();
   return r;

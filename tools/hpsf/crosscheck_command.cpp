@@ -95,6 +95,8 @@ int Run(CrosscheckOptions& o, bool options_only) {
       for (const std::string& f : v.failures) std::cout << "  " << f << "\n";
     }
     if (report.frames > 1) std::cout << "frames: " << report.frames << ", each judged from the table before it\n";
+    std::cout << "accumulation: " << ToString(report.accumulation) << ", F " << report.fixed_point_bits
+              << " fraction bits\n";
     if (!report.vulkan_device.empty()) std::cout << "vulkan device: " << report.vulkan_device << "\n";
     for (const QualityFigures& q : report.quality) {
       std::cout << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots

@@ -1,5 +1,6 @@
 #include "tools/hpsf/fuzz_command.h"
 
+#include <algorithm>
 #include <unistd.h>
 
 #include <array>
@@ -38,6 +39,21 @@ struct FuzzOptions {
   bool json = false;
 };
 
+// The F (fixed64 fraction bits) the runs used: each run's batch chooses its own.
+struct FixedPointRange {
+  int min = 0, max = 0;
+  bool any = false;
+  void Add(int bits) {
+    min = any ? std::min(min, bits) : bits;
+    max = any ? std::max(max, bits) : bits;
+    any = true;
+  }
+  std::string ToString() const {
+    if (!any) return "no fixed64 run";
+    return min == max ? "F " + std::to_string(min) : "F " + std::to_string(min) + " to " + std::to_string(max);
+  }
+};
+
 struct Failure {
   std::uint64_t run = 0;
   double seconds_to_find = 0;
@@ -48,7 +64,7 @@ struct Failure {
 };
 
 nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, const std::array<std::uint64_t, kAdversarialFamilies>& families,
-                      const std::optional<Failure>& failure) {
+                      const FixedPointRange& fixed_point, const std::optional<Failure>& failure) {
   nlohmann::json j = {{"version", 1},
                       {"command", "fuzz"},
                       {"backend", o.backend},
@@ -60,6 +76,8 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, 
                       {"seconds", seconds},
                       {"runs_per_second", seconds > 0 ? double(runs) / seconds : 0.0},
                       {"passed", !failure.has_value()}};
+  j["fixed_point_bits"] = fixed_point.any ? nlohmann::json{{"min", fixed_point.min}, {"max", fixed_point.max}}
+                                          : nlohmann::json(nullptr);
   for (int f = 0; f < kAdversarialFamilies; ++f) j["runs_per_family"][ToString(AdversarialFamily(f))] = families[std::size_t(f)];
   if (failure) {
     j["failure"] = {{"run", failure->run},
@@ -108,11 +126,14 @@ int Run(FuzzOptions& o, bool options_only) {
   Clock::time_point last_progress = start;
   std::array<std::uint64_t, kAdversarialFamilies> families{};
   std::optional<Failure> failure;
+  FixedPointRange fixed_point;
   std::uint64_t run = 0;
   for (; !(o.runs && run >= *o.runs) && !(o.seconds && SecondsSince(start) >= *o.seconds); ++run) {
     const AdversarialCase c = MakeAdversarialCase(o.seed, run, generate);
     ++families[std::size_t(c.family)];
-    if (!checker.Check(c.batch, c.config, c.emulator).Passed()) {
+    const CrosscheckReport report = checker.Check(c.batch, c.config, c.emulator);
+    if (c.config.accumulation == Accumulation::kFixed64) fixed_point.Add(report.fixed_point_bits);
+    if (!report.Passed()) {
       failure = Failure{run, SecondsSince(start), c, {}, 0, {}};
       ++run;
       break;
@@ -141,10 +162,10 @@ int Run(FuzzOptions& o, bool options_only) {
   }
 
   if (o.json) {
-    std::cout << ToJson(o, run, seconds, families, failure).dump(2) << "\n";
+    std::cout << ToJson(o, run, seconds, families, fixed_point, failure).dump(2) << "\n";
   } else if (!failure) {
-    std::printf("fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u: every table passed the checker and the contract\n",
-                (unsigned long long)run, seconds, double(run) / seconds, o.seed);
+    std::printf("fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u, fixed64 at %s: every table passed the checker and the contract\n",
+                (unsigned long long)run, seconds, double(run) / seconds, o.seed, fixed_point.ToString().c_str());
   } else {
     const Failure& f = *failure;
     std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` finds it again)\n",
@@ -152,7 +173,8 @@ int Run(FuzzOptions& o, bool options_only) {
     std::printf("  found: %s\n", f.found.ToString().c_str());
     std::printf("  shrunk in %llu checks (%.2f s)%s: %s\n", (unsigned long long)f.shrink.checks, f.shrink_seconds,
                 f.shrink.exhausted ? ", stopped at the check limit" : "", f.shrink.shrunk.ToString().c_str());
-    std::printf("  %s\n", f.report.FirstFailure().c_str());
+    std::printf("  %s (%s, F %d)\n", f.report.FirstFailure().c_str(), ToString(f.report.accumulation).c_str(),
+                f.report.fixed_point_bits);
     std::printf("  repro bundle in %s: reproduce.sh runs `hpsf crosscheck records.hpsfv` with the same options\n", o.repro_dir.c_str());
   }
   return failure ? kExitCheckFailed : kExitOk;

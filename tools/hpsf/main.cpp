@@ -10,11 +10,13 @@
 #include "core/read_back_check.h"
 #include "emulated/simt/kernel_fault.h"
 #include "tools/hpsf/commands.h"
+#include "tools/hpsf/version.h"
 #include "vulkan/vulkan_device.h"
 
 int main(int argc, char** argv) {
   CLI::App app("hpsf: makes GPU hash tables for hashed path space filtering trustworthy", "hpsf");
   hpsf::CommandContext context;
+  app.set_version_flag("--version", std::string("hpsf ") + hpsf::kHpsfVersion);
   hpsf::AddCommands(app, context);
   try {
     app.parse(argc, argv);

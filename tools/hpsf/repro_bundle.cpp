@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/record_file.h"
+#include "tools/hpsf/version.h"
 
 namespace hpsf {
 namespace {
@@ -30,11 +31,28 @@ void WriteReproBundle(const std::string& dir_name, std::span<const RecordBatch> 
   std::filesystem::create_directories(dir);
   WriteRecordFile((dir / "records.hpsfv").string(), frames);
   std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
-  std::string command = "exec " + Quoted(std::filesystem::read_symlink("/proc/self/exe").string()) + " crosscheck records.hpsfv";
-  for (const std::string& argument : crosscheck_arguments) command.append(" ").append(Quoted(argument));
-  std::ofstream(dir / "reproduce.sh") << "#!/bin/sh\n# Reproduces the failed cross-check exactly: same records, options, seed and schedule.\n"
-                                      << "cd \"$(dirname \"$0\")\" || exit 3\n"
-                                      << command << " --repro-dir reproduced --json > reproduced.json\n";
+  // A user's shaders travel with the bundle, named relative to it.
+  std::vector<std::string> arguments = crosscheck_arguments;
+  for (std::size_t a = 0; a + 1 < arguments.size(); ++a) {
+    if (arguments[a] != "--accumulate-spv" && arguments[a] != "--eviction-spv") continue;
+    const std::string copy = "shaders/" + arguments[a].substr(2, arguments[a].size() - 6) + ".spv";
+    std::filesystem::create_directories(dir / "shaders");
+    std::filesystem::copy_file(arguments[a + 1], dir / copy, std::filesystem::copy_options::overwrite_existing);
+    arguments[a + 1] = copy;
+  }
+  std::string options;
+  for (const std::string& argument : arguments) options.append(" ").append(Quoted(argument));
+  std::ofstream(dir / "reproduce.sh")
+      << "#!/bin/sh\n"
+      << "# Reproduces the failed cross-check exactly (same records, options, seed and schedule) from any folder on any\n"
+      << "# machine with hpsf: $HPSF if set, else hpsf on PATH. Writes reproduced.json beside report.json.\n"
+      << "cd \"$(dirname \"$0\")\" || exit 3\n"
+      << "hpsf=${HPSF:-$(command -v hpsf)}\n"
+      << "if [ -z \"$hpsf\" ]; then echo \"reproduce.sh: no hpsf: set HPSF=/path/to/hpsf or put hpsf on PATH\" >&2; exit 3; fi\n"
+      << "written=" << Quoted(std::string("hpsf ") + kHpsfVersion) << "\n"
+      << "running=$(\"$hpsf\" --version 2>/dev/null)\n"
+      << "[ \"$running\" = \"$written\" ] || echo \"reproduce.sh: warning: written by $written, reproduced with ${running:-an hpsf that gives no version} ($hpsf)\" >&2\n"
+      << "exec \"$hpsf\" crosscheck records.hpsfv" << options << " --repro-dir reproduced --json > reproduced.json\n";
   std::filesystem::permissions(dir / "reproduce.sh", std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
 }
 

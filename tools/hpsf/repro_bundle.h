@@ -1,6 +1,9 @@
-// The repro bundle a failed check leaves behind (DESIGN.md, "Tools"): the records, the report, and reproduce.sh,
-// which reruns the same cross-check on the same records with every option that decides the outcome and writes
-// reproduced.json beside report.json. `hpsf crosscheck` and `hpsf fuzz` write it.
+// The repro bundle a failed check leaves behind (DESIGN.md, "Tools"): the records, the report, copies of the user's
+// shaders (shaders/accumulate.spv, shaders/eviction.spv), and reproduce.sh, which reruns the same cross-check on
+// the same records with every option that decides the outcome and writes reproduced.json beside report.json. Every
+// path in it is relative to the bundle, and reproduce.sh finds hpsf through $HPSF or PATH and warns when its
+// version is not the one that wrote the bundle: a CI job uploads the folder, and it reproduces anywhere.
+// `hpsf crosscheck` and `hpsf fuzz` write it.
 #ifndef HPSF_TOOLS_HPSF_REPRO_BUNDLE_H
 #define HPSF_TOOLS_HPSF_REPRO_BUNDLE_H
 
