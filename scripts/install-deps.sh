@@ -7,7 +7,7 @@ packages=(
   libembree-dev libtbb-dev libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libtinyobjloader-dev libcli11-dev libnanoflann-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev
-  libvulkan-dev glslang-tools glslang-dev spirv-tools mesa-vulkan-drivers vulkan-tools
+  libvulkan-dev glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev mesa-vulkan-drivers vulkan-tools
   libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium libxml2-utils
   clang-15 libfuzzer-15-dev llvm-15
 )

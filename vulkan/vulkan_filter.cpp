@@ -18,6 +18,7 @@
 #include "core/huge_pages.h"
 #include "core/input_check.h"
 #include "core/read_back_check.h"
+#include "vulkan/spirv_reflection.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/table_params.h"
@@ -155,6 +156,7 @@ struct VulkanFilter::Impl {
   VulkanDevice::Impl& device;
   std::vector<std::uint32_t> custom_accumulate;
   std::string accumulate_name;
+  Accumulation custom_accumulation;  // what the user's shader declares its sums as
   std::vector<std::uint32_t> custom_eviction;
   std::string eviction_name;
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
@@ -230,6 +232,7 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
     : impl_(new Impl{device.impl(),
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
+                     Accumulation::kFixed64,
                      eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
                      eviction_spv,
                      {},
@@ -255,7 +258,11 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {},
                      {},
                      {},
-                     {}}) {}
+                     {}}) {
+  if (!impl_->custom_accumulate.empty()) {
+    impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
+  }
+}
 
 VulkanFilter::~VulkanFilter() = default;
 
@@ -290,6 +297,12 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   CheckBatchShape(batch);
   config.Validate();
   Impl& p = *impl_;
+  if (!p.custom_accumulate.empty() && p.custom_accumulation != config.accumulation) {
+    throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +
+                                     (p.custom_accumulation == Accumulation::kFixed64 ? "uint64_t" : "float") +
+                                     ": it accumulates " + ToString(p.custom_accumulation) + ", not " +
+                                     ToString(config.accumulation));
+  }
   if (keep_table &&
       !(p.table && p.table->capacity == config.capacity && p.table->accumulation == config.accumulation)) {
     throw ConfigError("--capacity", "no device table of this shape to carry on from; start a new sequence");

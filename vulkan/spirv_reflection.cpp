@@ -1,0 +1,77 @@
+#include "vulkan/spirv_reflection.h"
+
+#include <memory>
+#include <set>
+
+#include <spirv_cross/spirv_cross_c.h>
+
+#include "core/error.h"
+
+namespace hpsf {
+namespace {
+
+constexpr unsigned kSumsBinding = 3;
+
+std::string TypeName(spvc_type type) {
+  switch (spvc_type_get_basetype(type)) {
+    case SPVC_BASETYPE_UINT64:
+      return "uint64_t";
+    case SPVC_BASETYPE_INT64:
+      return "int64_t";
+    case SPVC_BASETYPE_FP32:
+      return "float";
+    case SPVC_BASETYPE_FP64:
+      return "double";
+    case SPVC_BASETYPE_UINT32:
+      return "uint";
+    case SPVC_BASETYPE_INT32:
+      return "int";
+    case SPVC_BASETYPE_STRUCT:
+      return "a struct";
+    default:
+      return "a type of " + std::to_string(spvc_type_get_bit_width(type)) + " bits";
+  }
+}
+
+}  // namespace
+
+Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file) {
+  spvc_context raw_context = nullptr;
+  if (spvc_context_create(&raw_context) != SPVC_SUCCESS) throw InputError(file + ": cannot reflect the SPIR-V");
+  const std::unique_ptr<spvc_context_s, void (*)(spvc_context)> context(raw_context, spvc_context_destroy);
+  spvc_parsed_ir ir = nullptr;
+  spvc_compiler compiler = nullptr;
+  spvc_resources resources = nullptr;
+  const spvc_reflected_resource* buffers = nullptr;
+  std::size_t count = 0;
+  if (spvc_context_parse_spirv(raw_context, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS ||
+      spvc_context_create_compiler(raw_context, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler) !=
+          SPVC_SUCCESS ||
+      spvc_compiler_create_shader_resources(compiler, &resources) != SPVC_SUCCESS ||
+      spvc_resources_get_resource_list_for_type(resources, SPVC_RESOURCE_TYPE_STORAGE_BUFFER, &buffers, &count) !=
+          SPVC_SUCCESS) {
+    throw InputError(file + ": the SPIR-V does not reflect: " + spvc_context_get_last_error_string(raw_context));
+  }
+  // Every declaration of binding 3 (a shader may alias a binding, e.g. as 32-bit words): the element types.
+  std::set<std::string> types;
+  for (std::size_t b = 0; b < count; ++b) {
+    if (spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationDescriptorSet) != 0 ||
+        spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationBinding) != kSumsBinding) {
+      continue;
+    }
+    const spvc_type block = spvc_compiler_get_type_handle(compiler, buffers[b].base_type_id);
+    if (spvc_type_get_num_member_types(block) == 0) continue;
+    types.insert(TypeName(spvc_compiler_get_type_handle(compiler, spvc_type_get_member_type(block, 0))));
+  }
+  if (types.empty()) {
+    throw InputError(file + ": declares no storage buffer at binding 3 (the sums of the stable buffer interface)");
+  }
+  if (types == std::set<std::string>{"uint64_t"}) return Accumulation::kFixed64;
+  if (types == std::set<std::string>{"float"}) return Accumulation::kFloat32;
+  std::string found;
+  for (const std::string& type : types) found += (found.empty() ? "" : " and ") + type;
+  throw InputError(file + ": binding 3 (sums) holds " + found +
+                   "; the stable buffer interface takes uint64_t (fixed64) or float (float32)");
+}
+
+}  // namespace hpsf
