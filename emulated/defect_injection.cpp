@@ -49,11 +49,13 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
                                : defect == Defect::kD8UnwrappedProbe ? key.slot0 + probe
                                                                      : (key.slot0 + probe) & (args.capacity - 1u);
     std::uint64_t tag = co_await ctx.Load(b.tags, slot);
+    bool claimed = false;
     if (tag == kEmptyTag) {
       if (defect == Defect::kD13LoadThenStoreClaim) {  // D13: claim by a plain store after the load
         co_await ctx.Store(b.tags, slot, fingerprint);
       } else {
         tag = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, fingerprint);
+        claimed = tag == kEmptyTag;
       }
     }
     if (tag != kEmptyTag && tag != fingerprint) continue;
@@ -65,7 +67,11 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
                                         : std::bit_cast<std::uint32_t>(std::bit_cast<float>(std::uint32_t(old)) + r.contribution[c]);
         co_await ctx.Store(b.sums, index, sum);
       } else if (fixed) {
-        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+        // D11: truncated, not rounded half to even.
+        const std::uint64_t add =
+            defect == Defect::kD11TruncatedFixedPoint
+                ? std::uint64_t(r.contribution[c] * args.fixed_point_scale)
+                : shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
         const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, index, add);
         if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
       } else {
@@ -75,6 +81,22 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     if (defect == Defect::kD9NonAtomicAdd) {
       const std::uint64_t count = co_await ctx.Load(b.counts, slot);
       co_await ctx.Store(b.counts, slot, count + 1);
+    } else if (defect == Defect::kCountStoreClaimFirst || defect == Defect::kCountStoreJoinFirst) {
+      // The claimer "initialises" the count it just claimed with a plain store while records that found the tag
+      // add atomically: an add that lands before the store is lost. Both branch orders, as a shader has them.
+      if (defect == Defect::kCountStoreClaimFirst) {
+        if (claimed) {
+          co_await ctx.Store(b.counts, slot, 1);
+        } else {
+          co_await ctx.AtomicAdd(b.counts, slot, 1);
+        }
+      } else {
+        if (!claimed) {
+          co_await ctx.AtomicAdd(b.counts, slot, 1);
+        } else {
+          co_await ctx.Store(b.counts, slot, 1);
+        }
+      }
     } else if (count32) {  // D12: a 32-bit counter, one compare-and-swap at a time, that wraps silently
       std::uint64_t count = co_await ctx.Load(b.counts, slot);
       for (;;) {
@@ -85,7 +107,10 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     } else if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) {
       co_await ctx.AtomicAdd(b.wraps, 1, 1);
     }
-    if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
+    // Last-seen by every writer; the defect stores it from the record that claimed the slot only.
+    if (args.track_last_seen && (defect != Defect::kLastSeenClaimerOnly || claimed)) {
+      co_await ctx.Store(b.last_seen, slot, args.frame);
+    }
     if (blend_in_pass && args.temporal) {
       // D10: the slot blended right after this record's add, from the table still being accumulated: other
       // records' adds may come before or after it, and a slot blends once per record instead of once.
@@ -122,6 +147,16 @@ simt::KernelTask D8(simt::ThreadContext& c, const AccumulateArgs& a) { return Mu
 simt::KernelTask D8Unwrapped(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8UnwrappedProbe); }
 simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD9NonAtomicAdd); }
 simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
+simt::KernelTask D11(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD11TruncatedFixedPoint); }
+simt::KernelTask CountStoreClaimFirst(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kCountStoreClaimFirst);
+}
+simt::KernelTask CountStoreJoinFirst(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kCountStoreJoinFirst);
+}
+simt::KernelTask LastSeenClaimerOnly(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kLastSeenClaimerOnly);
+}
 
 }  // namespace
 
@@ -177,8 +212,14 @@ Defect ParseDefect(const std::string& text) {
   if (text == "D8") return Defect::kD8ClampedProbe;
   if (text == "D8-unwrapped") return Defect::kD8UnwrappedProbe;
   if (text == "D9") return Defect::kD9NonAtomicAdd;
+  if (text == "D11") return Defect::kD11TruncatedFixedPoint;
   if (text == "D13") return Defect::kD13LoadThenStoreClaim;
-  throw ConfigError("--inject-defect", "expected none, D2, D3, D8, D8-unwrapped, D9 or D13; got '" + text + "'");
+  if (text == "count-store-claim-first") return Defect::kCountStoreClaimFirst;
+  if (text == "count-store-join-first") return Defect::kCountStoreJoinFirst;
+  if (text == "last-seen-claimer-only") return Defect::kLastSeenClaimerOnly;
+  throw ConfigError("--inject-defect",
+                    "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
+                    "count-store-join-first or last-seen-claimer-only; got '" + text + "'");
 }
 
 std::string ToString(Defect defect) {
@@ -190,6 +231,10 @@ std::string ToString(Defect defect) {
     case Defect::kD8UnwrappedProbe: return "D8-unwrapped";
     case Defect::kD9NonAtomicAdd: return "D9";
     case Defect::kD13LoadThenStoreClaim: return "D13";
+    case Defect::kD11TruncatedFixedPoint: return "D11";
+    case Defect::kCountStoreClaimFirst: return "count-store-claim-first";
+    case Defect::kCountStoreJoinFirst: return "count-store-join-first";
+    case Defect::kLastSeenClaimerOnly: return "last-seen-claimer-only";
   }
   return "?";
 }
@@ -203,6 +248,10 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
     case Defect::kD8UnwrappedProbe: return D8Unwrapped;
     case Defect::kD9NonAtomicAdd: return D9;
     case Defect::kD13LoadThenStoreClaim: return D13;
+    case Defect::kD11TruncatedFixedPoint: return D11;
+    case Defect::kCountStoreClaimFirst: return CountStoreClaimFirst;
+    case Defect::kCountStoreJoinFirst: return CountStoreJoinFirst;
+    case Defect::kLastSeenClaimerOnly: return LastSeenClaimerOnly;
   }
   return AccumulateKernel;
 }

@@ -18,9 +18,15 @@ enum class Defect {
   kD8UnwrappedProbe,       // the probe index not wrapped at all: writes past the end of the table
   kD9NonAtomicAdd,         // read-modify-write of sums and counts without atomics
   kD13LoadThenStoreClaim,  // a slot claimed by load-then-store instead of compare-and-swap
+  // The three classes a new user's planted bugs showed `hpsf fuzz` must find unaided (issue 33):
+  kD11TruncatedFixedPoint,  // fixed64 by truncation instead of rounding: hidden where c * 2^F is an integer
+  kCountStoreClaimFirst,    // the claimer sets the count with a plain store of 1, others add atomically (claim
+  kCountStoreJoinFirst,     // branch written first, or the joiners' branch first): a race on the count
+  kLastSeenClaimerOnly,     // the last-seen frame stored by the claiming record only: a slot joined later looks stale
 };
 
-// "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13"; a ConfigError naming --inject-defect otherwise.
+// "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
+// "count-store-join-first", "last-seen-claimer-only"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);

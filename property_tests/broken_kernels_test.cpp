@@ -58,7 +58,9 @@ TEST(BrokenKernels, EachMutantPassesAnInputThatDoesNotReachItsDefect) {
     const glm::ivec3 cell = FindCell(config, [](const KeyResult& k) { return k.slot0 == 10u && k.fingerprint > 1u; });
     const RecordBatch batch = BatchOfCells({cell});
     for (const Defect defect : {Defect::kD2AddsAgain, Defect::kD3ZeroFingerprint, Defect::kD8ClampedProbe, Defect::kD8UnwrappedProbe,
-                                Defect::kD9NonAtomicAdd, Defect::kD13LoadThenStoreClaim}) {
+                                Defect::kD9NonAtomicAdd, Defect::kD13LoadThenStoreClaim, Defect::kD11TruncatedFixedPoint,
+                                Defect::kCountStoreClaimFirst, Defect::kCountStoreJoinFirst,
+                                Defect::kLastSeenClaimerOnly}) {
       const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(defect)));
       EXPECT_TRUE(violations.empty()) << ToString(defect) << " in " << ToString(accumulation) << ": " << violations.front().ToString();
     }

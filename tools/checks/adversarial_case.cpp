@@ -8,7 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/eviction.h"
 #include "core/footprint.h"
+#include "core/temporal.h"
 #include "core/shared/key.h"
 #include "core/shared/rng.h"
 #include "property_tests/record_generators.h"
@@ -191,7 +193,79 @@ std::vector<Record> KeyPath(RecordGenerator& g, FilterConfig& c, std::uint32_t c
   return records;
 }
 
+// A few cells over 2 to 4 workgroups of the Vulkan accumulate. Layouts: aligned (every workgroup visits the same
+// cells in the same order, so two worker threads claim and join one cell at the same moment), strided (record i's
+// cell is i mod the cell count) and runs (a cell's records in runs that cross the workgroups' boundaries).
+std::vector<Record> Spread(RecordGenerator& g, FilterConfig& c) {
+  c.capacity = PowerOfTwo(g, 8, 12);
+  c.probe_limit = ProbeLimit(g, c.capacity, 16);
+  c.fingerprint_bits = 32;
+  const std::uint32_t workgroups = std::uint32_t(g.UniformInt(2, 4));
+  const std::uint32_t count = (workgroups - 1) * kAccumulateRecordsPerWorkgroup +
+                              std::uint32_t(g.UniformInt(1, int(kAccumulateRecordsPerWorkgroup)));
+  std::vector<glm::ivec3> cells(std::size_t(g.UniformInt(1, int(c.capacity / 4))));
+  for (glm::ivec3& cell : cells) cell = RandomCell(g, 64);
+  std::vector<std::uint32_t> order(kAccumulateRecordsPerWorkgroup);  // the aligned layout's cell per offset
+  for (std::uint32_t& o : order) o = g.Bits() % std::uint32_t(cells.size());
+  const std::uint32_t layout = g.Bits() % 3u;
+  std::vector<Record> records;
+  std::uint32_t cell = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (layout == 0) {
+      cell = order[i % kAccumulateRecordsPerWorkgroup];
+    } else if (layout == 1) {
+      cell = i % std::uint32_t(cells.size());
+    } else if (g.Bits() % 64u == 0u) {
+      cell = g.Bits() % std::uint32_t(cells.size());
+    }
+    records.push_back(Spoil(g, MakeVertexRecord(CellVertex(g, cells[cell], i))));
+  }
+  return records;
+}
+
+// A later frame of a sequence: each record of the first frame again with probability 3/4 (a cell joined, not
+// claimed), then up to a quarter as many records over fresh cells (new claims, eviction pressure). Pixels follow
+// the records' order.
+RecordBatch LaterFrame(RecordGenerator& g, const RecordBatch& first, std::uint32_t number) {
+  RecordBatch frame = first;
+  frame.records.clear();
+  for (const Record& r : first.records) {
+    if (g.Bits() % 4u != 0u) frame.records.push_back(r);
+  }
+  const int fresh = g.UniformInt(0, int(first.records.size() / 4));
+  for (int n = 0; n < fresh; ++n) {
+    frame.records.push_back(MakeVertexRecord(CellVertex(g, RandomCell(g, 8), 0)));
+  }
+  if (frame.records.empty()) frame.records.push_back(first.records.front());
+  for (std::uint32_t i = 0; i < frame.records.size(); ++i) frame.records[i].path.x = i;
+  frame.width = std::uint32_t(frame.records.size());
+  frame.frame = number;
+  return frame;
+}
+
+// The table's life over a sequence: a policy and a temporal mode of every kind (priority reserves the tag
+// 0xFFFFFFFF, so it keeps fingerprints of 31 bits or fewer).
+void DrawSequenceConfig(RecordGenerator& g, FilterConfig& c) {
+  const char* const evictions[] = {"none", "strict", "stale:1", "stale:2", "stale:3", "priority"};
+  const char* const temporals[] = {"integrate", "ema:0.5", "ema:0.25:8", "adaptive"};
+  c.eviction = ParseEviction(evictions[g.Bits() % 6u]);
+  c.temporal = ParseTemporal(temporals[g.Bits() % 4u]);
+  if (c.eviction.by_priority() && c.fingerprint_bits > 24) c.fingerprint_bits = 24;
+}
+
 }  // namespace
+
+std::vector<RecordBatch> AdversarialCase::Frames() const {
+  std::vector<RecordBatch> frames = {batch};
+  frames.insert(frames.end(), later.begin(), later.end());
+  return frames;
+}
+
+std::size_t AdversarialCase::Records() const {
+  std::size_t records = batch.records.size();
+  for (const RecordBatch& frame : later) records += frame.records.size();
+  return records;
+}
 
 const char* ToString(AdversarialFamily family) {
   switch (family) {
@@ -200,13 +274,16 @@ const char* ToString(AdversarialFamily family) {
     case AdversarialFamily::kWrappingWindows: return "wrapping-windows";
     case AdversarialFamily::kSharedFingerprint: return "shared-fingerprint";
     case AdversarialFamily::kKeyPath: return "key-path";
+    case AdversarialFamily::kSpread: return "spread";
   }
   return "?";
 }
 
 std::string AdversarialCase::ToString() const {
-  std::string s = std::string(hpsf::ToString(family)).append(": ").append(std::to_string(batch.records.size()));
-  s.append(" records, ").append(config.ToString());
+  std::string s = std::string(hpsf::ToString(family)).append(": ").append(std::to_string(Records()));
+  s.append(" records");
+  if (!later.empty()) s.append(" in ").append(std::to_string(later.size() + 1)).append(" frames");
+  s.append(", ").append(config.ToString());
   if (emulator.mode == simt::Mode::kFaithful) {
     s.append(", faithful warp ").append(std::to_string(emulator.warp_size)).append(" schedule ").append(emulator.schedule);
   } else {
@@ -230,8 +307,9 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
     case AdversarialFamily::kWrappingWindows: cells = WrappingWindows(g, a.config); break;
     case AdversarialFamily::kSharedFingerprint: cells = SharedFingerprint(g, a.config); break;
     case AdversarialFamily::kKeyPath: a.batch.records = KeyPath(g, a.config, count); break;
+    case AdversarialFamily::kSpread: a.batch.records = Spread(g, a.config); break;
   }
-  if (a.family != AdversarialFamily::kKeyPath) {
+  if (a.family != AdversarialFamily::kKeyPath && a.family != AdversarialFamily::kSpread) {
     if (cells.empty()) cells.push_back(RandomCell(g, 8));  // a search that found nothing still gives a batch
     a.batch.records = RecordsOverCells(g, cells, count);
   }
@@ -252,6 +330,17 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
       case 1: a.emulator.schedule = "random:" + std::to_string(schedule_seed); break;
       default: a.emulator.schedule = "pct:" + std::to_string(schedule_seed) + ":" + std::to_string(g.UniformInt(1, 4)); break;
     }
+  }
+  // Rounding: a small F of the case's own, where truncation and rounding differ.
+  if (a.config.accumulation == Accumulation::kFixed64 && g.Bits() % 4u == 0u) {
+    a.config.fixed_point_bits = g.UniformInt(-2, 9);
+  }
+  // Frame state: a sequence through one table.
+  if (g.Bits() % 4u == 0u) {
+    DrawSequenceConfig(g, a.config);
+    const int frames = g.UniformInt(2, 6);
+    for (int k = 1; k < frames; ++k) a.later.push_back(LaterFrame(g, a.batch, std::uint32_t(k)));
+    a.config.frames = std::uint32_t(frames);
   }
   a.config.Validate();
   return a;

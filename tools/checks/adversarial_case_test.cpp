@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 #include <set>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -62,6 +63,16 @@ bool ReachesItsAim(const AdversarialCase& c) {
       return false;
     }
     case AdversarialFamily::kKeyPath: return true;  // the property-test generators' own reach is generator_tests'
+    case AdversarialFamily::kSpread: {  // a cell whose records sit in two workgroups of the Vulkan accumulate
+      std::map<Words, std::set<std::size_t>> workgroups;
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (keys[i].status == shared::kKeyed) workgroups[WordsOf(keys[i])].insert(i / kAccumulateRecordsPerWorkgroup);
+      }
+      for (const auto& [words, groups] : workgroups) {
+        if (groups.size() >= 2) return true;
+      }
+      return false;
+    }
   }
   return false;
 }
@@ -79,14 +90,39 @@ TEST(AdversarialCase, IsAPureFunctionOfSeedAndRun) {
 TEST(AdversarialCase, EveryCaseIsValidAndEveryFamilyIsDrawn) {
   std::array<int, kAdversarialFamilies> families{};
   std::array<int, 4> spoiled{};  // rejected inputs, unkeyable records, records without a vertex, float32 tables
+  int sequences = 0, small_f = 0;
+  std::set<std::string> policies, temporals;
   for (std::uint64_t run = 0; run < 2000; ++run) {
     const AdversarialCase c = MakeAdversarialCase(1, run);
     ++families[std::size_t(c.family)];
     EXPECT_NO_THROW(c.config.Validate());
     EXPECT_NO_THROW(c.emulator.Validate());
     ASSERT_EQ(std::size_t(c.batch.width) * c.batch.height * c.batch.samples_per_pixel, c.batch.records.size());
-    ASSERT_GE(c.batch.records.size(), 2u);
-    ASSERT_LE(c.batch.records.size(), 96u);
+    if (c.family == AdversarialFamily::kSpread) {  // over 2 to 4 workgroups
+      ASSERT_GT(c.batch.records.size(), kAccumulateRecordsPerWorkgroup);
+      ASSERT_LE(c.batch.records.size(), 4 * kAccumulateRecordsPerWorkgroup);
+    } else {
+      ASSERT_GE(c.batch.records.size(), 2u);
+      ASSERT_LE(c.batch.records.size(), 96u);
+    }
+    // A sequence: 2 to 6 frames numbered 1, 2, ... after the first, each a valid batch, F room for all of them.
+    EXPECT_EQ(c.config.frames, c.later.size() + 1);
+    ASSERT_LE(c.later.size(), 5u);
+    for (std::size_t k = 0; k < c.later.size(); ++k) {
+      EXPECT_EQ(c.later[k].frame, k + 1);
+      ASSERT_GE(c.later[k].records.size(), 1u);
+      ASSERT_EQ(std::size_t(c.later[k].width) * c.later[k].height * c.later[k].samples_per_pixel, c.later[k].records.size());
+    }
+    sequences += !c.later.empty();
+    if (!c.later.empty()) {
+      policies.insert(c.config.eviction.ToString());
+      temporals.insert(c.config.temporal.ToString());
+    }
+    if (c.config.fixed_point_bits) {
+      small_f += 1;
+      EXPECT_GE(*c.config.fixed_point_bits, -2);
+      EXPECT_LE(*c.config.fixed_point_bits, 9);
+    }
     const std::vector<KeyResult> keys = Keys(c);
     for (std::size_t i = 0; i < keys.size(); ++i) {
       const InputVerdict verdict = CheckRecordInputs(c.batch.records[i]);
@@ -96,11 +132,19 @@ TEST(AdversarialCase, EveryCaseIsValidAndEveryFamilyIsDrawn) {
     }
     spoiled[3] += c.config.accumulation == Accumulation::kFloat32;
   }
-  // 400 expected per family; a binomial's standard deviation is 18.
+  // 333 expected per family; a binomial's standard deviation is 17.
   for (int f = 0; f < kAdversarialFamilies; ++f) {
-    EXPECT_GT(families[std::size_t(f)], 300) << ToString(AdversarialFamily(f));
-    EXPECT_LT(families[std::size_t(f)], 500) << ToString(AdversarialFamily(f));
+    EXPECT_GT(families[std::size_t(f)], 250) << ToString(AdversarialFamily(f));
+    EXPECT_LT(families[std::size_t(f)], 420) << ToString(AdversarialFamily(f));
   }
+  // One case in four a sequence (500 expected, sd 19), one fixed64 case in four a small F (375, sd 17), every
+  // policy and temporal mode drawn.
+  EXPECT_GT(sequences, 420);
+  EXPECT_LT(sequences, 580);
+  EXPECT_GT(small_f, 300);
+  EXPECT_LT(small_f, 450);
+  EXPECT_EQ(policies, (std::set<std::string>{"none", "priority", "stale:1", "stale:2", "stale:3", "strict"}));
+  EXPECT_EQ(temporals.size(), 4u);
   for (int kind = 0; kind < 4; ++kind) EXPECT_GT(spoiled[std::size_t(kind)], 100) << "kind " << kind;
 }
 

@@ -1,8 +1,9 @@
 // Shrinks a failing adversarial case to a small one that still fails, so a repro bundle shows the defect in a
-// few records: delta debugging (Zeller and Hildebrandt 2002, ddmin) over the records, then greedy
-// simplifications of the configuration (full fingerprints, fixed64 unless kept, the round-robin schedule, warp 8, the
-// shortest probe limit), then the records once more. The result is 1-minimal in its records: removing any one
-// of them makes the case pass. "Fails" is whatever the caller's predicate says, typically "the cross-check
+// few records: a sequence's frames dropped one at a time, then delta debugging (Zeller and Hildebrandt 2002, ddmin)
+// over each frame's records, then greedy simplifications of the configuration (no eviction, integrating, the
+// automatic F, full fingerprints, fixed64 unless kept, the round-robin schedule, warp 8, the shortest probe limit),
+// then the frames and records once more. The result is 1-minimal in each frame's records: removing any one of them
+// makes the case pass. "Fails" is whatever the caller's predicate says, typically "the cross-check
 // contract does not hold".
 #ifndef HPSF_TOOLS_CHECKS_CASE_SHRINKER_H
 #define HPSF_TOOLS_CHECKS_CASE_SHRINKER_H

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/eviction.h"
+#include "core/temporal.h"
 #include "tools/checks/adversarial_case.h"
 
 namespace hpsf {
@@ -45,6 +47,47 @@ TEST(ShrinkCase, ReachesTheTwoRecordsThatFailTogetherAndTheSimplestConfig) {
   EXPECT_EQ(result.shrunk.emulator.warp_size, 8u);
   EXPECT_FALSE(result.exhausted);
   EXPECT_LT(result.checks, 200u) << "ddmin on 2 of " << large.batch.records.size() << " records";
+}
+
+// A sequence of 5 frames that fails when the frame numbered 3 holds pixel 7 after a frame that holds pixel 2, under
+// stale:2 eviction and an ema: the frames in between and after go, each kept frame keeps one record, the
+// simplifications the failure needs stay and the others go.
+TEST(ShrinkCase, ASequenceShrinksToTheFramesAndRecordsThatFail) {
+  AdversarialCase c = LargeCase();
+  c.config.eviction = ParseEviction("stale:2");
+  c.config.temporal = ParseTemporal("ema:0.5");
+  c.config.fixed_point_bits = 3;
+  for (std::uint32_t k = 1; k < 5; ++k) {
+    RecordBatch frame = c.batch;
+    frame.frame = k;
+    c.later.push_back(frame);
+  }
+  c.config.frames = 5;
+  const auto fails = [](const AdversarialCase& a) {
+    const std::vector<RecordBatch> frames = a.Frames();
+    bool two = false;
+    for (const RecordBatch& f : frames) {
+      const bool has7 = std::any_of(f.records.begin(), f.records.end(), [](const Record& r) { return r.path.x == 7; });
+      const bool has2 = std::any_of(f.records.begin(), f.records.end(), [](const Record& r) { return r.path.x == 2; });
+      if (f.frame == 3 && has7 && two) return a.config.eviction.ToString() == "stale:2";
+      two = two || has2;
+    }
+    return false;
+  };
+  ASSERT_TRUE(fails(c));
+  const ShrinkResult result = ShrinkCase(c, fails);
+  const std::vector<RecordBatch> frames = result.shrunk.Frames();
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[1].frame, 3u);
+  ASSERT_EQ(frames[0].records.size(), 1u);
+  ASSERT_EQ(frames[1].records.size(), 1u);
+  EXPECT_EQ(frames[0].records[0].path.x, 2u);
+  EXPECT_EQ(frames[1].records[0].path.x, 7u);
+  EXPECT_EQ(frames[1].width, 1u);
+  EXPECT_EQ(result.shrunk.config.frames, 2u);
+  EXPECT_EQ(result.shrunk.config.eviction.ToString(), "stale:2");
+  EXPECT_EQ(result.shrunk.config.temporal.ToString(), "integrate");
+  EXPECT_FALSE(result.shrunk.config.fixed_point_bits.has_value());
 }
 
 TEST(ShrinkCase, TheResultIsOneMinimal) {

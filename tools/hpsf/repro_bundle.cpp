@@ -32,13 +32,27 @@ void WriteReproBundle(const std::string& dir_name, std::span<const RecordBatch> 
   WriteRecordFile((dir / "records.hpsfv").string(), frames);
   std::ofstream(dir / "report.json") << report.ToJson().dump(2) << "\n";
   // A user's shaders travel with the bundle, named relative to it.
-  std::vector<std::string> arguments = crosscheck_arguments;
-  for (std::size_t a = 0; a + 1 < arguments.size(); ++a) {
-    if (arguments[a] != "--accumulate-spv" && arguments[a] != "--eviction-spv") continue;
-    const std::string copy = "shaders/" + arguments[a].substr(2, arguments[a].size() - 6) + ".spv";
+  std::vector<std::string> arguments;
+  for (std::size_t a = 0; a < crosscheck_arguments.size(); ++a) {
+    const std::string& word = crosscheck_arguments[a];
+    std::string option, path;  // "--option PATH" or "--option=PATH"
+    for (const std::string name : {"--accumulate-spv", "--eviction-spv"}) {
+      if (word == name && a + 1 < crosscheck_arguments.size()) {
+        option = name;
+        path = crosscheck_arguments[++a];
+      } else if (word.rfind(name + "=", 0) == 0) {
+        option = name;
+        path = word.substr(name.size() + 1);
+      }
+    }
+    if (option.empty()) {
+      arguments.push_back(word);
+      continue;
+    }
+    const std::string copy = "shaders/" + option.substr(2, option.size() - 6) + ".spv";  // accumulate, eviction
     std::filesystem::create_directories(dir / "shaders");
-    std::filesystem::copy_file(arguments[a + 1], dir / copy, std::filesystem::copy_options::overwrite_existing);
-    arguments[a + 1] = copy;
+    std::filesystem::copy_file(path, dir / copy, std::filesystem::copy_options::overwrite_existing);
+    arguments.insert(arguments.end(), {option, copy});
   }
   std::string options;
   for (const std::string& argument : arguments) options.append(" ").append(Quoted(argument));
@@ -75,7 +89,9 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 "--probe-limit", std::to_string(c.probe_limit),
                                 "--fingerprint-bits", std::to_string(c.fingerprint_bits),
                                 "--eviction", c.eviction.ToString(),
-                                "--temporal", c.temporal.ToString()};
+                                "--temporal", c.temporal.ToString(),
+                                "--level-change", c.level_seed.ToString(),
+                                "--fixed-point-bits", c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
   const bool faithful = emulator.mode == simt::Mode::kFaithful;
   a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});

@@ -68,10 +68,12 @@ endif()
 hpsf_expect_bundle_reproduces(${dir}/out/bundles/crosscheck_cornell_small_emulated-D9_one-frame_seed1)
 
 # Shards on two "machines", merged: the same report as the unsharded run above (its out/check.json), case for case
-# in gate order, times and bundle paths aside; the merged JUnit validates and holds the same cases.
+# in gate order, times and bundle paths (and the reproduce lines that point into the bundles) aside; the merged
+# JUnit validates and holds the same cases.
 function(normalized_report text result)
   string(REGEX REPLACE "\"seconds\": [0-9.e+-]+" "\"seconds\": T" text "${text}")
   string(REGEX REPLACE "\"bundle\": \"[^\"]*\"" "\"bundle\": B" text "${text}")
+  string(REGEX REPLACE "\"reproduce\": \"sh [^\"]*/reproduce.sh\"" "\"reproduce\": R" text "${text}")
   string(REGEX REPLACE "\"shard\": \"[^\"]*\"" "\"shard\": S" text "${text}")
   string(STRIP "${text}" text)
   set(${result} "${text}" PARENT_SCOPE)
@@ -94,6 +96,8 @@ string(REGEX REPLACE "time=\"[0-9.]+\"" "" merged_junit "${merged_junit}")
 string(REGEX REPLACE "time=\"[0-9.]+\"" "" unsharded_junit "${junit}")
 string(REGEX REPLACE "repro bundle: [^\n<]*" "" merged_junit "${merged_junit}")
 string(REGEX REPLACE "repro bundle: [^\n<]*" "" unsharded_junit "${unsharded_junit}")
+string(REGEX REPLACE "reproduce: sh [^\n<]*/reproduce.sh" "" merged_junit "${merged_junit}")
+string(REGEX REPLACE "reproduce: sh [^\n<]*/reproduce.sh" "" unsharded_junit "${unsharded_junit}")
 if(NOT merged_junit STREQUAL unsharded_junit)
   message(FATAL_ERROR "the merged JUnit report:\n${merged_junit}\nthe unsharded one:\n${unsharded_junit}")
 endif()

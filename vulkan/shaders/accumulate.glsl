@@ -27,7 +27,9 @@ layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
 // _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
-// --accumulate-spv: the gate must catch each. HPSF_DEFECT_SLOT0_FOR_FAILURE and HPSF_DEFECT_GARBAGE_* write words
+// --accumulate-spv: the gate must catch each. HPSF_DEFECT_D11, _COUNT_STORE_CLAIM_FIRST, _COUNT_STORE_JOIN_FIRST
+// and _LAST_SEEN_CLAIMER_ONLY are the classes `hpsf fuzz` must find unaided (a rounding defect the automatic F
+// hides, a race one execution order hides, a frame-state defect one frame hides). HPSF_DEFECT_SLOT0_FOR_FAILURE and HPSF_DEFECT_GARBAGE_* write words
 // the host must not trust (core/read_back_check.h): each must be named as a failure, never crash the host.
 
 #if defined(HPSF_DEFECT_D12)
@@ -78,10 +80,14 @@ void WriteGarbage(uint i, TableParams t) {
 }
 #endif
 
-void AddToSlot(uint slot, Record r, float fixed_point_scale) {
+// claimed: this record's compare-and-swap claimed the slot (only the COUNT_STORE variants look at it).
+void AddToSlot(uint slot, Record r, float fixed_point_scale, bool claimed) {
   for (uint c = 0u; c < 3u; ++c) {
 #if defined(HPSF_DEFECT_D9)  // read-modify-write without an atomic: lost updates
     sums[slot * 3u + c] += ToFixedPoint(r.contribution[c], fixed_point_scale);
+#elif defined(HPSF_DEFECT_D11)  // truncated instead of rounded half to even: a bias hidden where c * 2^F is whole
+    precise float scaled = r.contribution[c] * fixed_point_scale;
+    atomicAdd(sums[slot * 3u + c], uint64_t(scaled));
 #elif defined(HPSF_FIXED64)
     uint64_t add = ToFixedPoint(r.contribution[c], fixed_point_scale);
     uint64_t old = atomicAdd(sums[slot * 3u + c], add);
@@ -94,6 +100,18 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale) {
   counts[slot] += uint64_t(1);
 #elif defined(HPSF_DEFECT_D12)  // a 32-bit sample counter: the low word of the count, which wraps silently
   atomicAdd(count_words[slot * 2u], 1u);
+#elif defined(HPSF_DEFECT_COUNT_STORE_CLAIM_FIRST)  // the claimer "initialises" the count with a plain store while
+  if (claimed) {                                    // others add atomically: an add before the store is lost
+    counts[slot] = uint64_t(1);
+  } else {
+    atomicAdd(counts[slot], uint64_t(1));
+  }
+#elif defined(HPSF_DEFECT_COUNT_STORE_JOIN_FIRST)  // the same race with the branches written the other way round
+  if (!claimed) {
+    atomicAdd(counts[slot], uint64_t(1));
+  } else {
+    counts[slot] = uint64_t(1);
+  }
 #else
   // A count of 2^64 - 1 wraps to 0 (DESIGN.md D12): no frame sequence gets there, but a table loaded with one can.
   if (atomicAdd(counts[slot], uint64_t(1)) == ~uint64_t(0)) atomicAdd(count_wraps, uint64_t(1));
@@ -167,7 +185,7 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
     if (t.claim_tombstones != 0u) {
       placement = FindOrClaim(k.slot0, fingerprint, t);
       if (placement != kPlacementProbeFailure) {
-        AddToSlot(placement, r, t.fixed_point_scale);
+        AddToSlot(placement, r, t.fixed_point_scale, false);
         last_seen[placement] = t.frame;
       }
     }
@@ -178,15 +196,23 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
       uint slot = (k.slot0 + probe) & (t.capacity - 1u);
 #endif
       uint tag = tags[slot];
+      bool claimed = false;
 #if defined(HPSF_DEFECT_D13)  // claimed by a plain store after the load: two keys race for one empty slot
       if (tag == 0u) tags[slot] = fingerprint;
 #else
-      if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, fingerprint);
+      if (tag == 0u) {
+        tag = atomicCompSwap(tags[slot], 0u, fingerprint);
+        claimed = tag == 0u;
+      }
 #endif
       // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
       if (tag != 0u && tag != fingerprint) continue;
-      AddToSlot(slot, r, t.fixed_point_scale);
+      AddToSlot(slot, r, t.fixed_point_scale, claimed);
+#if defined(HPSF_DEFECT_LAST_SEEN_CLAIMER_ONLY)  // a slot joined in a later frame keeps its old frame: looks stale
+      if (t.track_last_seen != 0u && claimed) last_seen[slot] = t.frame;
+#else
       if (t.track_last_seen != 0u) last_seen[slot] = t.frame;  // every writer stores the same frame
+#endif
 #if defined(HPSF_DEFECT_D10)
       BlendDuringAccumulate(slot, t);
 #endif
