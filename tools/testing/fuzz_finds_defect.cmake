@@ -1,6 +1,7 @@
 # `hpsf fuzz ARGS` (a ;-list) must find a failure (exit 2) within its --runs, shrink it to at most MAX_RECORDS
-# records, and leave a repro bundle whose reproduce.sh (`hpsf crosscheck records.hpsfv ...`) fails again with
-# the same report, bit for bit.
+# records (over every frame), and leave a repro bundle whose reproduce.sh (`hpsf crosscheck records.hpsfv ...`)
+# fails again with the same report, bit for bit. With TIMING_DEPENDENT, a race that fails on some runs only: the
+# failure must name EXPECT and be reported as timing-dependent, bundled as found, not shrunk or reproduced here.
 include(${CMAKE_CURRENT_LIST_DIR}/bundle_reproduces.cmake)
 set(dir ${OUT}/${NAME})
 file(REMOVE_RECURSE ${dir})
@@ -17,6 +18,15 @@ string(JSON found GET "${out}" failure records)
 string(JSON shrunk GET "${out}" failure shrunk_records)
 string(JSON shrunk_case GET "${out}" failure shrunk_case)
 message("found at run ${run} after ${seconds} s: ${found} records, shrunk to ${shrunk}: ${shrunk_case}")
+if(TIMING_DEPENDENT)
+  string(JSON timing GET "${out}" failure timing_dependent)
+  string(JSON first GET "${out}" failure report levels 1 failures 0)
+  if(NOT timing OR NOT first MATCHES "${EXPECT}" OR NOT EXISTS ${dir}/bundle/records.hpsfv)
+    message(FATAL_ERROR "expected a timing-dependent failure naming '${EXPECT}', bundled as found:
+${out}")
+  endif()
+  return()
+endif()
 if(shrunk GREATER MAX_RECORDS)
   message(FATAL_ERROR "shrunk to ${shrunk} records, expected at most ${MAX_RECORDS}")
 endif()
