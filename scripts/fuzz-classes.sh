@@ -3,7 +3,8 @@
 # broken emulator kernel, SEEDS seeds of `hpsf fuzz --runs BUDGET --json`, and per class the runs to find (median
 # and max), how many seeds missed, the shrunk records (max) and how many failures were timing-dependent (bundled as
 # found). The README's table comes from this; the ctest budgets (tools/CMakeLists.txt) are set from its maxima.
-# Usage: scripts/fuzz-classes.sh [SEEDS (20)] [BUDGET (2000)]; needs build/default and jq.
+# Usage: scripts/fuzz-classes.sh [SEEDS (20)] [BUDGET (2000)]; CLASSES=REGEX picks classes by name; needs
+# build/default and jq.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seeds=${1:-20}
@@ -28,6 +29,7 @@ printf '| class | found in | runs to find, median / max | shrunk records, max | 
 printf '| --- | --- | --- | --- | --- | --- |\n'
 for entry in "${classes[@]}"; do
   name=${entry%%|*}
+  [[ -n ${CLASSES:-} && ! $name =~ $CLASSES ]] && continue
   read -r -a args <<<"${entry#*|}"
   start=$SECONDS
   runs=()

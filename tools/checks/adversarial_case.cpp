@@ -295,7 +295,7 @@ std::string AdversarialCase::ToString() const {
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options) {
   RecordGenerator g(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 0u, 0u}, 0xADF0u));
   AdversarialCase a;
-  a.family = AdversarialFamily(g.Bits() % kAdversarialFamilies);
+  a.family = AdversarialFamily(g.Bits() % std::uint32_t(options.spread ? kAdversarialFamilies : kAdversarialFamilies - 1));
   a.config = CellKeyedConfig(g);
   a.config.accumulation = g.Bits() % 4u == 0u ? Accumulation::kFloat32 : Accumulation::kFixed64;
   if (options.accumulation) a.config.accumulation = *options.accumulation;

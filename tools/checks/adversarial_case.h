@@ -6,7 +6,7 @@
 // key path's boundary cases from the property-test generators; rejected, unkeyable and vertex-less records are
 // mixed into every family. None is aimed at one defect: each is a kind of input a correct table must survive.
 // Three dimensions cut across the families, each for a class of bug that the plain cases hide (issue 33): the spread
-// family lays a few cells over several of the Vulkan accumulate's workgroups at matching offsets, since lavapipe
+// family (Vulkan only) lays a few cells over several of the Vulkan accumulate's workgroups at matching offsets, since lavapipe
 // runs a workgroup's subgroups one after another and only its worker threads truly interleave (a race one execution
 // order hides); one fixed64 case in four takes a small F of its own, from -2 to 9 bits, where c * 2^F has a fraction
 // and rounding matters (the automatic F makes it whole and hides truncation); and one case in four is a sequence of
@@ -48,6 +48,9 @@ struct AdversarialOptions {
   std::uint32_t max_records = 96;  // per frame; the spread family sizes its batches by workgroups instead
   bool allow_fast_mode = true;  // false when a broken kernel runs: its races must replay from the schedule
   std::optional<Accumulation> accumulation;  // a user's shader may handle one mode only; else one in four is float32
+  // The spread family's thousands of records are for a device whose workgroups run at once (Vulkan); the emulator
+  // interleaves a race by its schedule in a few records, and skips the family.
+  bool spread = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -143,7 +143,7 @@ int Run(FuzzOptions& o, bool options_only) {
   const std::vector<std::string> backends = {"reference", o.backend};
   Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
   // A broken kernel's races must replay from the schedule, which the emulator's fast mode does not promise.
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation};
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, o.backend == "vulkan"};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();
