@@ -297,8 +297,7 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   AdversarialCase a;
   a.family = AdversarialFamily(g.Bits() % std::uint32_t(options.spread ? kAdversarialFamilies : kAdversarialFamilies - 1));
   a.config = CellKeyedConfig(g);
-  a.config.accumulation = g.Bits() % 4u == 0u ? Accumulation::kFloat32 : Accumulation::kFixed64;
-  if (options.accumulation) a.config.accumulation = *options.accumulation;
+  const Accumulation accumulation = g.Bits() % 4u == 0u ? Accumulation::kFloat32 : Accumulation::kFixed64;
   const std::uint32_t count = std::uint32_t(g.UniformInt(2, int(std::max(2u, options.max_records))));
   std::vector<glm::ivec3> cells;
   switch (a.family) {
@@ -309,6 +308,8 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
     case AdversarialFamily::kKeyPath: a.batch.records = KeyPath(g, a.config, count); break;
     case AdversarialFamily::kSpread: a.batch.records = Spread(g, a.config); break;
   }
+  // After the family, whose key-path configuration replaces the whole config: a user's shader handles its mode only.
+  a.config.accumulation = options.accumulation ? *options.accumulation : accumulation;
   if (a.family != AdversarialFamily::kKeyPath && a.family != AdversarialFamily::kSpread) {
     if (cells.empty()) cells.push_back(RandomCell(g, 8));  // a search that found nothing still gives a batch
     a.batch.records = RecordsOverCells(g, cells, count);

@@ -148,6 +148,20 @@ TEST(AdversarialCase, EveryCaseIsValidAndEveryFamilyIsDrawn) {
   for (int kind = 0; kind < 4; ++kind) EXPECT_GT(spoiled[std::size_t(kind)], 100) << "kind " << kind;
 }
 
+// A user's shader handles one mode: with --accum given, every case of every family is in it (the key-path family
+// once replaced the whole configuration, and ran fixed64 cases against a float32 shader).
+TEST(AdversarialCase, AGivenModeHoldsInEveryFamily) {
+  for (const Accumulation mode : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+    std::set<int> families;
+    for (std::uint64_t run = 0; run < 300; ++run) {
+      const AdversarialCase c = MakeAdversarialCase(4, run, {96, true, mode, true});
+      families.insert(int(c.family));
+      ASSERT_EQ(c.config.accumulation, mode) << c.ToString();
+    }
+    EXPECT_EQ(families.size(), std::size_t(kAdversarialFamilies));
+  }
+}
+
 TEST(AdversarialCase, EachFamilyReachesItsAim) {
   std::array<int, kAdversarialFamilies> drawn{}, reached{};
   for (std::uint64_t run = 0; run < 2000; ++run) {

@@ -50,7 +50,7 @@ struct FixedPointRange {
   }
   std::string ToString() const {
     if (!any) return "no fixed64 run";
-    return min == max ? "F " + std::to_string(min) : "F " + std::to_string(min) + " to " + std::to_string(max);
+    return "fixed64 at F " + (min == max ? std::to_string(min) : std::to_string(min) + " to " + std::to_string(max));
   }
 };
 
@@ -199,7 +199,7 @@ int Run(FuzzOptions& o, bool options_only) {
   if (o.json) {
     std::cout << ToJson(o, run, seconds, families, fixed_point, failure).dump(2) << "\n";
   } else if (!failure) {
-    std::printf("fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u, fixed64 at %s: every table passed the checker and the contract\n",
+    std::printf("fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u, %s: every table passed the checker and the contract\n",
                 (unsigned long long)run, seconds, double(run) / seconds, o.seed, fixed_point.ToString().c_str());
   } else {
     const Failure& f = *failure;
