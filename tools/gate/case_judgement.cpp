@@ -98,9 +98,32 @@ std::vector<std::string> Problems(const std::string& family, const json& report)
 
 }  // namespace
 
+namespace {
+
+// What the command's report states of its accumulation and F: a cross-check's mode and F, a fuzz run's range of F.
+std::string FixedPoint(const std::string& family, const json& report) {
+  if (family == "crosscheck" && report.contains("fixed_point_bits") && report.contains("accumulation")) {
+    const std::string mode = report["accumulation"].get<std::string>();
+    return mode == "fixed64" ? mode + ", F " + std::to_string(report["fixed_point_bits"].get<int>()) : mode;
+  }
+  if (family == "fuzz" && report.contains("fixed_point_bits") && report["fixed_point_bits"].is_object()) {
+    const int low = report["fixed_point_bits"]["min"].get<int>(), high = report["fixed_point_bits"]["max"].get<int>();
+    return "fixed64 at F " + (low == high ? std::to_string(low) : std::to_string(low) + " to " + std::to_string(high));
+  }
+  return "";
+}
+
+}  // namespace
+
 void JudgeCase(const CaseRun& run, GateCaseResult& r) {
   r.message.clear();
   r.details.clear();
+  r.fixed_point.clear();
+  try {
+    if (run.report) r.fixed_point = FixedPoint(r.family, *run.report);
+  } catch (const json::exception&) {
+    // a report that does not read is named below, where its problems are
+  }
   if (run.exit_code == kExitOk) {
     r.outcome = CaseOutcome::kPassed;
     return;

@@ -17,7 +17,9 @@ GateCaseResult Judged(const CaseRun& run, const std::string& family = "crosschec
 }
 
 nlohmann::json FailedCrosscheck() {
-  return {{"levels",
+  return {{"accumulation", "fixed64"},
+          {"fixed_point_bits", 50},
+          {"levels",
            {{{"level", 2}, {"name", "tables"}, {"applicable", true}, {"passed", false},
              {"failures", {"vulkan: invalid shader output: record 3: placement 9 is neither a slot"}}}}}};
 }
@@ -26,6 +28,15 @@ TEST(CaseJudgement, FailedCheckNamesItsLevel) {
   const GateCaseResult r = Judged({2, 0, "", FailedCrosscheck()});
   EXPECT_EQ(r.outcome, CaseOutcome::kFailed);
   EXPECT_EQ(r.message, "level 2 tables: vulkan: invalid shader output: record 3: placement 9 is neither a slot");
+  EXPECT_EQ(r.fixed_point, "fixed64, F 50");
+}
+
+TEST(CaseJudgement, StatesTheAccumulationAndFOfItsReport) {
+  EXPECT_EQ(Judged({0, 0, "", nlohmann::json{{"accumulation", "float32"}, {"fixed_point_bits", 40}}}).fixed_point,
+            "float32");
+  const nlohmann::json fuzz = {{"fixed_point_bits", {{"min", -2}, {"max", 62}}}};
+  EXPECT_EQ(Judged({0, 0, "", fuzz}, "fuzz").fixed_point, "fixed64 at F -2 to 62");
+  EXPECT_EQ(Judged({0, 0, "", nlohmann::json{{"fixed_point_bits", nullptr}}}, "fuzz").fixed_point, "");
 }
 
 TEST(CaseJudgement, SignalIsACrashOfHpsfWhateverItPrinted) {

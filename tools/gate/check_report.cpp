@@ -61,7 +61,8 @@ nlohmann::json CheckReport::ToJson() const {
                      {"details", r.details},
                      {"reproduce", r.reproduce},
                      {"bundle", r.bundle},
-                     {"html", r.html}});
+                     {"html", r.html},
+                     {"fixed_point", r.fixed_point}});
   }
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyTotals& f : Families()) {
@@ -103,6 +104,7 @@ CheckReport CheckReportFromJson(const nlohmann::json& j, const std::string& sour
     r.reproduce = At(j, at + "/reproduce", Kind::string, source).get<std::string>();
     r.bundle = At(j, at + "/bundle", Kind::string, source).get<std::string>();
     r.html = At(j, at + "/html", Kind::string, source).get<std::string>();
+    r.fixed_point = At(j, at + "/fixed_point", Kind::string, source).get<std::string>();
     if (r.index >= report.gate_cases) {
       throw InputError(source + ": " + at + "/index: " + std::to_string(r.index) + " is not below /gate_cases " +
                        std::to_string(report.gate_cases));

@@ -24,6 +24,7 @@ struct GateCaseResult {
   std::string reproduce;  // the command line that reproduces the case
   std::string bundle;     // a failed case's repro bundle, else empty
   std::string html;       // the case's own HTML report (a golden's comparisons), else empty
+  std::string fixed_point;  // the accumulation and F its report states ("fixed64, F 50"), else empty
   std::size_t index = 0;  // the case's place in the whole gate (a shard runs some of them)
 };
 

@@ -92,6 +92,7 @@ std::string RenderCheckHtml(const CheckReport& report, const std::string& page_p
     row->SetValue("ID", r.id);
     row->SetValue("SECONDS", CaseSeconds(r.seconds));
     row->SetValue("REPRODUCE", r.reproduce);
+    if (!r.fixed_point.empty()) row->AddSectionDictionary("FIXED_POINT")->SetValue("FIXED_POINT", r.fixed_point);
     if (r.outcome != CaseOutcome::kPassed) {
       ctemplate::TemplateDictionary* problem = row->AddSectionDictionary("PROBLEM");
       problem->SetValue("MESSAGE", r.message);

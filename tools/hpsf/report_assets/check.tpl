@@ -39,6 +39,7 @@
 </details>{{/PROBLEM}}
 <p class="reproduce">reproduce: <code>{{REPRODUCE}}</code></p>
 {{#BUNDLE}}<p class="bundle">repro bundle: <code>{{BUNDLE}}</code></p>{{/BUNDLE}}
+{{#FIXED_POINT}}<p class="fixed-point">accumulation: {{FIXED_POINT}}</p>{{/FIXED_POINT}}
 {{#CASE_REPORT}}<p class="case-report"><a href="{{HREF}}">the case's report</a></p>{{/CASE_REPORT}}
 </td></tr>
 {{/CASE}}
