@@ -11,9 +11,7 @@ std::string Joined(const std::string& shader, const std::vector<std::string>& fa
   return text;
 }
 
-std::string Placement(std::uint32_t placement) {
-  return placement == kProbeFailure ? "probe failure" : placement == kNotPlaced ? "not placed" : std::to_string(placement);
-}
+std::string RecordPrefix(std::size_t i) { return "record " + std::to_string(i) + ": "; }
 
 }  // namespace
 
@@ -31,27 +29,26 @@ std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t fram
   std::uint64_t placed = 0;
   for (std::size_t i = 0; i < run.placements.size() && faults.size() < limit; ++i) {
     const KeyResult& key = run.keys[i];
-    const std::string record = "record " + std::to_string(i) + ": ";
     if (key.status != shared::kKeyed && key.status != shared::kKeyNoVertex && key.status != shared::kKeyUnkeyable) {
-      fault(record + "key status " + std::to_string(key.status) +
+      fault(RecordPrefix(i) + "key status " + std::to_string(key.status) +
             " is none of keyed (0), no vertex (1) and unkeyable (2)");
       continue;
     }
     if (key.status == shared::kKeyed && key.slot0 >= t.capacity) {
-      fault(record + "slot0 " + std::to_string(key.slot0) + " is not below the capacity " + std::to_string(t.capacity));
+      fault(RecordPrefix(i) + "slot0 " + std::to_string(key.slot0) + " is not below the capacity " + std::to_string(t.capacity));
       continue;
     }
     const std::uint32_t slot = run.placements[i];
     if (slot == kProbeFailure || slot == kNotPlaced) continue;
     if (slot >= t.capacity) {
-      fault(record + "placement " + std::to_string(slot) + " is neither a slot below the capacity " +
-            std::to_string(t.capacity) + " nor " + Placement(kProbeFailure) + " (" + std::to_string(kProbeFailure) +
-            ") nor " + Placement(kNotPlaced) + " (" + std::to_string(kNotPlaced) + ")");
+      fault(RecordPrefix(i) + "placement " + std::to_string(slot) + " is neither a slot below the capacity " +
+            std::to_string(t.capacity) + " nor probe failure (" + std::to_string(kProbeFailure) + ") nor not placed (" +
+            std::to_string(kNotPlaced) + ")");
       continue;
     }
     ++placed;
     if (key.slot0 >= t.capacity || ((slot - key.slot0) & mask) >= t.probe_limit) {
-      fault(record + "placed in slot " + std::to_string(slot) + ", outside its probe window (the " +
+      fault(RecordPrefix(i) + "placed in slot " + std::to_string(slot) + ", outside its probe window (the " +
             std::to_string(t.probe_limit) + " slots from slot0 " + std::to_string(key.slot0) +
             ", wrapping at the capacity " + std::to_string(t.capacity) + ")");
     }
