@@ -203,8 +203,9 @@ int Run(FuzzOptions& o, bool options_only) {
                 (unsigned long long)run, seconds, double(run) / seconds, o.seed, fixed_point.ToString().c_str());
   } else {
     const Failure& f = *failure;
-    std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` finds it again)\n",
-                (unsigned long long)f.run, f.seconds_to_find, o.seed, o.seed, (unsigned long long)(f.run + 1));
+    std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` %s)\n", (unsigned long long)f.run,
+                f.seconds_to_find, o.seed, o.seed, (unsigned long long)(f.run + 1),
+                f.timing_dependent ? "draws the case again, which fails on some runs only" : "finds it again");
     std::printf("  found: %s\n", f.found.ToString().c_str());
     if (f.timing_dependent) {
       std::printf("  not shrunk (%llu checks, %.2f s): the failure depends on timing (a rerun of the case, or of the "
