@@ -1,7 +1,7 @@
 // The emulator's throughput on a 2-million-record batch (the Cornell box at 1080p, 1 spp) into a 2^21-slot table:
 // fast mode beside the machine's own limit, a raw loop of four random 64-bit atomic adds per record over a
 // table of the same size on all cores; fast mode as the backend runs frames (arrays kept) and in fresh memory; and
-// faithful mode on a smaller batch for its slowdown. Run:
+// faithful mode on a smaller batch for its slowdown; and the Vulkan host's read-back check over the same run. Run:
 //   build/default/bin/emulator_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <atomic>
 #include <vector>
@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/huge_pages.h"
+#include "core/read_back_check.h"
 #include "core/shared/hash.h"
 #include "emulated/emulated_backend.h"
 #include "emulated/emulated_filter.h"
@@ -67,6 +68,20 @@ void BM_EmulatedFast(benchmark::State& state) {
   state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
 BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// What the Vulkan host adds to every frame: the read-back check of core/read_back_check.h (and the probe statistics
+// it hands on to) over the 2M-record frame's run, one thread, beside the whole backend above.
+void BM_ReadBackCheck(benchmark::State& state) {
+  EmulatedBackend backend{EmulatorOptions{}};
+  backend.FilterFrame(CornellFrame(), TableConfig());
+  HashedRun run = backend.run();
+  for (auto _ : state) {
+    FinishReadBack(run, 0, "the benchmark's run");
+    benchmark::DoNotOptimize(run.probe_lengths.data());
+  }
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
+}
+BENCHMARK(BM_ReadBackCheck)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A run in fresh memory, as the first frame of a process: each array's pages faulted in and zeroed by the kernel.
 void BM_EmulatedFastFreshMemory(benchmark::State& state) {
