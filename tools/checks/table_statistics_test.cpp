@@ -55,5 +55,24 @@ TEST(TableStatistics, WarnsWhenProbeFailuresExceedTheTheory) {
   EXPECT_TRUE(failures_exceed) << s.ToJson().dump(2);
 }
 
+// A rejected jitter test is a warning like a rate above its theory (`hpsf stats` exits 1 on it), and one at the
+// threshold is rejected too (p <= alpha); a p-value above it is not.
+TEST(TableStatistics, ARejectedJitterTestWarns) {
+  const GridKeys grid;
+  TableStatistics s = MeasureTableStatistics(grid.records, grid.keys, grid.config);
+  ASSERT_FALSE(s.ExceedsTheory());
+  s.jitter_alpha = 0.01;
+  JitterVerdict verdict;
+  verdict.test = JitterTest::kMean;
+  verdict.chi_square.p_value = 0.5;
+  s.jitter = {verdict};
+  EXPECT_FALSE(s.ExceedsTheory());
+  s.jitter[0].chi_square.p_value = 0.01;
+  EXPECT_TRUE(s.ExceedsTheory());
+  s.jitter[0].chi_square.p_value = 1e-9;
+  EXPECT_TRUE(s.ExceedsTheory());
+  EXPECT_EQ(s.ToJson()["exceeds_theory"], true);
+}
+
 }  // namespace
 }  // namespace hpsf
