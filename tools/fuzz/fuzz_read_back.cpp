@@ -10,6 +10,7 @@
 // Built twice: as a libFuzzer target (preset fuzz) and as the ctest read_back_fuzz_tests, which runs the
 // checked-in corpus and a fixed number of inputs from the counter RNG (untrusted_inputs_main.cpp).
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -30,9 +31,12 @@
 namespace hpsf {
 namespace {
 
+// kStats: the counters read back beside the table (the stats words, the evicted and seeded counts).
 enum class Binding { kKeys, kPlacements, kTags, kSums, kCounts, kLastSeen, kStats, kPixels, kMaxValue = kPixels };
 
-// Words of one binding, as bytes the input overwrites.
+std::array<std::uint64_t, 4> Counters(const HashedRun& run) { return {run.wraps, run.count_wraps, run.evicted, run.seeded}; }
+
+// Words of one binding, as bytes the input overwrites (kStats has no array of its own: Corrupt copies it).
 std::span<std::uint8_t> BindingBytes(HashedRun& run, Binding binding) {
   HashTableDump& t = run.table;
   auto bytes = [](auto& vector) {
@@ -52,16 +56,15 @@ std::span<std::uint8_t> BindingBytes(HashedRun& run, Binding binding) {
     case Binding::kLastSeen:
       return bytes(t.last_seen);
     case Binding::kStats:
-      return std::span<std::uint8_t>(reinterpret_cast<std::uint8_t*>(&run.wraps), 16);
+      return {};
     case Binding::kPixels:
       return bytes(run.image.pixels);
   }
   return {};
 }
 
-// Overwrites 4-byte words of one binding: a few at places the input picks, or every word from the input's bytes.
-void Corrupt(FuzzedDataProvider& input, HashedRun& run) {
-  const std::span<std::uint8_t> bytes = BindingBytes(run, input.ConsumeEnum<Binding>());
+// Overwrites 4-byte words: a few at places the input picks, or every word from the input's bytes.
+void OverwriteWords(FuzzedDataProvider& input, std::span<std::uint8_t> bytes) {
   const std::size_t words = bytes.size() / 4;
   if (words == 0) return;
   if (input.ConsumeBool()) {
@@ -77,7 +80,23 @@ void Corrupt(FuzzedDataProvider& input, HashedRun& run) {
   }
 }
 
+// Overwrites words of one binding of the run.
+void Corrupt(FuzzedDataProvider& input, HashedRun& run) {
+  const Binding binding = input.ConsumeEnum<Binding>();
+  if (binding != Binding::kStats) {
+    OverwriteWords(input, BindingBytes(run, binding));
+    return;
+  }
+  std::array<std::uint64_t, 4> counters = Counters(run);
+  OverwriteWords(input, std::span<std::uint8_t>(reinterpret_cast<std::uint8_t*>(counters.data()), sizeof counters));
+  run.wraps = counters[0];
+  run.count_wraps = counters[1];
+  run.evicted = counters[2];
+  run.seeded = counters[3];
+}
+
 bool Differ(HashedRun& a, HashedRun& b) {
+  if (Counters(a) != Counters(b)) return true;
   for (int binding = 0; binding <= int(Binding::kMaxValue); ++binding) {
     const std::span<const std::uint8_t> x = BindingBytes(a, Binding(binding)), y = BindingBytes(b, Binding(binding));
     if (!std::equal(x.begin(), x.end(), y.begin(), y.end())) return true;
