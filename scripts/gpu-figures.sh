@@ -13,7 +13,7 @@ binaries=(key_identity_tests fixed_point_identity_tests vulkan_backend_tests vul
 case "${1:-}" in
   pack)
     set -e
-    ../shared/tools/gpu-bundle.sh build/default/bin "${binaries[@]}"
+    scripts/gpu-bundle.sh build/default/bin "${binaries[@]}"
     ;;
   run)
     out=${OUT:-gpu-figures}
