@@ -18,25 +18,26 @@ case "${1:-}" in
   run)
     out=${OUT:-gpu-figures}
     mkdir -p "$out"
+    # A step that hangs (a driver, a deadlocked kernel) ends at its limit (rc=124) so the others still run.
     step() {  # step NAME COMMAND...: output in NAME.txt, exit status in status.txt
       local name=$1; shift
       local start=$SECONDS
-      "$@" > "$out/$name.txt" 2>&1
+      timeout "${GPU_FIGURES_STEP_LIMIT_S:-200}" "$@" > "$out/$name.txt" 2>&1
       echo "$name rc=$? $((SECONDS - start))s" >> "$out/status.txt"
     }
-    bundle() { bash .gpu-bundle/run.sh "$@"; }
+    bundle=(bash .gpu-bundle/run.sh)
     aggregates=(--benchmark_repetitions=3 --benchmark_report_aggregates_only=true)
     : > "$out/status.txt"
     step machine sh -c 'nvidia-smi; nproc; lscpu'
-    step key_identity bundle key_identity_tests --gtest_brief=1
-    step fixed_point_identity bundle fixed_point_identity_tests --gtest_brief=1
-    step vulkan_backend bundle vulkan_backend_tests --gtest_brief=1
-    step vulkan_benchmark bundle vulkan_benchmark "${aggregates[@]}" \
+    step key_identity "${bundle[@]}" key_identity_tests --gtest_brief=1
+    step fixed_point_identity "${bundle[@]}" fixed_point_identity_tests --gtest_brief=1
+    step vulkan_backend "${bundle[@]}" vulkan_backend_tests --gtest_brief=1
+    step vulkan_benchmark "${bundle[@]}" vulkan_benchmark "${aggregates[@]}" \
       --benchmark_out="$out/vulkan_benchmark.json" --benchmark_out_format=json
     grep -q "ERROR OCCURRED" "$out/vulkan_benchmark.txt" &&
       echo "vulkan_benchmark: a benchmark failed" >> "$out/status.txt"
     # The emulator on every core and on two of the same machine: its scaling with cores (target 5x from 2 to 16).
-    step emulator_all_cores bundle emulator_benchmark "${aggregates[@]}" --benchmark_filter='Raw|Fast' \
+    step emulator_all_cores "${bundle[@]}" emulator_benchmark "${aggregates[@]}" --benchmark_filter='Raw|Fast' \
       --benchmark_out="$out/emulator_all_cores.json" --benchmark_out_format=json
     step emulator_2_cores taskset -c 0,1 bash .gpu-bundle/run.sh emulator_benchmark "${aggregates[@]}" \
       --benchmark_filter='Raw|Fast' --benchmark_out="$out/emulator_2_cores.json" --benchmark_out_format=json
