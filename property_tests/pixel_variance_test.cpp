@@ -4,6 +4,7 @@
 // (the naive estimate) must fail where cells are shared, which is the oracle of the cell term. Seeds are fixed, so
 // each ratio is one number that never changes between runs and the test cannot flake; each band is stated with
 // the spread a correct estimate's ratio has over seeds, and what a wrong estimate gives.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -60,15 +61,77 @@ struct Agreement {
   glm::dvec3 pixel{0.0};     // the mean over pixels of each pixel's ratio: every pixel counts the same
   glm::dvec3 weighted{0.0};  // summed variance over summed estimate: the noisiest pixels count most
   glm::dvec3 mean{0.0};      // the image mean's
+  glm::dvec3 tile{0.0};      // the mean over tiles of each tile mean's ratio (the statistical comparison's tests)
   std::string ToString() const {
-    char text[256];
+    char text[320];
     std::snprintf(text, sizeof text,
                   "per pixel (%.3f, %.3f, %.3f), weighted (%.3f, %.3f, %.3f), image mean (%.3f, "
-                  "%.3f, %.3f)",
-                  pixel.x, pixel.y, pixel.z, weighted.x, weighted.y, weighted.z, mean.x, mean.y, mean.z);
+                  "%.3f, %.3f), per tile (%.3f, %.3f, %.3f)",
+                  pixel.x, pixel.y, pixel.z, weighted.x, weighted.y, weighted.z, mean.x, mean.y, mean.z, tile.x,
+                  tile.y, tile.z);
     return text;
   }
 };
+
+// The mean of one tile of an image, tiles of `size` pixels a side.
+glm::dvec3 TileMean(const Image& image, std::uint32_t tx, std::uint32_t ty, std::uint32_t size) {
+  glm::dvec3 sum(0.0);
+  double k = 0.0;
+  for (std::uint32_t y = ty * size; y < std::min(image.height, (ty + 1) * size); ++y) {
+    for (std::uint32_t x = tx * size; x < std::min(image.width, (tx + 1) * size); ++x, k += 1.0) {
+      sum += glm::dvec3(image.pixels[std::size_t(y) * image.width + x]);
+    }
+  }
+  return sum / k;
+}
+
+// The tile means' empirical variance over the seeds against the average estimate, averaged over tiles;
+// `estimate` gives one run's estimate for tile (tx, ty).
+using TileEstimate = std::function<glm::dvec3(const SeedRun&, std::uint32_t, std::uint32_t)>;
+
+glm::dvec3 TileAgreement(const std::vector<SeedRun>& runs, const TileEstimate& estimate) {
+  const double k = double(runs.size());
+  const PixelVariance& first = runs[0].variance;
+  glm::dvec3 ratio(0.0), counted(0.0);
+  for (std::uint32_t ty = 0; ty < first.tile_variance.height; ++ty) {
+    for (std::uint32_t tx = 0; tx < first.tile_variance.width; ++tx) {
+      glm::dvec3 mean(0.0), squares(0.0), estimated(0.0);
+      for (const SeedRun& run : runs) mean += TileMean(run.image, tx, ty, first.tile_size) / k;
+      for (const SeedRun& run : runs) {
+        const glm::dvec3 d = TileMean(run.image, tx, ty, first.tile_size) - mean;
+        squares += d * d;
+        estimated += estimate(run, tx, ty) / k;
+      }
+      for (int c = 0; c < 3; ++c) {
+        if (estimated[c] == 0.0) {  // estimated noiseless (a tile of background): it must be
+          EXPECT_EQ(squares[c], 0.0) << "tile (" << tx << ", " << ty << ") channel " << c;
+          continue;
+        }
+        ratio[c] += squares[c] / (k - 1.0) / estimated[c];
+        counted[c] += 1.0;
+      }
+    }
+  }
+  return ratio / counted;
+}
+
+glm::dvec3 FullTile(const SeedRun& run, std::uint32_t tx, std::uint32_t ty) {
+  return glm::dvec3(run.variance.tile_variance.pixels[std::size_t(ty) * run.variance.tile_variance.width + tx]);
+}
+
+// Each pixel's full variance summed over the tile as if pixels were independent: misses the cells they share.
+glm::dvec3 IndependentPixelsTile(const SeedRun& run, std::uint32_t tx, std::uint32_t ty) {
+  const std::uint32_t size = run.variance.tile_size;
+  const Image& v = run.variance.variance;
+  glm::dvec3 sum(0.0);
+  double k = 0.0;
+  for (std::uint32_t y = ty * size; y < std::min(v.height, (ty + 1) * size); ++y) {
+    for (std::uint32_t x = tx * size; x < std::min(v.width, (tx + 1) * size); ++x, k += 1.0) {
+      sum += glm::dvec3(v.pixels[std::size_t(y) * v.width + x]);
+    }
+  }
+  return sum / (k * k);
+}
 
 using PixelEstimate = std::function<const Image&(const PixelVariance&)>;
 using MeanEstimate = std::function<glm::dvec3(const PixelVariance&)>;
@@ -119,6 +182,7 @@ Agreement Compare(const std::vector<SeedRun>& runs, const PixelEstimate& pixel_e
   glm::dvec3 squares(0.0);
   for (const glm::dvec3& m : means) squares += (m - mean_of_means) * (m - mean_of_means);
   agreement.mean = squares / (k - 1.0) / estimate;
+  agreement.tile = TileAgreement(runs, FullTile);
   return agreement;
 }
 
@@ -144,6 +208,10 @@ constexpr double kPixelBandFiltered = 0.10;
 constexpr double kPixelBandUnfiltered = 0.05;
 constexpr double kMeanLow = 0.4;
 constexpr double kMeanHigh = 2.5;
+// A tile mean (8x8 pixels; 16 tiles at 32x32) has the per-pixel ratio's spread over seeds without the averaging
+// over 1024 pixels: sqrt(2/23) / 4 = 0.07 for independent tiles. Measured: filtered 0.89 to 0.96, unfiltered 0.98
+// to 1.08; summing the pixels' variances as if independent (the cells they share left out) gives 2.8 to 3.2.
+constexpr double kTileBand = 0.25;
 
 TEST(PixelVariance, MatchesTheSpreadOverSeedsOfTheCornellBox) {
   const Scene scene = LoadScene("cornell");
@@ -166,6 +234,11 @@ TEST(PixelVariance, MatchesTheSpreadOverSeedsOfTheCornellBox) {
   // pixel's variance is about 1.8 times it (measured 1.71 to 1.91). The light's edge pixels, which no cell
   // touches, dominate the weighted ratio and the image mean here, so only the per-pixel ratio shows it.
   ExpectAbove(naive.pixel, 1.0 + 3.0 * kPixelBandFiltered, "the naive estimate must fall short per pixel");
+  const glm::dvec3 independent = TileAgreement(filtered, IndependentPixelsTile);
+  std::printf("tiles as independent pixels (%.3f, %.3f, %.3f)\n", independent.x, independent.y, independent.z);
+  ExpectWithin(f.tile, 1.0 - kTileBand, 1.0 + kTileBand, "filtered, per tile");
+  ExpectWithin(u.tile, 1.0 - kTileBand, 1.0 + kTileBand, "unfiltered, per tile");
+  ExpectAbove(independent, 1.0 + 2.0 * kTileBand, "tiles without the cells their pixels share must fall short");
 }
 
 TEST(PixelVariance, ImageMeanCountsTheCellsThatPixelsShare) {
@@ -179,6 +252,10 @@ TEST(PixelVariance, ImageMeanCountsTheCellsThatPixelsShare) {
   // Pixels that share a cell move together: the naive sum of per-pixel terms misses most of the image mean's
   // variance, and the statistical comparison's mean test would reject consistent renders.
   ExpectAbove(naive.mean, kMeanHigh, "the naive estimate must fall short for the image mean");
+  const glm::dvec3 independent = TileAgreement(filtered, IndependentPixelsTile);
+  std::printf("tiles as independent pixels (%.3f, %.3f, %.3f)\n", independent.x, independent.y, independent.z);
+  ExpectWithin(f.tile, 1.0 - kTileBand, 1.0 + kTileBand, "per tile");
+  ExpectAbove(independent, 1.0 + 2.0 * kTileBand, "tiles without the cells their pixels share must fall short");
 }
 
 // A record by hand: a vertex with this contribution and throughput (every channel the same but blue's
@@ -230,6 +307,13 @@ TEST(PixelVariance, AConstructedBatchHasItsHandComputedVariance) {
   ExpectPixel(v.within_pixel.pixels[0], glm::dvec3(0.0), "pixel 0 within");
   ExpectVec(v.mean_variance, glm::dvec3(1.25, 1.25, 0.25), "image mean");
   ExpectVec(v.mean_within_pixel, glm::dvec3(0.25), "image mean within");
+  // One 8x8 tile holds the whole image: its variance is the image mean's; tiles of one pixel are the pixels.
+  ASSERT_EQ(v.tile_variance.pixels.size(), 1u);
+  ExpectPixel(v.tile_variance.pixels[0], glm::dvec3(1.25, 1.25, 0.25), "the one tile");
+  const PixelVariance single = EstimatePixelVariance(batch, groups, 3, 1);
+  ASSERT_EQ(single.tile_variance.width, 2u);
+  ExpectPixel(single.tile_variance.pixels[0], glm::dvec3(4.0 / 3.0, 4.0 / 3.0, 0.0), "tile of pixel 0");
+  ExpectPixel(single.tile_variance.pixels[1], glm::dvec3(1.0, 1.0, 1.0), "tile of pixel 1");
 
   // Unfiltered, each record its own: pixel 0 values 1, 3 (S2 2, so 1); pixel 1 values 10, 4 (S2 18, so 9).
   const PixelVariance u = EstimatePixelVariance(batch, {}, 0);

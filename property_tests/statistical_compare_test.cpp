@@ -1,7 +1,9 @@
 // The statistical comparison of two renders (tools/checks/statistical_compare): two seeds of the Cornell box are
-// consistent with noise, 1% more green is seen by the image-mean test, one pixel ten times brighter by the pixel
-// test; constructed images check the arithmetic (z, the Sidak thresholds, no noise, NaN). The renders use fixed
-// seeds, so each verdict is one fixed outcome; the power stated for the 1% bias is computed from the renders.
+// consistent with noise, 1% more green is seen by the image-mean test, one pixel ten times brighter by its tile's
+// test; constructed images check the arithmetic against scipy's Welch test (p-values, degrees of freedom, the
+// Sidak levels), no noise, NaN and refusals. The renders use fixed seeds, so each verdict is one fixed outcome;
+// the power stated for the 1% bias is computed from the renders. The false-alarm rates are
+// statistical_calibration_test's.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -38,7 +40,7 @@ NoisyImage Render(std::uint32_t seed) {
   config.seed = seed;
   const FilterResult result = ReferenceFilter(batch, config);
   const PixelVariance v = EstimatePixelVariance(batch, result.placement, result.cells.size());
-  return {result.image, v.variance, v.mean_variance};
+  return {"seed " + std::to_string(seed), result.image, v.variance, v.tile_variance, v.tile_size, kSpp, v.mean_variance};
 }
 
 glm::dvec3 Mean(const Image& image) {
@@ -55,16 +57,17 @@ TEST(StatisticalCompare, TwoSeedsAreConsistentButOnePercentMoreGreenOrOneBrightP
     const StatisticalComparison c = CompareStatistically(a, b);
     std::printf("two seeds: %s\n", c.ToString().c_str());
     EXPECT_TRUE(c.consistent) << c.ToString();
-    EXPECT_EQ(c.pixels_tested, kSize * kSize);
-    EXPECT_EQ(c.pixels_rejected, 0u);
+    EXPECT_EQ(c.tiles_tested, (kSize / 8) * (kSize / 8));
+    EXPECT_EQ(c.tiles_rejected, 0u);
   }
   {
     // Green scaled by 1.01 as a render with 1% more green would be: its mean, and its variances by 1.01^2. No
-    // single pixel's test sees 1% (each pixel's noise is several percent); the image mean's does.
+    // tile's test sees 1% (each tile's noise is several percent); the image mean's does.
     SCOPED_TRACE("1% more green");
     NoisyImage greener = b;
     for (glm::vec3& v : greener.mean.pixels) v.y *= 1.01f;
     for (glm::vec3& v : greener.variance.pixels) v.y *= 1.01f * 1.01f;
+    for (glm::vec3& v : greener.tile_variance.pixels) v.y *= 1.01f * 1.01f;
     greener.mean_variance.y *= 1.01 * 1.01;
     const double power = MeanTestPower(0.01 * Mean(b.mean).y, std::sqrt(a.mean_variance.y + b.mean_variance.y));
     const StatisticalComparison c = CompareStatistically(a, greener);
@@ -72,13 +75,13 @@ TEST(StatisticalCompare, TwoSeedsAreConsistentButOnePercentMoreGreenOrOneBrightP
                 Mean(b.mean).y, std::sqrt(b.mean_variance.y), power, c.ToString().c_str());
     EXPECT_GE(power, 0.99);
     EXPECT_FALSE(c.consistent) << c.ToString();
-    EXPECT_GT(std::abs(c.mean_z.y), c.mean_threshold) << c.ToString();
-    EXPECT_LE(std::abs(c.mean_z.x), c.mean_threshold) << c.ToString();
-    EXPECT_EQ(c.pixels_rejected, 0u) << "1% is within every pixel's noise: " << c.ToString();
+    EXPECT_LT(c.mean[1].p, c.mean_level) << c.ToString();
+    EXPECT_GE(c.mean[0].p, c.mean_level) << c.ToString();
+    EXPECT_EQ(c.tiles_rejected, 0u) << "1% is within every tile's noise: " << c.ToString();
   }
   {
     // A typical pixel (its green nearest the image's mean green) ten times brighter: the image mean moves by
-    // 0.2%, within its noise, but that pixel's test sees it.
+    // 0.2%, within its noise, but the tile holding that pixel moves by 14%, which its test sees.
     SCOPED_TRACE("one pixel ten times brighter");
     NoisyImage changed = b;
     const double green = Mean(changed.mean).y;
@@ -90,72 +93,111 @@ TEST(StatisticalCompare, TwoSeedsAreConsistentButOnePercentMoreGreenOrOneBrightP
     const StatisticalComparison c = CompareStatistically(a, changed);
     std::printf("pixel %zu ten times brighter: %s\n", typical, c.ToString().c_str());
     EXPECT_FALSE(c.consistent);
-    EXPECT_EQ(c.pixels_rejected, 1u) << c.ToString();
-    EXPECT_EQ(c.worst.x, typical % kSize);
-    EXPECT_EQ(c.worst.y, typical / kSize);
-    EXPECT_LE(std::abs(c.mean_z.y), c.mean_threshold) << c.ToString();
+    EXPECT_EQ(c.tiles_rejected, 1u) << c.ToString();
+    EXPECT_EQ(c.worst.x, typical % kSize / 8 * 8);
+    EXPECT_EQ(c.worst.y, typical / kSize / 8 * 8);
+    EXPECT_GE(c.mean[1].p, c.mean_level) << c.ToString();
   }
 }
 
-NoisyImage Constant(std::uint32_t width, glm::vec3 value, glm::vec3 variance, glm::dvec3 mean_variance) {
-  NoisyImage image{Image(width, 1), Image(width, 1), mean_variance};
-  for (glm::vec3& v : image.mean.pixels) v = value;
-  for (glm::vec3& v : image.variance.pixels) v = variance;
+// Two pixels in tiles of one pixel, so 6 tile tests, of images of 4 and 9 spp: each tile's nu is 3 and 8, the
+// image mean's 6 and 16. Tile variances 0.5 and 0.2, the image mean's 0.1 and 0.05.
+NoisyImage TwoPixels(glm::vec3 first, glm::vec3 second, float tile_variance, double mean_variance, std::uint32_t spp) {
+  NoisyImage image{"constructed", Image(2, 1), Image(2, 1), Image(2, 1), 1, spp, glm::dvec3(mean_variance)};
+  image.mean.pixels = {first, second};
+  for (glm::vec3& v : image.variance.pixels) v = glm::vec3(tile_variance);
+  for (glm::vec3& v : image.tile_variance.pixels) v = glm::vec3(tile_variance);
   return image;
 }
 
-// Two pixels, so 6 pixel tests: Sidak at alpha / 2 = 0.005 puts the pixel threshold at 3.3409 and the 3 mean tests'
-// at 3.1435 (from the normal quantile, computed apart). z = 3.2 in blue, in both pixels and in the mean, lies
-// between them: only the mean test rejects. Without the correction the thresholds would be 2.81 and rejects both.
-TEST(StatisticalCompare, ConstructedImagesHaveTheirZAndSidakThresholds) {
-  const NoisyImage a = Constant(2, glm::vec3(1.0f, 2.0f, 3.2f), glm::vec3(0.5f), glm::dvec3(0.5));
-  const NoisyImage b = Constant(2, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.5f), glm::dvec3(0.5));
+// The expected figures are scipy's (scipy.stats.ttest_ind_from_stats(..., equal_var=False) for t and p, whose
+// Welch-Satterthwaite dof is (va + vb)^2 / (va^2 / nu_a + vb^2 / nu_b)), and the Sidak levels
+// 1 - (1 - 0.005)^(1/k) for k = 6 and 3.
+TEST(StatisticalCompare, ConstructedImagesHaveScipysWelchTestAndSidakLevels) {
+  const NoisyImage a = TwoPixels({3.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.1, 4);
+  const NoisyImage b = TwoPixels({0.0f, 2.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 0.2f, 0.05, 9);
   const StatisticalComparison c = CompareStatistically(a, b);
-  EXPECT_NEAR(c.pixel_threshold, 3.3408993937712923, 1e-9);
-  EXPECT_NEAR(c.mean_threshold, 3.1434915798794467, 1e-9);
-  EXPECT_EQ(c.pixels_tested, 2u);
-  EXPECT_EQ(c.pixels_rejected, 0u);
-  EXPECT_NEAR(c.worst.z, 3.2, 1e-6);
-  EXPECT_EQ(c.worst.channel, 2);
-  EXPECT_NEAR(c.mean_z.x, 1.0, 1e-12);
-  EXPECT_EQ(c.mean_z.y, 0.0);
-  EXPECT_NEAR(c.mean_z.z, 3.2, 1e-6);
-  EXPECT_FALSE(c.consistent);
-  // The same a little below the mean's threshold passes everything.
-  const NoisyImage closer = Constant(2, glm::vec3(1.0f, 2.0f, 3.1f), glm::vec3(0.5f), glm::dvec3(0.5));
-  EXPECT_TRUE(CompareStatistically(closer, b).consistent);
+  SCOPED_TRACE(c.ToString());
+  EXPECT_NEAR(c.tile_level, 0.0008350747680885284, 1e-15);
+  EXPECT_NEAR(c.mean_level, 0.0016694521863086509, 1e-15);
+  EXPECT_EQ(c.tiles_tested, 2u);
+  // Tile 0, red: t 3.586 on 5.547 dof, p 0.0132; as a z-test (p 3.4e-4) it would reject.
+  EXPECT_EQ(c.worst.x, 0u);
+  EXPECT_EQ(c.worst.channel, 0);
+  EXPECT_NEAR(c.worst.t, 3.585685828003181, 1e-6);
+  EXPECT_NEAR(c.worst.dof, 5.547169811320754, 1e-6);  // variances are floats: 0.2f is not 0.2
+  EXPECT_NEAR(c.worst.p, 0.013217571130999708, 1e-8);
+  // Image mean, red: 2 against 0.5, t 3.873 on 12.34 dof, p 0.00211, just above its level.
+  EXPECT_NEAR(c.mean[0].t, 3.8729833462074166, 1e-6);
+  EXPECT_NEAR(c.mean[0].dof, 12.342857142857143, 1e-6);
+  EXPECT_NEAR(c.mean[0].p, 0.002106947548657611, 1e-8);
+  EXPECT_EQ(c.mean[1].t, 0.0);
+  EXPECT_EQ(c.tiles_rejected, 0u);
+  EXPECT_TRUE(c.consistent);
+  // Red of pixel 0 at 6: the tile's p 5.26e-4 is below its level; the image mean's t 7.7 too.
+  const StatisticalComparison far = CompareStatistically(TwoPixels({6.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.1, 4), b);
+  EXPECT_NEAR(far.worst.p, 0.0005257981003041197, 1e-9);
+  EXPECT_EQ(far.tiles_rejected, 1u);
+  EXPECT_FALSE(far.consistent);
+  // The image mean alone: red 2.3 against 0.5 with the tiles unchanged (p 5.2e-4 below 0.00167).
+  NoisyImage brighter = a;
+  brighter.mean.pixels[1].x = 1.6f;
+  const StatisticalComparison mean_only = CompareStatistically(brighter, b);
+  EXPECT_NEAR(mean_only.mean[0].p, 0.0005227157449064351, 1e-8);
+  EXPECT_EQ(mean_only.tiles_rejected, 0u) << mean_only.ToString();
+  EXPECT_FALSE(mean_only.consistent);
 }
 
 TEST(StatisticalCompare, WithoutNoiseAnyDifferenceRejectsAndEqualityPasses) {
-  const NoisyImage a = Constant(3, glm::vec3(1.0f), glm::vec3(0.0f), glm::dvec3(0.0));
+  const NoisyImage a = TwoPixels(glm::vec3(1.0f), glm::vec3(1.0f), 0.0f, 0.0, 4);
   EXPECT_TRUE(CompareStatistically(a, a).consistent);
   NoisyImage b = a;
   b.mean.pixels[1].y = std::nextafter(1.0f, 2.0f);
   const StatisticalComparison c = CompareStatistically(a, b);
   EXPECT_FALSE(c.consistent);
-  EXPECT_EQ(c.pixels_rejected, 1u);
+  EXPECT_EQ(c.tiles_rejected, 1u);
   EXPECT_EQ(c.worst.x, 1u);
-  EXPECT_EQ(c.worst.z, -std::numeric_limits<double>::infinity());
-  EXPECT_EQ(c.mean_z.y, -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(c.worst.t, -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(c.mean[1].t, -std::numeric_limits<double>::infinity());
 }
 
 TEST(StatisticalCompare, ANanRejectsAndIsTheWorst) {
-  const NoisyImage a = Constant(3, glm::vec3(1.0f), glm::vec3(1.0f), glm::dvec3(1.0));
+  const NoisyImage a = TwoPixels(glm::vec3(1.0f), glm::vec3(1.0f), 1.0f, 1.0, 4);
   NoisyImage b = a;
-  b.mean.pixels[2].x = std::numeric_limits<float>::quiet_NaN();
+  b.mean.pixels[1].x = std::numeric_limits<float>::quiet_NaN();
   b.mean.pixels[0].z = 1000.0f;
   const StatisticalComparison c = CompareStatistically(a, b);
   EXPECT_FALSE(c.consistent);
-  EXPECT_EQ(c.pixels_rejected, 2u);
-  EXPECT_EQ(c.worst.x, 2u);
-  EXPECT_TRUE(std::isnan(c.worst.z));
+  EXPECT_EQ(c.tiles_rejected, 2u);
+  EXPECT_EQ(c.worst.x, 1u);
+  EXPECT_TRUE(std::isnan(c.worst.p));
 }
 
-TEST(StatisticalCompare, ImagesOfDifferentSizesAreBadInput) {
-  const NoisyImage a = Constant(3, glm::vec3(1.0f), glm::vec3(1.0f), glm::dvec3(1.0));
-  const NoisyImage b = Constant(2, glm::vec3(1.0f), glm::vec3(1.0f), glm::dvec3(1.0));
-  EXPECT_THROW(CompareStatistically(a, b), InputError);
+TEST(StatisticalCompare, BadInputIsRefusedNamingTheImage) {
+  const NoisyImage a = TwoPixels(glm::vec3(1.0f), glm::vec3(1.0f), 1.0f, 1.0, 4);
+  NoisyImage wider = a;
+  wider.source = "wider.exr";
+  wider.mean = wider.variance = Image(3, 1);
+  wider.tile_variance = Image(3, 1);
+  EXPECT_THROW(CompareStatistically(a, wider), InputError);
   EXPECT_THROW(CompareStatistically(a, a, 0.0), InputError);
+  NoisyImage coarser = a;
+  coarser.tile_size = 2;
+  coarser.tile_variance = Image(1, 1);
+  EXPECT_THROW(CompareStatistically(a, coarser), InputError);
+  NoisyImage sparse = a;
+  sparse.source = "sparse.exr";
+  sparse.samples_per_pixel = kMinimumStatisticalSpp - 1;
+  try {
+    CompareStatistically(a, sparse);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sparse.exr: " + std::to_string(kMinimumStatisticalSpp - 1) + " samples per pixel"),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--spp " + std::to_string(kMinimumStatisticalSpp)), std::string::npos) << e.what();
+  }
+  // The calibration measures below the minimum on purpose.
+  EXPECT_NO_THROW(CompareStatistically(a, sparse, 0.01, 1));
 }
 
 // The power of the mean test: at a shift of sigma times the threshold it rejects half the time, at no shift with

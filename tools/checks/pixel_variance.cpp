@@ -66,6 +66,67 @@ Groups CollectGroups(const RecordBatch& batch, std::span<const std::uint32_t> gr
 
 glm::vec3 F(glm::dvec3 v) { return glm::vec3(v); }
 
+// The sums over one band of tiles (tile_size rows of pixels) that make each tile's variance: S2_p / n, the pairs
+// inside pixels, and per (tile, cell) T_Rc and A_Rc, gathered pixel by pixel and summed when the band is done, so
+// that memory grows with one band's reads, not the image's.
+class TileSums {
+ public:
+  TileSums(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size)
+      : width_(width), tile_size_(tile_size), tiles_x_((width + tile_size - 1) / tile_size),
+        tiles_((height + tile_size - 1) / tile_size * tiles_x_) {}
+
+  std::size_t TileOf(std::size_t pixel) const {
+    return pixel / width_ / tile_size_ * tiles_x_ + pixel % width_ / tile_size_;
+  }
+  void AddPixel(std::size_t tile, glm::dvec3 within, glm::dvec3 pairs) {
+    tiles_[tile].within += within;
+    tiles_[tile].pairs_in_pixels += pairs;
+  }
+  void AddReads(std::size_t tile, std::uint32_t group, glm::dvec3 throughput, glm::dvec3 squares) {
+    band_.push_back({std::uint32_t(tile), group, throughput, squares});
+  }
+  // The band's pairs across pixels, once its last pixel is in.
+  void EndBand(std::span<const glm::dvec3> mean_variance_of_group) {
+    std::sort(band_.begin(), band_.end(),
+              [](const Reads& a, const Reads& b) { return a.tile != b.tile ? a.tile < b.tile : a.group < b.group; });
+    for (std::size_t k = 0; k < band_.size();) {
+      const Reads& first = band_[k];
+      glm::dvec3 t(0.0), a(0.0);
+      for (; k < band_.size() && band_[k].tile == first.tile && band_[k].group == first.group; ++k) {
+        t += band_[k].throughput;
+        a += band_[k].squares;
+      }
+      tiles_[first.tile].pairs_across += (t * t - a) * mean_variance_of_group[first.group];
+    }
+    band_.clear();
+  }
+  // Var(M_R) per tile, K its pixels.
+  Image Variances(std::uint32_t height, std::size_t n) const {
+    Image out(tiles_x_, std::uint32_t(tiles_.size() / tiles_x_));
+    for (std::size_t r = 0; r < tiles_.size(); ++r) {
+      const std::uint32_t tx = std::uint32_t(r % tiles_x_), ty = std::uint32_t(r / tiles_x_);
+      const double k = double(std::min(tile_size_, width_ - tx * tile_size_)) *
+                       double(std::min(tile_size_, height - ty * tile_size_));
+      const Tile& tile = tiles_[r];
+      const glm::dvec3 pairs = (n > 1 ? tile.pairs_in_pixels / double(n - 1) : glm::dvec3(0.0)) + tile.pairs_across;
+      out.pixels[r] = F(tile.within / (k * k) + pairs / (double(n) * k * double(n) * k));
+    }
+    return out;
+  }
+
+ private:
+  struct Tile {
+    glm::dvec3 within{0.0}, pairs_in_pixels{0.0}, pairs_across{0.0};
+  };
+  struct Reads {
+    std::uint32_t tile, group;
+    glm::dvec3 throughput, squares;
+  };
+  std::uint32_t width_, tile_size_, tiles_x_;
+  std::vector<Tile> tiles_;
+  std::vector<Reads> band_;
+};
+
 }  // namespace
 
 std::string PixelVariance::ToString() const {
@@ -81,8 +142,9 @@ std::string PixelVariance::ToString() const {
 }
 
 PixelVariance EstimatePixelVariance(const RecordBatch& batch, std::span<const std::uint32_t> group_of_record,
-                                    std::size_t group_count) {
+                                    std::size_t group_count, std::uint32_t tile_size) {
   CheckBatchShape(batch);
+  if (tile_size == 0) throw std::invalid_argument("EstimatePixelVariance: a tile of 0 pixels");
   if (!group_of_record.empty() && group_of_record.size() != batch.records.size()) {
     throw std::invalid_argument("EstimatePixelVariance: " + std::to_string(group_of_record.size()) +
                                 " group entries for " + std::to_string(batch.records.size()) + " records");
@@ -93,7 +155,9 @@ PixelVariance EstimatePixelVariance(const RecordBatch& batch, std::span<const st
 
   PixelVariance result;
   result.variance = result.within_pixel = Image(batch.width, batch.height);
+  result.tile_size = tile_size;
   if (result.variance.pixels.empty()) return result;
+  TileSums tiles(batch.width, batch.height, tile_size);
   // Per group over all samples: T_c, the throughput, and A_c, its squares, for the pairs across pixels.
   std::vector<glm::dvec3> throughput_of_group(groups.count.size(), glm::dvec3(0.0));
   std::vector<glm::dvec3> squares_of_group(groups.count.size(), glm::dvec3(0.0));
@@ -101,6 +165,7 @@ PixelVariance EstimatePixelVariance(const RecordBatch& batch, std::span<const st
   std::vector<glm::dvec3> values(n);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> reads;  // (group, sample) of the pixel's grouped samples
   for (std::size_t pixel = 0; pixel < result.variance.pixels.size(); ++pixel) {
+    const std::size_t tile = tiles.TileOf(pixel);
     glm::dvec3 mean(0.0);
     reads.clear();
     for (std::size_t s = 0; s < n; ++s) {
@@ -136,12 +201,18 @@ PixelVariance EstimatePixelVariance(const RecordBatch& batch, std::span<const st
       throughput_of_group[c] += sum;
       squares_of_group[c] += sum_of_squares;
       pairs += (sum * sum - sum_of_squares) * groups.mean_variance[c];
+      tiles.AddReads(tile, c, sum, sum_of_squares);
     }
     pairs_in_pixels += pairs;
+    tiles.AddPixel(tile, within, pairs);
     const glm::dvec3 shared = n > 1 ? pairs / (double(n) * double(n - 1)) : glm::dvec3(0.0);
     result.within_pixel.pixels[pixel] = F(within);
     result.variance.pixels[pixel] = F(within + shared);
+    const std::size_t row = pixel / batch.width;
+    const bool row_done = pixel % batch.width == batch.width - 1;
+    if (row_done && (row % tile_size == tile_size - 1 || row == batch.height - 1)) tiles.EndBand(groups.mean_variance);
   }
+  result.tile_variance = tiles.Variances(batch.height, n);
 
   result.mean_within_pixel = within_sum / (pixels * pixels);
   // Every pair of samples that read one cell, in one pixel or in two, is correlated by q_c; the pairs inside a

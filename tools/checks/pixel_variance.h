@@ -19,6 +19,13 @@
 // The image mean (1/P) sum_p P_p, whose test has the power against a small bias, gets every pair of samples
 // that read one cell, in one pixel or in two, T_c and A_c summed over all samples reading c:
 //   Var ~= (1/P^2) sum_p S2_p / n + (1/(n P))^2 [sum_p sum_c q_c (T_pc^2 - A_pc) / (n - 1) + sum_c q_c (T_c^2 - A_c)].
+// Any square tile R of K pixels is the same sum over R's pixels and the pairs of R's samples that read one cell
+// (T_Rc and A_Rc summed over R):
+//   Var(M_R) ~= (1/K^2) sum_p S2_p / n + (1/(n K))^2 [sum_p sum_c q_c (T_pc^2 - A_pc) / (n - 1) + sum_c q_c (T_Rc^2 - A_Rc)],
+// which is the image mean's for one tile over the whole image and the pixel's for tiles of one pixel. The
+// statistical comparison tests tiles, not pixels: a pixel's S2_p rests on n samples, so at a few spp it often
+// misses most of the pixel's noise (all n samples jittered into one cell, none into its neighbour), while a tile's
+// rests on K (n - 1) degrees of freedom.
 // S2_p needs two samples: with one it is 0 and the estimate is meaningless, so the command line refuses --variance
 // below 2 samples per pixel.
 #ifndef HPSF_TOOLS_CHECKS_PIXEL_VARIANCE_H
@@ -36,9 +43,17 @@
 
 namespace hpsf {
 
+// The tiles' edge in pixels: 8 holds 64 pixels, so 64 (n - 1) degrees of freedom a tile at n spp, and still
+// tells a wrong region of an image from a wrong image.
+constexpr std::uint32_t kVarianceTile = 8;
+
 struct PixelVariance {
   Image variance;                 // Var(P_p) per pixel and channel
   glm::dvec3 mean_variance{0.0};  // the variance of the image mean, per channel
+  // The variance of each tile's mean, tiles of tile_size pixels a side from the top left (those of the last row and
+  // column smaller where the size does not divide), one texel a tile: ceil(W / tile_size) x ceil(H / tile_size).
+  Image tile_variance;
+  std::uint32_t tile_size = kVarianceTile;
   // The within-pixel term alone (S2_p / n, and its share of the image mean's variance): the naive estimate,
   // kept to show how much of the noise comes from cells shared between pixels.
   Image within_pixel;
@@ -52,7 +67,7 @@ struct PixelVariance {
 // in its pixel's n); neither it nor a record without a vertex joins a group, whatever its entry says, as no
 // backend places them. Sequential in double, so no bit depends on the machine's threads.
 PixelVariance EstimatePixelVariance(const RecordBatch& batch, std::span<const std::uint32_t> group_of_record,
-                                    std::size_t group_count);
+                                    std::size_t group_count, std::uint32_t tile_size = kVarianceTile);
 
 }  // namespace hpsf
 

@@ -2,25 +2,22 @@
 // --variance (tools/checks/pixel_variance.h), so that a regression test of a Monte Carlo renderer needs neither
 // the same seed nor a hand-tuned tolerance.
 //
-// H0: both images estimate the same expected image, each pixel's error roughly normal with the variance given.
-// Two families of two-sided z tests, each held at alpha / 2 by the Sidak correction, so the whole comparison
-// wrongly rejects two consistent renders with probability at most alpha (under the normal approximation; Sidak's
-// inequality holds for two-sided tests of correlated normal z, so pixels that share cells keep the level):
-//  - per pixel and channel, z = (a - b) / sqrt(va + vb) over the 3P tests: power against a large change in few
-//    pixels (a firefly, a broken cell, a wrong texel). A test with va + vb == 0 rejects exactly when a != b.
-//  - per channel, the image mean, z = (mean_a - mean_b) / sqrt(mean_variance_a + mean_variance_b) over the 3
-//    tests: power against a small bias spread over the image (an albedo, a light or a lost 1% of the energy),
-//    which no single pixel's test can see. Its variance counts the correlation of pixels that share a cell.
-// The alternative it rejects is a difference in the expected image: a pixel's shifted by about 5 of its standard
-// deviations (the pixel threshold, 5.07 for 64x64), or a channel's mean shifted by delta, found with power
-// Phi(delta / sigma - t) + Phi(-delta / sigma - t) (MeanTestPower), t the mean threshold (3.14 at alpha 0.01) and
-// sigma = sqrt(mean_variance_a + mean_variance_b). Measured (property_tests/statistical_compare_test): the Cornell
-// box looking at the floor, reference filter, 64x64 at 192 spp, green mean 0.0379 with 4.85e-5 a render: 1% more
-// green is 5.5 sigma, power 0.992 (its z came out -6.37; two seeds gave |z| <= 0.85). In the plain view at 256 spp
-// the light's edge pixels make it 3.4e-4 for a mean of 0.131: 1% is 2.7 sigma, power 0.34; there the light's own
-// pixels (12 in green, little noise) show the 1% to the pixel test instead. Both tests take the errors as normal;
-// a pixel of few heavy-tailed samples can pass its threshold more often than alpha says (two consistent renders
-// above: worst |z| 3.57 of 5.07).
+// H0: both images estimate the same expected image. Two families of two-sided Welch t-tests (Welch 1947; for
+// renders, Jung, Hanika and Dachsbacher, "Detecting Bias in Monte Carlo Renderers using Welch's t-test", JCGT
+// 2020, who test block means for the reason below), each held at alpha / 2 by the Sidak correction, so the whole
+// comparison wrongly rejects two consistent renders with probability at most alpha:
+//  - per tile (8x8 pixels) and channel, t = (M_a - M_b) / sqrt(V_a + V_b), V the variance of the tile mean with
+//    the correlation of pixels that share a cell, over 3 x tiles tests: power against a change of a region (a
+//    broken cell, a wrong texture, a light leak). Not per pixel: a pixel's variance rests on its n samples, and at
+//    a few spp it often misses most of the pixel's noise (every sample jittered into one cell, none into its
+//    neighbour): two seeds of the Cornell box at 4 spp gave per-pixel |z| up to 49 against a threshold of 5.07.
+//  - per channel, the image mean, over 3 tests: power against a small bias spread over the image (an albedo, a
+//    light or a lost 1% of the energy), which no tile's test can see.
+// Degrees of freedom by Welch-Satterthwaite, each image's nu = K (n - 1) for a mean over K pixels of n samples.
+// The t-test takes each mean as normal; tile means of 64 n samples are close enough from kMinimumStatisticalSpp
+// on, and below it the comparison refuses (measured false-alarm rates, README "Statistical comparison").
+// Power against a shift delta of one channel's image mean: Phi(delta / sigma - t) + Phi(-delta / sigma - t)
+// (MeanTestPower), t the mean threshold (3.14 at alpha 0.01), sigma = sqrt(V_a + V_b).
 #ifndef HPSF_TOOLS_CHECKS_STATISTICAL_COMPARE_H
 #define HPSF_TOOLS_CHECKS_STATISTICAL_COMPARE_H
 
@@ -35,44 +32,58 @@
 
 namespace hpsf {
 
-// An image with its noise: each pixel's variance and the variance of the image mean, per channel.
+// Below this many samples per pixel in either image, `diff --statistical` refuses: the measured false-alarm rate
+// of two seeds exceeded alpha there.
+constexpr std::uint32_t kMinimumStatisticalSpp = 4;
+
+// An image with its noise: each pixel's variance (shown, not tested), each tile's and the image mean's.
 struct NoisyImage {
+  std::string source;  // the file, for messages
   Image mean;
   Image variance;
+  Image tile_variance;  // one texel a tile: ceil(W / tile_size) x ceil(H / tile_size)
+  std::uint32_t tile_size = 8;
+  std::uint32_t samples_per_pixel = 0;
   glm::dvec3 mean_variance{0.0};
 };
 
-// The mean (R, G, B), the variance (variance.R, .G, .B, found by name) and the image mean's variance (metadata
-// mean_variance, three numbers) of an image rendered with --variance; InputError naming the file and what is
-// missing otherwise.
+// The mean (R, G, B), the variances (variance.*, tile_variance.*, found by name), the image mean's variance
+// (metadata mean_variance), spp and variance_tile of an image rendered with --variance; InputError naming the file
+// and what is missing or malformed otherwise.
 NoisyImage ToNoisyImage(const ChannelImage& image);
 
-struct PixelZ {
-  std::uint32_t x = 0;
+struct TileT {
+  std::uint32_t x = 0;  // the tile's top-left pixel
   std::uint32_t y = 0;
   int channel = 0;
-  double z = 0.0;  // signed, a - b; infinite where the variances are 0 and the values differ, NaN for a NaN input
+  double t = 0.0;    // signed, a - b; infinite where both variances are 0 and the means differ, NaN for a NaN input
+  double dof = 0.0;  // Welch-Satterthwaite
+  double p = 1.0;    // two-sided
 };
 
 struct StatisticalComparison {
   double alpha = 0.01;
-  std::uint64_t pixels_tested = 0;
-  std::uint64_t pixels_rejected = 0;  // pixels with at least one channel past the threshold
-  PixelZ worst;                       // the largest |z| (a NaN counts as the largest)
-  double pixel_threshold = 0.0;       // a pixel test rejects beyond |z| > this
-  glm::dvec3 mean_z{0.0};
-  double mean_threshold = 0.0;
+  std::uint32_t tile_size = 8;
+  std::uint64_t tiles_tested = 0;
+  std::uint64_t tiles_rejected = 0;  // tiles with at least one channel below the level
+  TileT worst;                       // the smallest p (a NaN counts as the smallest)
+  double tile_level = 0.0;           // a tile test rejects when p < this
+  TileT mean[3];                     // the image mean's test per channel (x, y 0)
+  double mean_level = 0.0;
   bool consistent = true;  // no test of either family rejected
   std::string ToString() const;
 };
 
 nlohmann::json ToJson(const StatisticalComparison& comparison);
 
-// Throws InputError when the images' sizes differ.
-StatisticalComparison CompareStatistically(const NoisyImage& a, const NoisyImage& b, double alpha = 0.01);
+// Throws InputError when the images' sizes or tiles differ, or either has fewer than minimum_spp (lower only to
+// measure the rates below the minimum, tools/calibration).
+StatisticalComparison CompareStatistically(const NoisyImage& a, const NoisyImage& b, double alpha = 0.01,
+                                           std::uint32_t minimum_spp = kMinimumStatisticalSpp);
 
 // The probability that the image-mean test of one channel rejects when the expected means differ by `bias`,
-// sigma = sqrt(mean_variance_a + mean_variance_b); the family's power is at least this.
+// sigma = sqrt(mean_variance_a + mean_variance_b), in the normal limit (many degrees of freedom); the family's
+// power is at least this.
 double MeanTestPower(double bias, double sigma, double alpha = 0.01);
 
 }  // namespace hpsf

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "tools/checks/pixel_variance.h"
@@ -27,6 +28,18 @@ PixelVariance EstimateVariance(const RecordBatch& batch, const BackendOutput& re
     return EstimatePixelVariance(batch, result.reference->placement, result.reference->cells.size());
   }
   return EstimatePixelVariance(batch, Hashed(result).placements, Hashed(result).table.capacity);
+}
+
+// Each pixel holds its tile's variance, so the file keeps one size for every channel.
+Image TileVarianceLayer(const PixelVariance& v) {
+  Image layer(v.variance.width, v.variance.height);
+  const std::uint32_t t = v.tile_size;
+  for (std::uint32_t y = 0; y < layer.height; ++y) {
+    for (std::uint32_t x = 0; x < layer.width; ++x) {
+      layer.pixels[std::size_t(y) * layer.width + x] = v.tile_variance.pixels[std::size_t(y / t) * v.tile_variance.width + x / t];
+    }
+  }
+  return layer;
 }
 
 // Every digit of a double, so the statistical comparison reads back exactly what was estimated.
@@ -64,11 +77,14 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
     report["timings"]["variance_s"] = SecondsSince(variance_start);
     metadata["mean_variance"] = Digits(variance->mean_variance);
     metadata["spp"] = std::to_string(batch.samples_per_pixel);
+    metadata["variance_tile"] = std::to_string(variance->tile_size);
     report["mean_variance"] = {variance->mean_variance.x, variance->mean_variance.y, variance->mean_variance.z};
   }
   const auto write_start = std::chrono::steady_clock::now();
-  const std::string preview =
-      WriteImageFiles(request.output, image, metadata, variance ? &variance->variance : nullptr);
+  const Image tile_variance = variance ? TileVarianceLayer(*variance) : Image();
+  std::vector<ImageLayer> layers;
+  if (variance) layers = {{"variance", &variance->variance}, {"tile_variance", &tile_variance}};
+  const std::string preview = WriteImageFiles(request.output, image, metadata, layers);
 
   report["filtered"] = !options.no_filter;
   report["backend"] = request.backend;

@@ -247,14 +247,20 @@ void RunBless(const GoldenOptions& o) {
     } else {
       ComparisonOptions exact;
       exact.thresholds = {DiffMetric::kMaxAbs, 0.0, 0.0};
-      const ImageComparison change =
-          CompareImages(ReadChannelImage(rendered.string()), ReadChannelImage(c->golden), exact);
-      if (change.verdict == DiffVerdict::kPass && change.metadata.empty()) {
-        std::printf("unchanged  %-32s %s\n", c->name.c_str(), c->golden.c_str());
-        continue;
+      try {
+        const ImageComparison change =
+            CompareImages(ReadChannelImage(rendered.string()), ReadChannelImage(c->golden), exact);
+        if (change.verdict == DiffVerdict::kPass && change.metadata.empty()) {
+          std::printf("unchanged  %-32s %s\n", c->name.c_str(), c->golden.c_str());
+          continue;
+        }
+        what = "changed: " + change.Explanation() + ", rmse " + std::to_string(change.metrics.rmse);
+        for (const MetadataDifference& d : change.metadata) what += "; " + d.ToString();
+      } catch (const InputError& e) {
+        // Another size or other channels (a format that grew a layer), or an old golden that no longer reads:
+        // blessing is how it is replaced, so say why it could not be compared and write the new one.
+        what = std::string("changed: the old golden cannot be compared: ") + e.what();
       }
-      what = "changed: " + change.Explanation() + ", rmse " + std::to_string(change.metrics.rmse);
-      for (const MetadataDifference& d : change.metadata) what += "; " + d.ToString();
     }
     fs::create_directories(fs::path(c->golden).parent_path());
     fs::copy_file(rendered, c->golden, fs::copy_options::overwrite_existing);

@@ -33,7 +33,7 @@ void CopyHpsfMetadata(const OIIO::ImageSpec& spec, std::map<std::string, std::st
 }  // namespace
 
 std::string WriteImageFiles(const std::string& exr_path, const Image& image,
-                            const std::map<std::string, std::string>& metadata, const Image* variance) {
+                            const std::map<std::string, std::string>& metadata, std::span<const ImageLayer> layers) {
   const std::filesystem::path exr(exr_path);
   if (exr.extension() != ".exr") throw InputError(exr_path + ": the output must be an .exr file");
   const std::filesystem::path png = std::filesystem::path(exr).replace_extension(".png");
@@ -47,19 +47,24 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
   // OpenEXR writes chunks in the order its threads finish them; one thread makes the file bytes, not only the
   // pixels, the same on every run, so files can be compared as files.
   OIIO::attribute("exr_threads", 1);
-  if (variance && (variance->width != image.width || variance->height != image.height)) {
-    throw std::invalid_argument(exr_path + ": the variance image's size differs from the image's");
+  std::vector<const Image*> planes{&image};
+  std::vector<std::string> names{"R", "G", "B"};
+  for (const ImageLayer& layer : layers) {
+    if (layer.image->width != image.width || layer.image->height != image.height) {
+      throw std::invalid_argument(exr_path + ": the " + layer.name + " image's size differs from the image's");
+    }
+    planes.push_back(layer.image);
+    for (const char* c : {".R", ".G", ".B"}) names.push_back(layer.name + c);
   }
-  OIIO::ImageSpec spec(int(image.width), int(image.height), variance ? 6 : 3, OIIO::TypeDesc::FLOAT);
-  // The variance rides in the same file, by channel name, so the image and its noise cannot be separated.
+  OIIO::ImageSpec spec(int(image.width), int(image.height), int(names.size()), OIIO::TypeDesc::FLOAT);
+  // The layers ride in the same file, by channel name, so the image and its noise cannot be separated.
+  spec.channelnames = names;
   std::vector<float> channels;
-  if (variance) {
-    spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-    channels.reserve(image.pixels.size() * 6);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-      for (const glm::vec3& v : {image.pixels[i], variance->pixels[i]}) {
-        channels.insert(channels.end(), {v.x, v.y, v.z});
-      }
+  channels.reserve(image.pixels.size() * names.size());
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (const Image* plane : planes) {
+      const glm::vec3& v = plane->pixels[i];
+      channels.insert(channels.end(), {v.x, v.y, v.z});
     }
   }
   for (const auto& [key, value] : metadata) spec.attribute("hpsf:" + key, value);
@@ -76,8 +81,7 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
   // call created, the EXR already renamed into place included, so no output is left half made.
   bool exr_placed = false;
   try {
-    const void* pixels = variance ? static_cast<const void*>(channels.data()) : image.pixels.data();
-    Write(exr_temporary.string(), spec, pixels, exr_path);
+    Write(exr_temporary.string(), spec, channels.data(), exr_path);
     Write(png_temporary.string(), preview_spec, preview.data(), png.string());
     std::error_code failed;
     std::filesystem::rename(exr_temporary, exr, failed);

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -78,7 +79,7 @@ ReferenceImage GetReferenceImage(const Scene& scene, const std::string& scene_na
                      {"frame", std::to_string(request.trace.frame)},
                      {"tracer_version", std::to_string(kTracerVersion)},
                      {"reference", result.description}},
-                    &image.variance);
+                    std::vector<ImageLayer>{{"variance", &image.variance}});
     WriteReferenceSidecar(result.entry, result.description, SecondsSince(start));
   }
   result.seconds = SecondsSince(start);

@@ -62,7 +62,7 @@ string(JSON manifest SET "${manifest}" cases ${last} args 5 "\"2\"")
 file(WRITE ${golden}/manifest.json "${manifest}")
 run(0 "PASS  cornell-floor/statistical +reference PASS: consistent with noise.*2 checks of 1 cases: 2 pass"
     check --manifest ${golden}/manifest.json cornell-floor/statistical)
-execute_process(COMMAND oiiotool ${golden}/cornell-floor-statistical.exr --mulc 1,0.99,1,1,1,1
+execute_process(COMMAND oiiotool ${golden}/cornell-floor-statistical.exr --mulc 1,0.99,1,1,1,1,1,1,1
                         -o ${golden}/cornell-floor-statistical.exr RESULT_VARIABLE code)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "oiiotool could not scale the statistical golden")

@@ -1,0 +1,20 @@
+// statistical_calibration: the false-alarm rate and power table of `hpsf diff --statistical` (README,
+// "Statistical comparison"). Usage: statistical_calibration [PAIRS [SIZE]] > table.md; JSON to stderr's end.
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+#include "tools/calibration/statistical_calibration.h"
+
+int main(int argc, char** argv) {
+  hpsf::CalibrationPlan plan;
+  if (argc > 1) plan.pairs = std::uint32_t(std::strtoul(argv[1], nullptr, 10));
+  if (argc > 2) plan.size = std::uint32_t(std::strtoul(argv[2], nullptr, 10));
+  if (plan.pairs == 0 || plan.size == 0) {
+    std::fprintf(stderr, "usage: statistical_calibration [PAIRS [SIZE]]\n");
+    return 3;
+  }
+  const auto rows = hpsf::RunCalibration(plan, true);
+  std::cout << hpsf::MarkdownTable(plan, rows) << "\n" << hpsf::ToJson(plan, rows).dump() << "\n";
+  return 0;
+}
