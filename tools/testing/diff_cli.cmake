@@ -1,7 +1,8 @@
 # hpsf diff's exit codes and its WARN rule on constructed EXRs (oiiotool makes them): 0 for the same image, 1 for
 # one pixel off by 0.1 between --warn 0.05 and --fail 0.2 (where idiff prints PASS), 2 above --fail and with the
 # default thresholds; 3 for bad input (a missing file, a PNG, another size, other channels, a metric without
-# its threshold), with no heatmap left behind.
+# its threshold, a --warn on the wrong side of --fail, for lower- and higher-is-better metrics), with no heatmap
+# left behind.
 set(dir ${OUT}/diff_cli)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
@@ -46,6 +47,13 @@ expect(0 "PASS: psnr" ${dir}/one_pixel.exr ${dir}/base.exr --metric psnr --fail 
 expect(2 "FAIL: psnr 42.8.* is below --fail 50" ${dir}/one_pixel.exr ${dir}/base.exr --metric psnr --fail 50)
 expect(3 "--fail: give the threshold for --metric psnr" ${dir}/one_pixel.exr ${dir}/base.exr --metric psnr)
 expect(3 "--warn: must not be above --fail" ${dir}/one_pixel.exr ${dir}/base.exr --warn 0.3 --fail 0.2)
+# psnr and ssim are better when higher: their --warn lies above --fail, a psnr between the two warns, and one
+# below --fail fails (each direction once, so a rule written for "worse is greater" alone cannot pass).
+expect(3 "--warn: must not be below --fail" ${dir}/one_pixel.exr ${dir}/base.exr --metric psnr --warn 30 --fail 40)
+expect(3 "--warn: must not be below --fail" ${dir}/one_pixel.exr ${dir}/base.exr --metric ssim --warn 0.5 --fail 0.9)
+expect(1 "WARN: psnr 42.8.* is below --warn 50, not below --fail 40" ${dir}/one_pixel.exr ${dir}/base.exr --metric psnr --warn 50 --fail 40)
+expect(1 "WARN: ssim .* is below --warn 0.9999" ${dir}/one_pixel.exr ${dir}/base.exr --metric ssim --warn 0.9999 --fail 0.5)
+expect(2 "FAIL: ssim .* is below --fail 0.9999" ${dir}/one_pixel.exr ${dir}/base.exr --metric ssim --fail 0.9999)
 expect(3 "missing.exr: no such image file" ${dir}/missing.exr ${dir}/base.exr)
 expect(3 "base.png: not an OpenEXR image" ${dir}/base.png ${dir}/base.exr)
 expect(3 "base.exr is 8x8 \\[R,G,B\\], .*smaller.exr is 8x6 \\[R,G,B\\]" ${dir}/base.exr ${dir}/smaller.exr)
