@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 #include "tools/hpsf/converged_reference.h"
 #include "tracer/scene_digest.h"
@@ -64,6 +66,47 @@ TEST(ConvergedReference, TheDigestFollowsTheContent) {
   EXPECT_NE(SceneDigest(cornell, 0), SceneDigest(moved, 0));
   EXPECT_NE(SceneDigest(cornell, 0), SceneDigest(LoadScene("cornell-zero-red"), 0));
   EXPECT_NE(FurnaceRequest().Description(1), FurnaceRequest().Description(2));
+}
+
+// The cache key is complete: each field of the request changed alone (a generated pair differing in one field)
+// either leaves the image's bits as they were or changes the description, which keys the cache. The threads
+// change nothing; every other field changes the image, so it must change the key (a cache that ignored the
+// maximum depth would hand back an image traced to another depth). A field added to the request must be added
+// here: the sizes below stop the build of this test until it is.
+TEST(ConvergedReference, EveryFieldThatChangesTheImageChangesTheCacheKey) {
+  static_assert(sizeof(TraceOptions) == 8 * sizeof(std::uint32_t), "a new TraceOptions field: add it below");
+  static_assert(sizeof(ReferenceRequest) == sizeof(TraceOptions) + 2 * sizeof(std::uint32_t),
+                "a new ReferenceRequest field: add it below");
+  const Scene scene = LoadScene("cornell");
+  ReferenceRequest base;
+  base.trace.width = 8;
+  base.trace.height = 6;
+  base.trace.max_depth = 3;
+  base.samples_per_pixel = 8;
+  base.pass_samples = 2;
+  const std::uint64_t digest = SceneDigest(scene, base.trace.frame);
+  const ConvergedImage image = RenderConverged(scene, base);
+  const std::pair<const char*, void (*)(ReferenceRequest&)> changes[] = {
+      {"width", [](ReferenceRequest& r) { r.trace.width = 9; }},
+      {"height", [](ReferenceRequest& r) { r.trace.height = 7; }},
+      {"trace spp (each pass's, overridden)", [](ReferenceRequest& r) { r.trace.samples_per_pixel = 7; }},
+      {"seed", [](ReferenceRequest& r) { r.trace.seed = 2; }},
+      {"frame", [](ReferenceRequest& r) { r.trace.frame = 1; }},
+      {"max depth", [](ReferenceRequest& r) { r.trace.max_depth = 2; }},
+      {"filter bounce", [](ReferenceRequest& r) { r.trace.filter_bounce = 1; }},
+      {"threads", [](ReferenceRequest& r) { r.trace.threads = 1; }},
+      {"spp", [](ReferenceRequest& r) { r.samples_per_pixel = 16; }},
+      {"pass spp", [](ReferenceRequest& r) { r.pass_samples = 4; }},
+  };
+  for (const auto& [field, change] : changes) {
+    ReferenceRequest changed = base;
+    change(changed);
+    const ConvergedImage other = RenderConverged(scene, changed);
+    const bool same_image = SameBits(other.mean, image.mean) && SameBits(other.variance, image.variance);
+    const bool same_key = changed.Description(digest) == base.Description(digest);
+    std::printf("%-36s image %s, key %s\n", field, same_image ? "same" : "changed", same_key ? "same" : "changed");
+    EXPECT_TRUE(same_image || !same_key) << field << " changes the image but not the key";
+  }
 }
 
 }  // namespace

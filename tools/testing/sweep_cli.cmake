@@ -1,14 +1,15 @@
 # `hpsf sweep`: a small grid writes one CSV row per configuration, the Pareto plot and the bias and variance plot; run
-# again it resumes every one and gives the same figures; two shards into a fresh folder, then the whole grid there,
+# again it resumes every one and gives the same figures, but not a result over other seeds; two shards into a fresh folder, then the whole grid there,
 # give the same figures, times aside (the sweep's figures reproduce); a bad axis value is bad input naming --grid.
 include(${CMAKE_CURRENT_LIST_DIR}/hpsf_run.cmake)
 set(dir ${OUT}/sweep_cli)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
 set(grid "spp=1,2; filter-width=2,4; method=pt,hpsf,radius,screen")
+set(seeds 2)
 # hpsf_run's arguments are a list, which would split the grid at its semicolons: the grid goes in quoted.
 function(sweep_run expected_code)
-  execute_process(COMMAND ${HPSF} sweep cornell --grid "${grid}" --size 24x24 --seeds 2 --reference-spp 32
+  execute_process(COMMAND ${HPSF} sweep cornell --grid "${grid}" --size 24x24 --seeds ${seeds} --reference-spp 32
                           --cache ${dir}/cache ${ARGN}
                   RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT code EQUAL expected_code)
@@ -61,6 +62,27 @@ endif()
 sweep_run(0 --out ${dir}/whole)
 if(NOT out MATCHES "sweep: 0 configurations run, 14 kept from before")
   message(FATAL_ERROR "the sweep did not resume:\n${out}")
+endif()
+# A result measured over other seeds is not this sweep's: one seed fewer runs every configuration again, and
+# so does the last configuration's file with its description edited (a stale or foreign result is never kept).
+set(seeds 1)
+sweep_run(0 --out ${dir}/whole)
+if(NOT out MATCHES "sweep: 14 configurations run, 0 kept from before")
+  message(FATAL_ERROR "a sweep over one seed kept results measured over two:\n${out}")
+endif()
+if(EXISTS ${dir}/whole/bias-variance.png)
+  message(FATAL_ERROR "one seed cannot split bias^2 from variance, yet a bias and variance plot is there")
+endif()
+set(seeds 2)
+sweep_run(0 --out ${dir}/whole)
+file(GLOB config_files ${dir}/whole/configs/*.json)
+list(GET config_files 0 edited)
+file(READ ${edited} text)
+string(REPLACE "seeds 1..2" "seeds 1..3" text "${text}")
+file(WRITE ${edited} "${text}")
+sweep_run(0 --out ${dir}/whole)
+if(NOT out MATCHES "sweep: 1 configurations run, 13 kept from before")
+  message(FATAL_ERROR "a result with another description was kept:\n${out}")
 endif()
 sweep_run(0 --out ${dir}/sharded --shard 1/2)
 sweep_run(0 --out ${dir}/sharded --shard 2/2)
