@@ -5,8 +5,10 @@
 // the adaptive blend follows the move within a frame where integration takes K. Every backend blends to the
 // reference's bits in fixed64 frame by frame, on the light and on the traced animated Cornell box, and the table
 // checker passes them; a backend that ignores --temporal is caught by the checker, and one that blends during the
-// accumulate (D10) by the checker and the contract.
+// accumulate (D10) by the checker and the contract. In float32, where each cell takes one add a frame, every
+// backend blends to the reference's bits, and each of the checker's float32 blend bounds rejects a planted value.
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -262,6 +264,119 @@ TEST(Temporal, EveryBackendBlendsTheAnimatedCornellBoxAsTheReferenceDoes) {
       const std::string name = hashed.name + ", " + c.eviction + ", " + ToString(c.accumulation);
       EXPECT_GT(CompareWithTheReference(*hashed.backend, name, frames, config), 10u) << name << ", " << c.temporal;
     }
+  }
+}
+
+// One record per cell a frame, so that no order of adds can differ between backends, its contribution inexact
+// in float and 5.3 times larger every other frame: (history + v) - history, taken in float where v is more than
+// the history (no longer exact by Sterbenz's lemma), is not v, nor what double arithmetic gives.
+RecordBatch OneAddPerCellFrame(std::uint32_t frame) {
+  RecordBatch batch;
+  batch.width = kCells;
+  batch.height = 1;
+  batch.samples_per_pixel = 1;
+  batch.fov_y_radians = 1.0;
+  for (std::uint32_t j = 0; j < kCells; ++j) {
+    VertexSample v;
+    v.pixel = j;
+    v.position = glm::vec3(float(j) + 0.5f, 0.5f, 0.5f);
+    v.previous = v.position + glm::vec3(0.0f, 0.0f, -1.0f);
+    const float value = 0.1f * float(1 + j % 7) * (frame % 2 ? 5.3f : 1.0f) + 0.013f * float(frame);
+    v.contribution = glm::vec3(value, value * 3.0f, value / 7.0f);
+    v.throughput = glm::vec3(1.0f);
+    batch.records.push_back(MakeVertexRecord(v));
+  }
+  return batch;
+}
+
+// float32 blends on every hashed backend to the reference's bits where each cell takes one add a frame: the
+// blend (shared::BlendCell over the table's float sums) is then the same arithmetic everywhere, so a backend that
+// computed its frame's sum otherwise (in double from the records, say) differs here while staying inside the
+// checker's float32 bounds. Frames 1.. blend; every blended cell is compared.
+TEST(Temporal, Float32BlendsAreTheReferencesBitsWhereEachCellTakesOneAdd) {
+  constexpr std::uint32_t kFrames = 8;
+  for (const char* mode : {"ema:0.75", "ema:1:3", "adaptive"}) {
+    for (HashedBackend& hashed : HashedBackends()) {
+      FilterConfig config = GridConfig(256, 16);
+      config.frames = kFrames;
+      config.temporal = ParseTemporal(mode);
+      config.accumulation = Accumulation::kFloat32;
+      ReferenceBackend reference;
+      std::uint64_t compared = 0;
+      for (std::uint32_t k = 0; k < kFrames; ++k) {
+        config.frame = k;
+        const RecordBatch batch = OneAddPerCellFrame(k);
+        reference.FilterFrame(batch, config);
+        hashed.backend->FilterFrame(batch, config);
+        const HashedRun& run = RunOf(*hashed.backend);
+        const FilterResult& cells = reference.result();
+        for (std::size_t i = 0; i < batch.records.size(); ++i) {
+          const std::uint32_t slot = run.placements[i];
+          ASSERT_LT(slot, config.capacity);
+          const TableCell& cell = cells.cells[cells.placement[i]];
+          EXPECT_EQ(run.table.counts[slot], cell.count) << hashed.name << ", " << mode << ", frame " << k << ", cell " << i;
+          for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(run.table.float_sums[slot][c]), std::bit_cast<std::uint32_t>(cell.float_sum[c]))
+                << hashed.name << ", " << mode << ", frame " << k << ", cell " << i << ", channel " << c << ": "
+                << run.table.float_sums[slot][c] << " against the reference's " << cell.float_sum[c];
+          }
+          compared += k > 0;
+        }
+      }
+      EXPECT_EQ(compared, std::uint64_t(kCells) * (kFrames - 1)) << "the oracle was fed every blend";
+    }
+  }
+}
+
+// The checker's float32 blend bounds, each made to fire by a value planted into a correct table: a blended
+// average must lie between the history's and the frame's (widened by a few ulps for the float adds), so one
+// 1e-5 beyond either end is named and one 1e-5 inside is not; ema's count is exact, adaptive's at most
+// min(history, max count) + n. Frame 1 of OneAddPerCellFrame on the emulator, cell 5 (history 0.6, frame 3.19).
+TEST(Temporal, TheCheckersFloat32BlendBoundsRejectAPlantedValueJustOutside) {
+  for (const char* mode : {"ema:0.75", "adaptive"}) {
+    FilterConfig config = GridConfig(256, 16);
+    config.frames = 2;
+    config.temporal = ParseTemporal(mode);
+    config.accumulation = Accumulation::kFloat32;
+    EmulatedBackend emulated{EmulatorOptions{}};
+    const RecordBatch first = OneAddPerCellFrame(0), second = OneAddPerCellFrame(1);
+    emulated.FilterFrame(first, config);
+    const HashTableDump before = emulated.run().table;
+    config.frame = 1;
+    emulated.FilterFrame(second, config);
+    const EmulatedRun& run = emulated.run();
+    constexpr std::uint32_t kRecord = 5;
+    const std::uint32_t slot = run.placements[kRecord];
+    auto blend_violations = [&](const HashTableDump& table) {
+      int found = 0;
+      for (const TableViolation& v : CheckTable({table, second.records, run.keys, run.placements, &before, {}, 1,
+                                                 config.temporal})) {
+        found += v.invariant == TableInvariant::kTemporalBlend && v.slot == slot;
+      }
+      return found;
+    };
+    ASSERT_EQ(blend_violations(run.table), 0) << mode << ": the correct table";
+    const double history = double(before.float_sums[slot][0]) / double(before.counts[slot]);
+    const double frame = double(second.records[kRecord].contribution[0]);
+    ASSERT_GT(frame, 2.0 * history);
+    const double count = double(run.table.counts[slot]);
+    const struct {
+      double average;
+      int violations;
+      const char* what;
+    } plants[] = {{frame * (1.0 + 1e-5), 1, "above the frame's average"},
+                  {frame * (1.0 - 1e-5), 0, "just below the frame's average"},
+                  {history * (1.0 - 1e-5), 1, "below the history's average"},
+                  {history * (1.0 + 1e-5), 0, "just above the history's average"}};
+    for (const auto& plant : plants) {
+      HashTableDump planted = run.table;
+      planted.float_sums[slot][0] = float(plant.average * count);
+      EXPECT_EQ(blend_violations(planted), plant.violations) << mode << ": an average " << plant.what;
+    }
+    HashTableDump recounted = run.table;
+    recounted.counts[slot] = config.temporal.mode == TemporalMode::kEma ? run.table.counts[slot] + 1
+                                                                       : before.counts[slot] + 1 + 1;  // most + 1
+    EXPECT_EQ(blend_violations(recounted), 1) << mode << ": a count past its bound";
   }
 }
 
