@@ -141,6 +141,43 @@ TEST(PriorityEviction, TheLowestPriorityIsEvictedAndItsTombstoneClaimed) {
   }
 }
 
+// Priority's insertion looks for its cell only up to the first empty slot of its window: beyond it, a slot with
+// the same fingerprint is another cell's whose fingerprint aliases (8-bit fingerprints here), never its own. A and
+// B are cells with one fingerprint, B's slot0 two past A's. B is filtered in frame 0; in frame 1 A finds slot0
+// empty and claims it on every backend. A look that ran on past the empty slot would join B's cell: the checker
+// names that placement (an empty slot earlier in its window) and A's slot and count show it.
+TEST(PriorityEviction, ACellIsLookedForOnlyUpToTheFirstEmptySlotWhenFingerprintsAlias) {
+  FilterConfig config = ConstructedConfig(1024, 8, 8);
+  config.frames = 2;
+  config.eviction = ParseEviction("priority");
+  const glm::ivec3 a = FindCell(config, [](const KeyResult&) { return true; });
+  const KeyResult key_a = KeyOfCell(config, a);
+  const glm::ivec3 b = FindCell(
+      config,
+      [&](const KeyResult& k) {
+        return k.fingerprint == key_a.fingerprint && k.slot0 == ((key_a.slot0 + 2u) & (config.capacity - 1u));
+      },
+      1);
+  std::vector<RecordBatch> frames = {BatchOfCells({b}), BatchOfCells({a})};
+  for (std::uint32_t k = 0; k < frames.size(); ++k) frames[k].frame = k;
+  for (HashedBackend& hashed : HashedBackends()) {
+    std::optional<HashTableDump> before;
+    for (std::uint32_t k = 0; k < frames.size(); ++k) {
+      config.frame = k;
+      const std::string what = hashed.name + ", frame " + std::to_string(k);
+      hashed.backend->FilterFrame(frames[k], config);
+      const HashedRun& run = RunOf(*hashed.backend);
+      const std::vector<TableViolation> violations = CheckFrame(run, frames[k], before, config);
+      EXPECT_TRUE(violations.empty()) << what << ": " << violations.front().ToString();
+      before = run.table;
+    }
+    const HashedRun& run = RunOf(*hashed.backend);
+    EXPECT_EQ(run.placements[0], key_a.slot0) << hashed.name << ": A did not claim its empty slot0";
+    EXPECT_EQ(run.table.counts[key_a.slot0], 1u) << hashed.name;
+    EXPECT_EQ(run.table.counts[(key_a.slot0 + 2u) & (config.capacity - 1u)], 1u) << hashed.name << ": B's cell was joined";
+  }
+}
+
 // The animated Cornell box in a table too small for it (256 slots, probes of 8, 6 frames): every frame some records
 // find no slot. On every backend, every frame passes the checker from the table before it; priority evicts, its
 // tombstones are claimed, and records that failed find room: over frames 1 to 5 fewer records fail than without
