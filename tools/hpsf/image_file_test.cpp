@@ -116,5 +116,42 @@ TEST(ImageFile, AnExrWithoutTheMeanVarianceIsBadInput) {
       InputError);
 }
 
+// Every write site fails in turn, made to by a directory where a file must go (a temporary name, then a final
+// one), for the EXR and its preview, written and copied. Each failure is an InputError naming the file, and leaves
+// neither output nor temporary behind: none of the first, second or later sites may leave a half-made pair.
+TEST(ImageFile, AFailureAtAnyWriteSiteLeavesNothingBehind) {
+  namespace fs = std::filesystem;
+  const fs::path root = Path("write_sites");
+  fs::remove_all(root);
+  fs::create_directories(root / "source");
+  const std::string source = (root / "source" / "in.exr").string();
+  WriteImageFiles(source, Ramp(1.0f), {{"spp", "4"}});
+  const char* const obstacles[] = {".out.partial.exr", ".out.partial.png", "out.exr", "out.png"};
+  for (const bool copying : {false, true}) {
+    for (const char* obstacle : obstacles) {
+      const fs::path dir = root / (std::string(copying ? "copy-" : "write-") + obstacle);
+      fs::create_directories(dir / obstacle / "occupied");
+      const std::string out = (dir / "out.exr").string();
+      const std::string what = std::string(copying ? "copying" : "writing") + " with a directory at " + obstacle;
+      try {
+        if (copying) {
+          CopyImageFiles(source, out);
+        } else {
+          WriteImageFiles(out, Ramp(1.0f), {{"spp", "4"}});
+        }
+        ADD_FAILURE() << what << ": no error";
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        const std::string named = std::string(obstacle).find("png") != std::string::npos ? "out.png" : "out.exr";
+        EXPECT_NE(message.find(named), std::string::npos) << what << ": " << message;
+      }
+      for (const char* left : obstacles) {
+        if (std::string(left) == obstacle) continue;  // the obstacle itself stays
+        EXPECT_FALSE(fs::exists(dir / left)) << what << ": " << left << " was left behind";
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hpsf
