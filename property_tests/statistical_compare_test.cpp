@@ -24,7 +24,8 @@ NoisyImage TwoPixels(glm::vec3 first, glm::vec3 second, float tile_variance, dou
 
 // The expected figures are scipy's (scipy.stats.ttest_ind_from_stats(..., equal_var=False) for t and p, whose
 // Welch-Satterthwaite dof is (va + vb)^2 / (va^2 / nu_a + vb^2 / nu_b)), and the Sidak levels
-// 1 - (1 - 0.005)^(1/k) for k = 6 and 3.
+// 1 - (1 - 0.005)^(1/k) for k = 6 and 3. a has fewer spp, so its variances are floored by b's times 9/4: not a
+// tile's (0.2 * 9/4 = 0.45 < 0.5), but the image mean's (0.05 * 9/4 = 0.1125 > 0.1, then on b's 16 dof).
 TEST(StatisticalCompare, ConstructedImagesHaveScipysWelchTestAndSidakLevels) {
   const NoisyImage a = TwoPixels({3.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.1, 4);
   const NoisyImage b = TwoPixels({0.0f, 2.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 0.2f, 0.05, 9);
@@ -39,25 +40,37 @@ TEST(StatisticalCompare, ConstructedImagesHaveScipysWelchTestAndSidakLevels) {
   EXPECT_NEAR(c.worst.t, 3.585685828003181, 1e-6);
   EXPECT_NEAR(c.worst.dof, 5.547169811320754, 1e-6);  // variances are floats: 0.2f is not 0.2
   EXPECT_NEAR(c.worst.p, 0.013217571130999708, 1e-8);
-  // Image mean, red: 2 against 0.5, t 3.873 on 12.34 dof, p 0.00211, just above its level.
-  EXPECT_NEAR(c.mean[0].t, 3.8729833462074166, 1e-6);
-  EXPECT_NEAR(c.mean[0].dof, 12.342857142857143, 1e-6);
-  EXPECT_NEAR(c.mean[0].p, 0.002106947548657611, 1e-8);
-  EXPECT_EQ(c.mean[1].t, 0.0);
   EXPECT_EQ(c.tiles_rejected, 0u);
-  EXPECT_TRUE(c.consistent);
-  // Red of pixel 0 at 6: the tile's p 5.26e-4 is below its level; the image mean's t 7.7 too.
-  const StatisticalComparison far = CompareStatistically(TwoPixels({6.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.1, 4), b);
+  // Image mean, red: 2 against 0.5 with a's variance floored to 0.1125 on 16 dof: t 3.721 on 27.88 dof, p 8.9e-4,
+  // below its level. With a's own 0.1 on 6 dof it would be t 3.873 on 12.34 dof, p 0.0021.
+  EXPECT_NEAR(c.mean[0].t, 3.7210420376762534, 1e-6);
+  EXPECT_NEAR(c.mean[0].dof, 27.876288659793815, 1e-6);
+  EXPECT_NEAR(c.mean[0].p, 0.0008876216873908789, 1e-9);
+  EXPECT_EQ(c.mean[1].t, 0.0);
+  EXPECT_FALSE(c.consistent);
+  // a's image-mean variance 0.2, above the floor: t 3 on 9.16 dof, p 0.0147, which passes.
+  NoisyImage noisier = a;
+  noisier.mean_variance = glm::dvec3(0.2);
+  const StatisticalComparison passes = CompareStatistically(noisier, b);
+  EXPECT_NEAR(passes.mean[0].t, 3.0, 1e-9);
+  EXPECT_NEAR(passes.mean[0].dof, 9.16030534351145, 1e-9);
+  EXPECT_NEAR(passes.mean[0].p, 0.0146688981683718, 1e-9);
+  EXPECT_TRUE(passes.consistent) << passes.ToString();
+  // Red of pixel 0 at 6: the tile's p 5.26e-4 is below its level.
+  const StatisticalComparison far = CompareStatistically(TwoPixels({6.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.2, 4), b);
   EXPECT_NEAR(far.worst.p, 0.0005257981003041197, 1e-9);
   EXPECT_EQ(far.tiles_rejected, 1u);
   EXPECT_FALSE(far.consistent);
-  // The image mean alone: red 2.3 against 0.5 with the tiles unchanged (p 5.2e-4 below 0.00167).
-  NoisyImage brighter = a;
-  brighter.mean.pixels[1].x = 1.6f;
-  const StatisticalComparison mean_only = CompareStatistically(brighter, b);
-  EXPECT_NEAR(mean_only.mean[0].p, 0.0005227157449064351, 1e-8);
-  EXPECT_EQ(mean_only.tiles_rejected, 0u) << mean_only.ToString();
-  EXPECT_FALSE(mean_only.consistent);
+}
+
+// Equal spp: neither image is floored, whatever their variances (their difference is not skewed).
+TEST(StatisticalCompare, ImagesOfEqualSppAreNotFloored) {
+  const NoisyImage a = TwoPixels({3.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.1, 9);
+  const NoisyImage b = TwoPixels({0.0f, 2.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 0.02f, 0.001, 9);
+  const StatisticalComparison c = CompareStatistically(a, b);
+  // Tile 0, red: t = 3 / sqrt(0.52), dof (0.52)^2 / (0.25 / 8 + 0.0004 / 8) = 8.64.
+  EXPECT_NEAR(c.worst.t, 3.0 / std::sqrt(0.52), 1e-6);
+  EXPECT_NEAR(c.worst.dof, 0.52 * 0.52 / (0.25 / 8.0 + 0.0004 / 8.0), 1e-4);
 }
 
 TEST(StatisticalCompare, WithoutNoiseAnyDifferenceRejectsAndEqualityPasses) {

@@ -3,7 +3,7 @@
 // the new image is compared with the golden:
 //   "exact": `hpsf diff`'s rule with the case's metric and thresholds (default: max, warn 0, fail 0, bit for
 //            bit up to the sign of zero);
-//   "statistical": the per-pixel and image-mean z-tests of `hpsf diff --statistical` at the case's alpha, on
+//   "statistical": the tile and image-mean Welch t-tests of `hpsf diff --statistical` at the case's alpha, on
 //            images rendered with --variance; it survives a change of random numbers, not a bias.
 // The golden is rendered by the first backend listed; paths are relative to the manifest's folder, where the
 // renders run.

@@ -169,8 +169,8 @@ void AddDiffCommand(CLI::App& app, CommandContext& context) {
                 "metrics and the metadata");
   c->add_flag("--ssim", o->ssim, "Also compute SSIM (slow: 2.7 s at 1080p); implied by --metric ssim");
   c->add_flag("--statistical", o->statistical,
-              "Judge by per-pixel and image-mean z-tests instead of --metric (both images rendered with --variance): "
-              "FAIL when the difference is not consistent with their noise");
+              "Judge by Welch t-tests of 8x8 tiles and of the image mean instead of --metric (both images rendered "
+              "with --variance, 4 spp or more): FAIL when the difference is not consistent with their noise");
   c->add_option("--alpha", o->alpha, "--statistical: the probability of failing two consistent renders")
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 0.5));
