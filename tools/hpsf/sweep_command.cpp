@@ -436,7 +436,13 @@ int Run(SweepOptions& o, bool options_only) {
     }
   }
   MarkFrontiers(results, o.scene, out);
-  PlotBiasAgainstWidth(results, o.scene, out);
+  // One seed measures the error but cannot split it into bias^2 and variance: no plot, and none left from before.
+  if (o.seeds >= 2) {
+    PlotBiasAgainstWidth(results, o.scene, out);
+  } else {
+    std::error_code ignored;
+    fs::remove(out / "bias-variance.png", ignored);
+  }
   WriteSummaries(out, configs, results, axes, o.scene,
                  "a converged image of " + std::to_string(o.reference_spp) + " spp (" + reference.entry.image + ")");
   std::size_t finished = 0;
