@@ -87,10 +87,13 @@ void Run(const DiffOptions& o, CommandContext& context) {
   // Everything that can refuse the input runs before the first file is written.
   ImageComparison comparison = CompareImages(a, b, options);
   std::optional<StatisticalComparison> statistical;
+  double statistical_seconds = 0.0;
   if (o.statistical) {
+    const auto statistical_start = std::chrono::steady_clock::now();
     const NoisyImage noisy_a = ToNoisyImage(a);  // A's missing channel is named first
     const NoisyImage noisy_b = ToNoisyImage(b);
     statistical = CompareStatistically(noisy_a, noisy_b, o.alpha);
+    statistical_seconds = SecondsSince(statistical_start);
     comparison.verdict = statistical->consistent ? DiffVerdict::kPass : DiffVerdict::kFail;
     comparison.judged_by = statistical->ToString();
   }
@@ -128,7 +131,10 @@ void Run(const DiffOptions& o, CommandContext& context) {
     report["size"] = {a.width, a.height};
     report["channels"] = a.channels;
     report["timings"]["read_s"] = read_seconds;
-    if (statistical) report["statistical"] = ToJson(*statistical);
+    if (statistical) {
+      report["statistical"] = ToJson(*statistical);
+      report["timings"]["statistical_s"] = statistical_seconds;
+    }
     if (!o.heatmap.empty()) report["outputs"]["heatmap"] = o.heatmap;
     if (!o.html.empty()) {
       report["outputs"]["html"] = o.html;
