@@ -4,9 +4,10 @@
 //
 // Alternative rejected: "two seeds of one render are not consistent with noise" at alpha. Under the test's claim
 // the false alarms of P pairs are at most Binomial(P, alpha); each row's bound is the count that distribution
-// exceeds with probability below 0.002 (at alpha 0.1 over 60 pairs: 14 or more; at 0.01: 4 or more), so a correct
-// test trips it with probability about 0.002 per row, and a per-pixel z-test (which at 4 spp failed every pair
-// the issue tried) trips it surely. The README's table has 200 pairs of 64x64 at 2 to 64 spp.
+// reaches with probability below 0.002 (over 40 pairs: 4 at alpha 0.01, 11 at 0.1), so a correct test trips it
+// with probability at most 0.002 per row. What it catches: the per-pixel z-test (every pair the issue tried at 4
+// spp), and Welch's test without the variance floor against a precise image (43% of pairs at 4 against 256 spp).
+// 64x64, 4 and 16 spp, each against the same spp and against 256; the README's table has 200 pairs at 2 to 64 spp.
 #include <cstdio>
 
 #include <boost/math/distributions/binomial.hpp>
@@ -29,9 +30,9 @@ TEST(StatisticalCalibration, FalseAlarmsStayWithinAlphaAndA5PercentBiasIsSeen) {
   CalibrationPlan plan;
   plan.scenes = {"cornell"};
   plan.spps = {4, 16};
-  plan.reference_spp = 64;
-  plan.size = 32;
-  plan.pairs = 60;
+  plan.reference_spp = 256;
+  plan.size = 64;
+  plan.pairs = 40;
   plan.first_seed = 5001;
   plan.alphas = {0.01, 0.1};
   plan.biases = {0.05};
@@ -46,10 +47,10 @@ TEST(StatisticalCalibration, FalseAlarmsStayWithinAlphaAndA5PercentBiasIsSeen) {
       EXPECT_LT(row.false_alarms[k], AlarmBound(row.pairs, plan.alphas[k]))
           << what << ": false alarms at alpha " << plan.alphas[k];
     }
-    // Power: at 16 spp a 5% bias is caught in 14 to 32 of the 60 pairs (32x32, measured with these seeds); a test
-    // gone blind to it (power at most alpha, 0.01) catches 4 or more with probability 0.003.
+    // Power: at 16 spp a 5% bias is caught in 36 to 40 of the 40 pairs (measured with these seeds; 0.90 to 0.94 in
+    // the README's 200 pairs); half of them is a test that lost most of its power.
     if (row.spp == 16) {
-      EXPECT_GE(row.detections[0], AlarmBound(row.pairs, plan.alphas[0])) << what << ": a 5% bias no longer seen";
+      EXPECT_GE(row.detections[0], row.pairs / 2) << what << ": a 5% bias no longer seen";
     }
   }
 }
