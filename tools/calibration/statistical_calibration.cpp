@@ -120,27 +120,24 @@ std::string MarkdownTable(const CalibrationPlan& plan, const std::vector<Calibra
   out << "| scene | filter | spp | against | pairs |";
   for (double a : plan.alphas) out << " false alarms at " << a << " |";
   for (double b : plan.biases) out << " power vs " << b * 100 << "% bias |";
-  out << "\n|" << std::string(5 + plan.alphas.size() + plan.biases.size(), ' ') << "\n";
-  std::string rule = "| --- | --- | --- | --- | --- |";
-  for (std::size_t k = 0; k < plan.alphas.size() + plan.biases.size(); ++k) rule += " --- |";
-  std::string table = out.str();
-  table = table.substr(0, table.find('\n') + 1) + rule + "\n";
+  out << "\n| --- | --- | --- | --- | --- |";
+  for (std::size_t k = 0; k < plan.alphas.size() + plan.biases.size(); ++k) out << " --- |";
+  out << "\n";
+  char cell[64];
   for (const CalibrationRow& r : rows) {
-    char line[256];
-    std::snprintf(line, sizeof line, "| %s | %s | %u | %u spp | %u |", r.scene.c_str(), r.filtered ? "reference" : "none",
-                  r.spp, r.other_spp, r.pairs);
-    table += line;
+    out << "| " << r.scene << " | " << (r.filtered ? "reference" : "none") << " | " << r.spp << " | " << r.other_spp
+        << " spp | " << r.pairs << " |";
     for (std::uint32_t f : r.false_alarms) {
-      std::snprintf(line, sizeof line, " %u (%.1f%%) |", f, 100.0 * f / r.pairs);
-      table += line;
+      std::snprintf(cell, sizeof cell, " %u (%.1f%%) |", f, 100.0 * f / r.pairs);
+      out << cell;
     }
     for (std::uint32_t d : r.detections) {
-      std::snprintf(line, sizeof line, " %.2f |", double(d) / r.pairs);
-      table += line;
+      std::snprintf(cell, sizeof cell, " %.2f |", double(d) / r.pairs);
+      out << cell;
     }
-    table += "\n";
+    out << "\n";
   }
-  return table;
+  return out.str();
 }
 
 }  // namespace hpsf

@@ -72,7 +72,7 @@ glm::vec3 F(glm::dvec3 v) { return glm::vec3(v); }
 class TileSums {
  public:
   TileSums(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size)
-      : width_(width), tile_size_(tile_size), tiles_x_((width + tile_size - 1) / tile_size),
+      : width_(width), height_(height), tile_size_(tile_size), tiles_x_((width + tile_size - 1) / tile_size),
         tiles_((height + tile_size - 1) / tile_size * tiles_x_) {}
 
   std::size_t TileOf(std::size_t pixel) const {
@@ -101,12 +101,12 @@ class TileSums {
     band_.clear();
   }
   // Var(M_R) per tile, K its pixels.
-  Image Variances(std::uint32_t height, std::size_t n) const {
+  Image Variances(std::size_t n) const {
     Image out(tiles_x_, std::uint32_t(tiles_.size() / tiles_x_));
     for (std::size_t r = 0; r < tiles_.size(); ++r) {
       const std::uint32_t tx = std::uint32_t(r % tiles_x_), ty = std::uint32_t(r / tiles_x_);
       const double k = double(std::min(tile_size_, width_ - tx * tile_size_)) *
-                       double(std::min(tile_size_, height - ty * tile_size_));
+                       double(std::min(tile_size_, height_ - ty * tile_size_));
       const Tile& tile = tiles_[r];
       const glm::dvec3 pairs = (n > 1 ? tile.pairs_in_pixels / double(n - 1) : glm::dvec3(0.0)) + tile.pairs_across;
       out.pixels[r] = F(tile.within / (k * k) + pairs / (double(n) * k * double(n) * k));
@@ -122,7 +122,7 @@ class TileSums {
     std::uint32_t tile, group;
     glm::dvec3 throughput, squares;
   };
-  std::uint32_t width_, tile_size_, tiles_x_;
+  std::uint32_t width_, height_, tile_size_, tiles_x_;
   std::vector<Tile> tiles_;
   std::vector<Reads> band_;
 };
@@ -212,7 +212,7 @@ PixelVariance EstimatePixelVariance(const RecordBatch& batch, std::span<const st
     const bool row_done = pixel % batch.width == batch.width - 1;
     if (row_done && (row % tile_size == tile_size - 1 || row == batch.height - 1)) tiles.EndBand(groups.mean_variance);
   }
-  result.tile_variance = tiles.Variances(batch.height, n);
+  result.tile_variance = tiles.Variances(n);
 
   result.mean_within_pixel = within_sum / (pixels * pixels);
   // Every pair of samples that read one cell, in one pixel or in two, is correlated by q_c; the pairs inside a
