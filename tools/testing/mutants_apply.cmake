@@ -11,8 +11,9 @@ foreach(patch IN LISTS patches)
   if(NOT text MATCHES "\n[-+][^-+]")
     list(APPEND stale "${patch}: changes no line")
   endif()
-  execute_process(COMMAND git apply --check ${patch} WORKING_DIRECTORY ${SOURCE}
-                  RESULT_VARIABLE code ERROR_VARIABLE err)
+  # As a plain patch against the files, outside any repository: neither the index nor a clone's .git matters.
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env GIT_DIR=${SOURCE}/.no-repository git apply --check ${patch}
+                  WORKING_DIRECTORY ${SOURCE} RESULT_VARIABLE code ERROR_VARIABLE err)
   if(NOT code EQUAL 0)
     list(APPEND stale "${patch}: ${err}")
   endif()
