@@ -33,7 +33,7 @@ struct Estimate {
 // samples that missed the rare bright ones (the light found by a diffuse bounce) has a mean too low and a variance
 // too small at once, which Welch's t, taking the variance as it comes, makes a false alarm of against a precise
 // image (measured: 43% of pairs at 4 against 256 spp, alpha 0.01). The precise image's variance, scaled, does not
-// miss them, and rest on more samples: the floored variance takes the precise image's degrees of freedom. Two
+// miss them, and rests on more samples: the floored variance takes the precise image's degrees of freedom. Two
 // images of equal spp are skewed alike, their difference is not, and neither is floored. This assumes one renderer
 // at two sample counts (the golden use); where the noisier per sample is the precise image, the floor is larger
 // than the truth and the test conservative.
@@ -43,7 +43,7 @@ Estimate Floored(const Estimate& e, const Estimate& other) {
   return scaled > e.variance ? Estimate{e.mean, scaled, other.dof, e.spp} : e;
 }
 
-// Welch's test of two means with variances va, vb estimated on nu_a, nu_b degrees of freedom.
+// Welch's test of two means, each variance estimated on its degrees of freedom, after the floor.
 TileT Welch(const Estimate& a_in, const Estimate& b_in) {
   const Estimate a = Floored(a_in, b_in), b = Floored(b_in, a_in);
   const double ma = a.mean, mb = b.mean, va = a.variance, vb = b.variance, nu_a = a.dof, nu_b = b.dof;
