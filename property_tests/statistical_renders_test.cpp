@@ -36,8 +36,8 @@ NoisyImage Render(std::uint32_t seed) {
   FilterConfig config;
   config.seed = seed;
   const FilterResult result = ReferenceFilter(batch, config);
-  const PixelVariance v = EstimatePixelVariance(batch, result.placement, result.cells.size());
-  return {"seed " + std::to_string(seed), result.image, v.variance, v.tile_variance, v.tile_size, kSpp, v.mean_variance};
+  return MakeNoisyImage("seed " + std::to_string(seed), result.image,
+                        EstimatePixelVariance(batch, result.placement, result.cells.size()), kSpp);
 }
 
 glm::dvec3 Mean(const Image& image) {

@@ -16,10 +16,6 @@
 namespace hpsf {
 namespace {
 
-NoisyImage Noisy(const Image& mean, const PixelVariance& v, std::uint32_t spp, const std::string& source) {
-  return {source, mean, v.variance, v.tile_variance, v.tile_size, spp, v.mean_variance};
-}
-
 struct Render {
   NoisyImage filtered, unfiltered;
 };
@@ -35,8 +31,8 @@ Render RenderOnce(const Scene& scene, const std::string& name, std::uint32_t siz
   config.seed = seed;
   const FilterResult result = ReferenceFilter(batch, config);
   const std::string source = name + " seed " + std::to_string(seed) + " " + std::to_string(spp) + " spp";
-  return {Noisy(result.image, EstimatePixelVariance(batch, result.placement, result.cells.size()), spp, source),
-          Noisy(UnfilteredImage(batch), EstimatePixelVariance(batch, {}, 0), spp, source)};
+  return {MakeNoisyImage(source, result.image, EstimatePixelVariance(batch, result.placement, result.cells.size()), spp),
+          MakeNoisyImage(source, UnfilteredImage(batch), EstimatePixelVariance(batch, {}, 0), spp)};
 }
 
 // A render whose radiance is 1 + bias times the other's: its means by that factor, its variances by its square.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
@@ -127,6 +128,12 @@ std::string StatisticalComparison::ToString() const {
                 tile_level, worst.x, worst.y, "RGB"[worst.channel], worst.t, worst.dof, worst.p, mean[0].t, mean[1].t,
                 mean[2].t, mean[0].p, mean[1].p, mean[2].p, mean_level);
   return text;
+}
+
+NoisyImage MakeNoisyImage(std::string source, const Image& mean, const PixelVariance& variance,
+                          std::uint32_t samples_per_pixel) {
+  return {std::move(source), mean,        variance.variance, variance.tile_variance, variance.tile_size,
+          samples_per_pixel, variance.mean_variance};
 }
 
 NoisyImage ToNoisyImage(const ChannelImage& image) {

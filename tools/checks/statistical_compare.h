@@ -32,6 +32,7 @@
 
 #include "core/image.h"
 #include "tools/checks/channel_image.h"
+#include "tools/checks/pixel_variance.h"
 
 namespace hpsf {
 
@@ -49,6 +50,10 @@ struct NoisyImage {
   std::uint32_t samples_per_pixel = 0;
   glm::dvec3 mean_variance{0.0};
 };
+
+// A render's image with the variances EstimatePixelVariance gave it, as a file rendered with --variance holds them.
+NoisyImage MakeNoisyImage(std::string source, const Image& mean, const PixelVariance& variance,
+                          std::uint32_t samples_per_pixel);
 
 // The mean (R, G, B), the variances (variance.*, tile_variance.*, found by name), the image mean's variance
 // (metadata mean_variance), spp and variance_tile of an image rendered with --variance; InputError naming the file

@@ -19,12 +19,15 @@ function(run code regex)
   set(output "${out}${err}" PARENT_SCOPE)
 endfunction()
 
-# One pixel of the fixed64 Cornell golden, moved by 1e-3 in red (oiiotool keeps the hpsf: metadata).
-execute_process(COMMAND oiiotool ${golden}/cornell-fixed64.exr --box:color=0.25,0.25,0.25:fill=1 10,20,10,20
-                        -o ${golden}/cornell-fixed64.exr RESULT_VARIABLE code)
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "oiiotool could not change the golden")
-endif()
+# One pixel of a golden, (10, 20), set to 0.25 (oiiotool keeps the hpsf: metadata).
+function(change_pixel exr)
+  execute_process(COMMAND oiiotool ${exr} --box:color=0.25,0.25,0.25:fill=1 10,20,10,20 -o ${exr} RESULT_VARIABLE code)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "oiiotool could not change ${exr}")
+  endif()
+endfunction()
+
+change_pixel(${golden}/cornell-fixed64.exr)
 run(2 "FAIL  cornell/fixed64 +reference FAIL: max .* at \\(10, 20, .\\).*FAIL  cornell/fixed64 +emulated.*FAIL  cornell/fixed64 +vulkan.*PASS  furnace/fixed64.*6 checks of 2 cases: 3 pass, 0 warn, 3 fail"
     check --manifest ${golden}/manifest.json cornell/fixed64 furnace/fixed64)
 foreach(backend reference emulated vulkan)
@@ -50,11 +53,7 @@ endif()
 # A golden two cases share is its first case's: blessing the second (float32 on the hashed backends, compared
 # within 1e-4) renders with the first case's backend (the reference), so the first case's exact check still
 # passes; rendered by the emulator or Vulkan, float32 sums in another order would fail it.
-execute_process(COMMAND oiiotool ${golden}/cornell-float32.exr --box:color=0.25,0.25,0.25:fill=1 10,20,10,20
-                        -o ${golden}/cornell-float32.exr RESULT_VARIABLE code)
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "oiiotool could not change the float32 golden")
-endif()
+change_pixel(${golden}/cornell-float32.exr)
 run(0 "blessed +cornell/float32 +.*cornell-float32.exr \\(changed: .*rendered by reference\\)"
     bless --manifest ${golden}/manifest.json cornell/float32-hashed)
 run(0 "1 checks of 1 cases: 1 pass" check --manifest ${golden}/manifest.json cornell/float32)
