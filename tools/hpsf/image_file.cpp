@@ -59,9 +59,9 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
   OIIO::ImageSpec spec(int(image.width), int(image.height), int(names.size()), OIIO::TypeDesc::FLOAT);
   // The layers ride in the same file, by channel name, so the image and its noise cannot be separated.
   spec.channelnames = names;
-  std::vector<float> channels;
-  channels.reserve(image.pixels.size() * names.size());
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+  std::vector<float> channels;  // interleaved only when there are layers: the plain image is written in place
+  if (!layers.empty()) channels.reserve(image.pixels.size() * names.size());
+  for (std::size_t i = 0; i < image.pixels.size() && !layers.empty(); ++i) {
     for (const Image* plane : planes) {
       const glm::vec3& v = plane->pixels[i];
       channels.insert(channels.end(), {v.x, v.y, v.z});
@@ -81,7 +81,8 @@ std::string WriteImageFiles(const std::string& exr_path, const Image& image,
   // call created, the EXR already renamed into place included, so no output is left half made.
   bool exr_placed = false;
   try {
-    Write(exr_temporary.string(), spec, channels.data(), exr_path);
+    const void* pixels = layers.empty() ? static_cast<const void*>(image.pixels.data()) : channels.data();
+    Write(exr_temporary.string(), spec, pixels, exr_path);
     Write(png_temporary.string(), preview_spec, preview.data(), png.string());
     std::error_code failed;
     std::filesystem::rename(exr_temporary, exr, failed);
