@@ -2,6 +2,12 @@
 # rapidcheck seed so CI never flakes; set RC_PARAMS yourself to explore other seeds.
 set(HPSF_RAPIDCHECK_PARAMS "seed=20261121 max_success=500" CACHE STRING "RC_PARAMS for property tests run by ctest")
 
+if(NOT HPSF_BUILD_TESTING)
+  function(hpsf_add_test name)
+  endfunction()
+  return()
+endif()
+
 function(hpsf_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBRARIES;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})

@@ -1,4 +1,4 @@
-// DESIGN.md's one interface of a backend (issue 14): a backend owns its table from frame to frame. Reset empties
+// The one interface of a backend (docs/design/README.md): a backend owns its table from frame to frame. Reset empties
 // it; FilterFrame adds one frame's records to it and resolves that frame against it. This is temporal
 // integration (Binder et al. §3.4.1): a cell's sums and count are those of every frame since Reset, so its average
 // weighs old and new samples by their counts, alpha = N_old / (N_old + N_new).

@@ -1,4 +1,4 @@
-// Effect planning (issue 17, DESIGN.md "the scene decides which effects run"): each optional pass declares what
+// Effect planning (docs/design/tracer.md: the scene decides which effects run): each optional pass declares what
 // in a scene and a run calls for it, and is skipped where nothing does. A pass is skipped only where it provably
 // changes no output bit, so a skipped effect spends no time and forcing it (--force-effect NAME) gives the same
 // image and table:

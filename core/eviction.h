@@ -1,4 +1,4 @@
-// Eviction across frames (issue 14; Binder et al. §3.4, Meijer §4.2): which cells a table forgets after a frame.
+// Eviction across frames (Binder et al. §3.4, Meijer §4.2): which cells a table forgets after a frame.
 // A cell's last-seen frame is the last frame a record was added to it; after a frame's accumulate, a cell last
 // seen `unseen_frames` or more frames ago is evicted. strict evicts every cell this frame did not touch
 // (unseen_frames 1); stale:N after N frames unseen; none never. A cell this frame touched is never evicted, so

@@ -1,4 +1,4 @@
-// What every backend returns from filtering one batch (DESIGN.md, "Layout"): the image, the table as cells,
+// What every backend returns from filtering one batch (docs/design/README.md): the image, the table as cells,
 // where each record went, and the counts a report needs.
 #ifndef HPSF_CORE_FILTER_RESULT_H
 #define HPSF_CORE_FILTER_RESULT_H
@@ -35,7 +35,7 @@ struct FilterStats {
   double mean_records_per_cell = 0.0;
   int fixed_point_bits = 0;             // F of fixed64 for this batch
   std::uint64_t fixed_point_wraps = 0;  // fixed64 adds whose cell sum wrapped (a sequence outgrew its F)
-  std::uint64_t count_wraps = 0;        // adds whose 64-bit count wrapped (DESIGN.md D12)
+  std::uint64_t count_wraps = 0;        // adds whose 64-bit count wrapped (docs/design/defects.md, D12)
   std::uint64_t cells_evicted = 0;      // cells the frame's eviction removed (core/eviction.h)
   std::uint64_t cells_seeded = 0;       // cells new in the frame seeded from another level (core/level_seed.h)
 };

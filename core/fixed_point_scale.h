@@ -23,7 +23,7 @@ int ChooseFixedPointBits(std::span<const Record> records, std::uint32_t frames =
 // The same choice from the contributions of the records that enter the table; a backend that has already
 // checked its records passes those, with zero in place of a record that does not enter (zero adds nothing).
 // The sums are integers, so F does not depend on how the runner splits the work.
-// frames > 1: a table integrated over that many frames like this one (issue 14) keeps the first frame's F, so
+// frames > 1: a table integrated over that many frames like this one keeps the first frame's F, so
 // the first frame's sums must stay below 2^63 / frames instead: frames alike never overflow, and a later,
 // brighter frame that does is counted by the kernels' wrap check.
 int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner = {},

@@ -33,7 +33,7 @@ struct HashTableDump {
   std::vector<std::uint64_t> counts;
   // With eviction (core/eviction.h): the last frame a record was added to each slot. A slot whose tag is set
   // and whose count is 0 is a tombstone: an evicted cell that still holds its tag, so that a lookup probing past
-  // it never stops at a hole (DESIGN.md D7). Empty without eviction.
+  // it never stops at a hole (docs/design/defects.md, D7). Empty without eviction.
   std::vector<std::uint32_t> last_seen;
 };
 

@@ -19,7 +19,7 @@ struct HashedRun {
   std::vector<std::uint32_t> placements;  // per record: a slot, kProbeFailure or kNotPlaced
   std::uint64_t probe_failures = 0;
   std::uint64_t wraps = 0;                   // fixed64 adds whose sum wrapped
-  std::uint64_t count_wraps = 0;             // adds whose 64-bit count wrapped (DESIGN.md D12)
+  std::uint64_t count_wraps = 0;             // adds whose 64-bit count wrapped (docs/design/defects.md, D12)
   std::vector<std::uint64_t> probe_lengths;  // [k]: records placed after probing k + 1 slots
   std::uint64_t evicted = 0;                 // live slots this frame's eviction made tombstones
   std::uint64_t tombstones = 0;              // tombstones left after the frame (core/hash_table.h)

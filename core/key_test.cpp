@@ -118,7 +118,7 @@ TEST(ComputeKey, WithoutJitterTheCellIsTheFloorOfThePositionOverTheCellSize) {
 
 TEST(ComputeKey, TheLevelIsRecomputedAfterTheJitter) {
   // d is just below a power of two before the jitter, so a jitter away from the camera crosses the level
-  // boundary; the key must use the level of the jittered position (DESIGN.md D5).
+  // boundary; the key must use the level of the jittered position (docs/design/defects.md, D5).
   FilterConfig config;
   config.jitter_scale = 1.0f;
   VertexSample v = TestVertex();

@@ -1,4 +1,4 @@
-// Resolution changes across frames (issue 14; Binder et al. §3.4.2): `--level-change none|seed[:S]`. With level of
+// Resolution changes across frames (Binder et al. §3.4.2): `--level-change none|seed[:S]`. With level of
 // detail the level of a location follows the camera, so after a move its records key a cell at another level, which
 // starts empty while the old level's cells still hold its estimate. With seed, a cell new in a frame (no samples
 // before it) is seeded after the frame's accumulate from the table before the frame: with the sums and counts of

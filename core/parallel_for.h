@@ -1,6 +1,6 @@
 // The parallel loops of the emulator's fast mode and of the tracer, on TBB. Under ThreadSanitizer they run on
 // plain std::threads instead: Debian's libtbb is not instrumented, so TSan cannot see the synchronisation that
-// hands a task to a worker and reports hundreds of false races in every loop body (DESIGN.md, Tests). On plain
+// hands a task to a worker and reports hundreds of false races in every loop body (docs/design/testing.md). On plain
 // threads TSan sees every edge, and every report in hpsf's code is real. Header-only: its users link TBB::tbb.
 #ifndef HPSF_CORE_PARALLEL_FOR_H
 #define HPSF_CORE_PARALLEL_FOR_H

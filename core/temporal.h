@@ -1,4 +1,4 @@
-// Temporal accumulation across frames (issue 14; Binder et al. §3.4.1, Schipek §5.3): how a cell blends what it
+// Temporal accumulation across frames (Binder et al. §3.4.1, Schipek §5.3): how a cell blends what it
 // held before a frame (its history: average h over N_old samples) with what the frame added (average f over
 // N_new). integrate weighs them by their counts, alpha = N_old / (N_old + N_new): the table holds every frame's
 // exact sums. ema:ALPHA[:MAXCOUNT] caps the history's weight: alpha = min(ALPHA, N' / (N' + N_new)) with

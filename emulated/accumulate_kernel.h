@@ -1,4 +1,4 @@
-// The accumulate pass of DESIGN.md, "The algorithm", as an emulator kernel: one thread per record; bounded
+// The accumulate pass of docs/design/algorithm.md, as an emulator kernel: one thread per record; bounded
 // linear probing from slot0; a slot whose tag equals the fingerprint is joined, an empty one is claimed with a
 // compare-and-swap; each channel is added atomically, then the count; the record's slot is stored. No slot
 // within the probe limit is a probe failure. fixed64 adds also report wrap (new < old). With eviction, the slot's

@@ -1,4 +1,4 @@
-// Known defects of DESIGN.md injected into the accumulate kernel, one at a time, so the harness can prove its
+// Known defects (docs/design/defects.md) injected into the accumulate kernel, one at a time, so the harness can prove its
 // gate has teeth: `hpsf crosscheck --inject-defect D9` must fail. Each variant is the correct kernel
 // (accumulate_kernel.cpp) with exactly one change.
 #ifndef HPSF_EMULATED_DEFECT_INJECTION_H
@@ -18,7 +18,7 @@ enum class Defect {
   kD8UnwrappedProbe,       // the probe index not wrapped at all: writes past the end of the table
   kD9NonAtomicAdd,         // read-modify-write of sums and counts without atomics
   kD13LoadThenStoreClaim,  // a slot claimed by load-then-store instead of compare-and-swap
-  // The three classes a new user's planted bugs showed `hpsf fuzz` must find unaided (issue 33):
+  // The three classes a new user's planted bugs showed `hpsf fuzz` must find unaided:
   kD11TruncatedFixedPoint,  // fixed64 by truncation instead of rounding: hidden where c * 2^F is an integer
   kCountStoreClaimFirst,    // the claimer sets the count with a plain store of 1, others add atomically (claim
   kCountStoreJoinFirst,     // branch written first, or the joiners' branch first): a race on the count
@@ -31,12 +31,12 @@ Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);
 
-// D7 of DESIGN.md, in the eviction pass (emulated/eviction_kernels.h): the reclaim empties every tombstone, so an
+// D7 (docs/design/defects.md), in the eviction pass (emulated/eviction_kernels.h): the reclaim empties every tombstone, so an
 // eviction leaves a hole that a live cell's key probed past; its next lookup claims the hole and splits the cell.
 // Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
 
-// Priority eviction's compare of the wrong sign (issue 14): the selection evicts, in a failed record's window, the
+// Priority eviction's compare of the wrong sign: the selection evicts, in a failed record's window, the
 // untouched live slot of highest priority instead of lowest (the most recently seen, most sampled cell).
 simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const EvictionArgs& args);
 
@@ -45,7 +45,7 @@ simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const Eviction
 // slot blended once per record. Not a Defect value: only a frame after the first blends.
 simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
-// An eviction racing an insertion (issue 14): the accumulate whose thread i first evicts slot i by the policy, as
+// An eviction racing an insertion: the accumulate whose thread i first evicts slot i by the policy, as
 // the eviction pass would, then inserts its record, saving the pass's launch. Another thread may be inserting
 // into slot i meanwhile: its last-seen store may come after the eviction's read, or its adds before the zeroing,
 // so a cell the frame touches is evicted, whole or in part. Not a Defect value: only a frame after the first

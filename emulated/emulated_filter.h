@@ -53,7 +53,7 @@ struct EmulatedRun : HashedRun {
   EmulatedTimings timings;
 };
 
-// The accumulate kernel to run; tests pass broken variants of it (DESIGN.md, "Known defects").
+// The accumulate kernel to run; tests pass broken variants of it (docs/design/defects.md).
 using AccumulateKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const AccumulateArgs&);
 
 // previous: the table after the frames before this one in a sequence (core/backend.h); the device table starts

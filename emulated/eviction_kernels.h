@@ -2,7 +2,7 @@
 // Evict: a live slot the policy evicts keeps its tag and becomes a tombstone (count and sums zeroed). Reclaim: a
 // tombstone becomes empty (tag 0) unless a live slot lies after it within probe_limit - 1 slots with no empty slot
 // between: such a live slot may have been placed by probing past the tombstone, and a hole there would make its
-// key claim the hole next frame and split its cell (DESIGN.md D7).
+// key claim the hole next frame and split its cell (docs/design/defects.md, D7).
 //
 // Tombstones, not compaction or rehashing: backward-shift compaction needs each slot's home (slot0), and a
 // rehash the full key, neither of which the table stores; a tombstone needs nothing new and no slot moves, so

@@ -2,7 +2,7 @@
 // a slot that held samples before the frame (its count in the previous table, the double buffer of Meijer §4.2.2
 // and Schipek §5.3) and that the frame added to is blended by core's BlendCellState; every other slot keeps what
 // it holds. The accumulate writes only the current table and the blend reads the previous one, which no pass of
-// the frame writes: the averages are never read while they are being accumulated (DESIGN.md D10).
+// the frame writes: the averages are never read while they are being accumulated (docs/design/defects.md, D10).
 #ifndef HPSF_EMULATED_TEMPORAL_KERNEL_H
 #define HPSF_EMULATED_TEMPORAL_KERNEL_H
 

@@ -1,5 +1,5 @@
 // The gate has teeth: the broken variants of the accumulate kernel (emulated/defect_injection), one per known
-// defect of DESIGN.md (D2, D3, D8, D9, D13), run on inputs constructed to reach the defect. For each, the table
+// defect of docs/design/defects.md (D2, D3, D8, D9, D13), run on inputs constructed to reach the defect. For each, the table
 // checker or the cross-check contract must fail. D9 and D13 need a particular interleaving: the tests report
 // which schedule policies found them and after how many schedules.
 #include <bit>
@@ -17,7 +17,7 @@
 #include "emulated/simt/kernel_fault.h"
 #include "emulated/simt/schedule.h"
 #include "property_tests/constructed_cells.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf {
 namespace {

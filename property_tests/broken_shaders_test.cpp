@@ -13,7 +13,7 @@
 #include "core/filter_config.h"
 #include "property_tests/constructed_cells.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 #include "vulkan/vulkan_filter.h"
 
 namespace hpsf {

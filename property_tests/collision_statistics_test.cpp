@@ -1,4 +1,4 @@
-// Collisions: the index hash against linear probing's theory (tools/checks/probe_theory). For each load a in
+// Collisions: the index hash against linear probing's theory (verifier/theory/probe_theory). For each load a in
 // {0.1, 0.25, 0.5, 0.7, 0.8, 0.9, 0.95}, 20 tables are filled with distinct keys and two statistics measured per
 // table: the mean probes of a successful search, and the share of its windows of 4 and of 16 slots that are full
 // (the probability that a new key exceeds a probe limit of that size). H0: their expectations are the exact
@@ -24,8 +24,8 @@
 #include "property_tests/grid_batch.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/probe_theory.h"
-#include "tools/checks/table_statistics.h"
+#include "verifier/theory/probe_theory.h"
+#include "verifier/theory/table_statistics.h"
 
 namespace hpsf::testing {
 namespace {

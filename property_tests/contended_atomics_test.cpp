@@ -9,7 +9,7 @@
 #include "emulated/emulated_filter.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf::testing {
 namespace {

@@ -1,4 +1,4 @@
-// Counts that cannot overflow silently (DESIGN.md D12, issue 14). Every count is 64 bits wide: a slot's count, the
+// Counts that cannot overflow silently (docs/design/defects.md, D12). Every count is 64 bits wide: a slot's count, the
 // sums' fixed64 words, the statistics. 2^64 adds are out of any test's reach, so the overflow is constructed: the
 // table a frame starts from is loaded with a count just below the limit (EmulatedFilter's previous table,
 // VulkanFilter::LoadTable), and the frame's adds carry it over. The kernels report the wrap (count_wraps) and the
@@ -19,7 +19,7 @@
 #include "emulated/emulated_filter.h"
 #include "property_tests/grid_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 #include "vulkan/vulkan_filter.h"
 
 namespace hpsf::testing {

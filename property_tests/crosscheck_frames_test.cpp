@@ -1,4 +1,4 @@
-// The cross-check contract over sequences of frames (issue 14, tools/checks/contract_levels.h): every eviction
+// The cross-check contract over sequences of frames (verifier/contract/contract_levels.h): every eviction
 // policy and temporal mode passes on all three backends frame by frame; the records that a table merged across
 // frames (an alias with a cell of an earlier frame, a cell whose records failed to probe in an earlier frame) are
 // classified, never blamed on a correct backend; and the broken variants of frames (D7 in the emulator and as a
@@ -21,8 +21,8 @@
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
-#include "tools/checks/contract_levels.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/contract/contract_levels.h"
+#include "verifier/contract/crosscheck.h"
 #include "tracer/scene_file.h"
 #include "vulkan/vulkan_backend.h"
 

@@ -1,11 +1,11 @@
-// The gate never fails on correct code (issue 10): the cross-check of every built-in scene with all three
+// The gate never fails on correct code: the cross-check of every built-in scene with all three
 // backends, the emulator in fast mode (where float32 sums follow the threads' timing, as a device's do), passes
 // 20 times in a row in float32 and in fixed64. Its verdict must not depend on timing, so no run may fail; that a
-// rerun which breaks the promise is caught is shown deterministically in tools/checks/rerun_check_test.cpp.
+// rerun which breaks the promise is caught is shown deterministically in verifier/contract/rerun_check_test.cpp.
 #include <gtest/gtest.h>
 
 #include "property_tests/traced_batch.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/contract/crosscheck.h"
 
 namespace hpsf::testing {
 namespace {

@@ -1,4 +1,4 @@
-// Effect planning (core/effect_plan.h, issue 17): the plan skips a pass only where it changes no bit. On every
+// Effect planning (core/effect_plan.h): the plan skips a pass only where it changes no bit. On every
 // backend, forcing each skipped effect (--force-effect) gives the same image and the same table, bit for bit, and
 // the pass did run (its timer reads more than zero); the skipped pass's timer reads exactly zero. A static scene
 // traced from one build gives the records of a build per frame.

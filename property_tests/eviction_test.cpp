@@ -1,4 +1,4 @@
-// Eviction across frames (core/eviction.h, issue 14) on all three backends: frame by frame, the hashed tables
+// Eviction across frames (core/eviction.h) on all three backends: frame by frame, the hashed tables
 // (emulated fast and faithful, Vulkan mapped and staged) evict what the exact map evicts and resolve the same image
 // bit for bit, and the table checker passes them from the table before each frame; tombstones keep every live cell
 // reachable, and the reclaim that empties every tombstone (D7, in the emulator and as a shader) is caught by the
@@ -28,8 +28,8 @@
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/contract_levels.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/contract/contract_levels.h"
+#include "verifier/checker/table_checker.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 #include "vulkan/vulkan_backend.h"

@@ -1,5 +1,5 @@
 // Fingerprint failures: how often two different keys share a slot because their b-bit fingerprints are equal
-// within a probe window, against the rate predicted from the window occupancy (tools/checks/alias_theory). For
+// within a probe window, against the rate predicted from the window occupancy (verifier/theory/alias_theory). For
 // b = 8, 10, 12, 16, 20 crowded tables (2^16 slots, 90% of them offered distinct keys, probe limit 16) are filled
 // one key at a time; given the table each key meets, its chance of an alias is exact, and their sum is the
 // prediction. H0: the aliases counted have that expectation. The count is a sum of independent-given-the-past
@@ -21,7 +21,7 @@
 #include "emulated/emulated_filter.h"
 #include "property_tests/grid_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/alias_theory.h"
+#include "verifier/theory/alias_theory.h"
 
 namespace hpsf::testing {
 namespace {

@@ -1,5 +1,5 @@
 // The per-batch choice of F never lets a channel's total reach 2^63, and is the largest F that does not; for a
-// table that integrates K frames (issue 14), K such totals stay below 2^63.
+// table that integrates K frames, K such totals stay below 2^63.
 #include <algorithm>
 #include <bit>
 #include <cmath>

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/key_batch.h"
-#include "property_tests/record_generators.h"
+#include "verifier/generators/record_generators.h"
 
 namespace hpsf::testing {
 namespace {

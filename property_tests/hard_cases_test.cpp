@@ -1,4 +1,4 @@
-// The numerical hard cases of issue 12, through every backend: the reference, the emulator (fast, and faithful
+// The numerical hard cases (docs/design/tracer.md), through every backend: the reference, the emulator (fast, and faithful
 // inside the cross-check) and Vulkan (mapped and staged), in fixed64 and float32 where both mean something.
 // Each case asserts that every image pixel is finite, that the cross-check contract holds at every level, and
 // that the records keyed, without a vertex, unkeyable and rejected are what the case was built to give; then
@@ -23,9 +23,9 @@
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/crosscheck.h"
-#include "tools/checks/image_check.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/contract/crosscheck.h"
+#include "verifier/contract/image_check.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf::testing {
 namespace {

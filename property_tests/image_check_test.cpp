@@ -1,4 +1,4 @@
-// Level 3's image judgement (tools/checks/image_check): every correct emulated run's image, fast or faithful,
+// Level 3's image judgement (verifier/contract/image_check): every correct emulated run's image, fast or faithful,
 // fixed64 or float32, crowded or not, is the resolve of its own table; an image one float ulp off in fixed64,
 // or resolved with a wrong count or without a record in float32, is caught.
 #include <bit>
@@ -10,7 +10,7 @@
 #include "core/resolve.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/traced_batch.h"
-#include "tools/checks/image_check.h"
+#include "verifier/contract/image_check.h"
 
 namespace hpsf::testing {
 namespace {

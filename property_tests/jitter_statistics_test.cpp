@@ -1,5 +1,5 @@
 // Jitter: the statistics the filter's quality rests on (Binder et al. §3.1), from core's key path and from
-// Vulkan's keys (tools/checks/jitter_statistics reads the jitter back from the cells). H0 for each: the law of a
+// Vulkan's keys (verifier/theory/jitter_statistics reads the jitter back from the cells). H0 for each: the law of a
 // correct jitter. Pearson chi-square (pooled cells), Sidak over the 7 tests x 2 key passes, family at 0.001;
 // fixed seeds, so no verdict changes between runs. Alternatives, each rejected by the same statistic on the
 // same records, with its power computed from its exact cell probabilities (noncentral chi-square):
@@ -25,7 +25,7 @@
 #include "core/shared/jitter.h"
 #include "core/shared/rng.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/jitter_statistics.h"
+#include "verifier/theory/jitter_statistics.h"
 
 namespace hpsf::testing {
 namespace {

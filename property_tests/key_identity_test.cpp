@@ -9,7 +9,7 @@
 
 #include "core/input_check.h"
 #include "core/key_batch.h"
-#include "property_tests/record_generators.h"
+#include "verifier/generators/record_generators.h"
 #include "property_tests/vulkan_test_devices.h"
 
 namespace hpsf::testing {

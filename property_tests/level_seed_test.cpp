@@ -1,4 +1,4 @@
-// Resolution changes across frames (core/level_seed.h, Binder et al. §3.4.2; issue 14) on all three backends: a cell
+// Resolution changes across frames (core/level_seed.h, Binder et al. §3.4.2) on all three backends: a cell
 // new at a coarser level is seeded with its children's sums and counts, one new at a finer level with its parent's
 // share, the same way in the reference (exact keys), the emulator and Vulkan (the table before the frame, looked up
 // by fingerprint); the table checker recomputes every seed from the table before the frame, and the contract holds
@@ -20,8 +20,8 @@
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_backend.h"
-#include "tools/checks/contract_levels.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/contract/contract_levels.h"
+#include "verifier/checker/table_checker.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf::testing {

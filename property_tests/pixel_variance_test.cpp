@@ -1,4 +1,4 @@
-// The variance estimate of tools/checks/pixel_variance against its oracle, the spread of the same pixel over
+// The variance estimate of verifier/metrics/pixel_variance against its oracle, the spread of the same pixel over
 // independent renders: the Cornell box traced and filtered with K seeds, the empirical variance of every pixel
 // and of the image mean over the seeds compared with the average of the K estimates. The within-pixel term alone
 // (the naive estimate) must fail where cells are shared, which is the oracle of the cell term. Seeds are fixed, so
@@ -14,7 +14,7 @@
 
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/pixel_variance.h"
+#include "verifier/metrics/pixel_variance.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 

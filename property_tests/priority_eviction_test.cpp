@@ -1,4 +1,4 @@
-// Priority eviction (core/eviction.h, Binder et al. §3.4.3; issue 14) on every hashed backend: in a table under
+// Priority eviction (core/eviction.h, Binder et al. §3.4.3) on every hashed backend: in a table under
 // pressure, the record that found no slot makes the untouched cell of lowest priority in its window a claimable
 // tombstone and finds room the next frame; the table checker recomputes every victim from the table before the
 // frame and the frame's placements, and catches the compare of the wrong sign in the emulator and as a shader; the
@@ -23,8 +23,8 @@
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/contract_levels.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/contract/contract_levels.h"
+#include "verifier/checker/table_checker.h"
 #include "tracer/scene_file.h"
 #include "vulkan/vulkan_backend.h"
 

@@ -14,8 +14,8 @@
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/crosscheck.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/contract/crosscheck.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf::testing {
 namespace {

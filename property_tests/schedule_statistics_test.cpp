@@ -1,4 +1,4 @@
-// The random and PCT schedules explore what they claim (issue 12). Each H0 below is checked with Pearson's
+// The random and PCT schedules explore what they claim. Each H0 below is checked with Pearson's
 // chi-square (cells whose expected count is below 5 pooled, as Mitsuba 3 does), the p-value from Boost.Math, and
 // Sidak's correction so that the family of 14 tests holds at 0.001 (each at 7.1e-5). Fixed seeds: a verdict is a
 // fixed function of the code, so CI never flakes.
@@ -37,7 +37,7 @@
 #include <gtest/gtest.h>
 
 #include "emulated/simt/launcher.h"
-#include "tools/checks/chi_square.h"
+#include "verifier/theory/chi_square.h"
 
 namespace hpsf::simt {
 namespace {

@@ -1,4 +1,4 @@
-// The statistical comparison of two renders (tools/checks/statistical_compare) on constructed images: its
+// The statistical comparison of two renders (verifier/metrics/statistical_compare) on constructed images: its
 // arithmetic against scipy's Welch test (p-values, degrees of freedom, the Sidak levels), no noise, NaN and the
 // refusals. Renders: statistical_renders_test.cpp; the false-alarm rates: statistical_calibration_test.cpp.
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "tools/checks/statistical_compare.h"
+#include "verifier/metrics/statistical_compare.h"
 
 namespace hpsf::testing {
 namespace {

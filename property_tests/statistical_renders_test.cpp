@@ -1,4 +1,4 @@
-// The statistical comparison of two renders (tools/checks/statistical_compare) on the Cornell box: two seeds are
+// The statistical comparison of two renders (verifier/metrics/statistical_compare) on the Cornell box: two seeds are
 // consistent with noise, 1% more green is seen by the image-mean test, one pixel ten times brighter by its tile's
 // test. The renders use fixed seeds, so each verdict is one fixed outcome; the power stated for the 1% bias is
 // computed from the renders.
@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "reference/reference_filter.h"
-#include "tools/checks/pixel_variance.h"
-#include "tools/checks/statistical_compare.h"
+#include "verifier/metrics/pixel_variance.h"
+#include "verifier/metrics/statistical_compare.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 

@@ -20,9 +20,9 @@
 #include "core/shared/fixed_point.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/constructed_cells.h"
-#include "property_tests/record_generators.h"
+#include "verifier/generators/record_generators.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf::testing {
 namespace {

@@ -1,4 +1,4 @@
-// Temporal blending (core/temporal.h, issue 14): a light that moves between two rows of cells shows each mode's
+// Temporal blending (core/temporal.h): a light that moves between two rows of cells shows each mode's
 // behaviour against its theory, exactly (no noise: every frame puts the same records in the same cells): the
 // EMA's estimate after the move is b + (a - b) alpha^k and its lag (frames to half the step) is the one alpha
 // predicts, Schipek's maximum count acts as alpha = M / (M + n), integration converges as K (a - b) / (K + k), and
@@ -29,7 +29,7 @@
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_backend.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf::testing {
 namespace {

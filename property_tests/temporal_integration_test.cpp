@@ -1,4 +1,4 @@
-// Temporal integration through the Backend interface (core/backend.h, issue 14), on all three backends: a table
+// Temporal integration through the Backend interface (core/backend.h), on all three backends: a table
 // kept over K frames holds, in fixed64 and bit for bit, what one frame of all K frames' records gives; with jitter
 // (each frame's own random numbers) it is the sum of each frame's table alone. The table checker judges each
 // frame from the table before it, and catches a backend that forgets the table between frames.
@@ -21,7 +21,7 @@
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 #include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {

@@ -13,13 +13,13 @@
 
 #include "core/hash_table.h"
 #include "emulated/emulated_filter.h"
-#include "property_tests/record_generators.h"
-#include "tools/checks/crosscheck.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/generators/record_generators.h"
+#include "verifier/contract/crosscheck.h"
+#include "verifier/checker/table_checker.h"
 #include "tracer/path_tracer.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "tools/checks/rerun_check.h"
+#include "verifier/contract/rerun_check.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf::testing {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How fast `hpsf fuzz` finds the three classes of bug issue 33 names, unaided: for each broken shader (Vulkan) and
+# How fast `hpsf fuzz` finds three classes of bug (a race, a rounding, frame state), unaided: for each broken shader (Vulkan) and
 # broken emulator kernel, SEEDS seeds of `hpsf fuzz --runs BUDGET --json`, and per class the runs to find (median
 # and max), how many seeds missed, the shrunk records (max) and how many failures were timing-dependent (bundled as
 # found). The README's table comes from this; the ctest budgets (tools/CMakeLists.txt) are set from its maxima.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 11's checks and figures on a machine with a GPU, in one device call, so that a session lent one for a
+# The GPU checks and figures on a machine with a GPU, in one device call, so that a session lent one for a
 # short while spends it measuring. Two steps:
 #   here, after a build:      scripts/gpu-figures.sh pack    (the binaries and their libraries into .gpu-bundle/)
 #   there, from the repo root: bash scripts/gpu-figures.sh run  (carry .gpu-bundle; writes $OUT, else ./gpu-figures)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The mutation score (issue 16): each patch of mutants/ (DESIGN.md's known defects D1-D13 written into the
+# The mutation score: each patch of mutants/ (the known defects D1-D13 of docs/design/defects.md written into the
 # production code, and N1.. for the features built since, one small change each) is applied to a worktree of HEAD,
 # built incrementally, and judged by the gate (`hpsf check`: the default gate, then .ci/gate.json) and, when the
 # gate passes it, by ctest (-LE "slow|in-gate|mutants": not the check that every patch applies, which an applied

@@ -1,4 +1,4 @@
-// A scene's keyframes (issue 14, Binder et al. §3.4: the table persists while the scene moves): the camera,
+// A scene's keyframes (Binder et al. §3.4: the table persists while the scene moves): the camera,
 // and named shapes, a light among them, moved by a translation and, for an emitter, scaled in emission. Between
 // two keyframes a value is interpolated linearly; before the first and after the last it holds. A scene without
 // keyframes is static: every frame is frame 0.

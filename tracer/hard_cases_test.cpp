@@ -1,4 +1,4 @@
-// The hard cases of DESIGN.md, "Scenes and the tracer": far from the origin, tiny, zero albedo channels, and
+// The hard cases of docs/design/tracer.md: far from the origin, tiny, zero albedo channels, and
 // unkeyable records on purpose.
 #include <cmath>
 

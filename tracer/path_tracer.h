@@ -1,6 +1,6 @@
 // The deterministic path tracer: Embree 3 rays, cosine-sampled diffuse bounces, next-event estimation to the
 // emitting triangles, Russian roulette for unbounded depth. It emits exactly one record per camera sample, in
-// (pixel, sample) order: the filter vertex of DESIGN.md ("Sample records") or, without one, radiance_before.
+// (pixel, sample) order: the filter vertex of docs/design/key-path.md or, without one, radiance_before.
 // Every random number comes from the counter RNG and TBB splits the image into tiles whose samples are
 // independent, so no output bit depends on the thread count.
 #ifndef HPSF_TRACER_PATH_TRACER_H

@@ -64,7 +64,7 @@ class VulkanFilter {
 
   // Makes `table` the device table a Run with keep_table carries on from, as if a frame had left it: its tags,
   // sums, counts and last-seen frames (zero when it has none), and its F. For tables no frame reaches in a test's
-  // time (a count near 2^64, DESIGN.md D12) and for starting from a dump.
+  // time (a count near 2^64, docs/design/defects.md, D12) and for starting from a dump.
   void LoadTable(const HashTableDump& table);
 
  private:

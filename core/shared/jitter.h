@@ -1,5 +1,5 @@
 // Tangent-plane jitter of the filter vertex (Binder et al. §3.1, Algorithm 1), evaluated in exactly the order
-// DESIGN.md fixes: x' = x + (jitter_scale * 2^l) * ((2 u1 - 1) * T + (2 u2 - 1) * B).
+// docs/design/key-path.md fixes: x' = x + (jitter_scale * 2^l) * ((2 u1 - 1) * T + (2 u2 - 1) * B).
 #ifndef HPSF_CORE_SHARED_JITTER_H
 #define HPSF_CORE_SHARED_JITTER_H
 

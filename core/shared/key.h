@@ -74,7 +74,7 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   float cell_size = lod ? cell_before : p.cell_size;
   HPSF_PRECISE float amplitude = Flush(p.jitter_scale * cell_size);
   vec3 jittered = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
-  // The level is recomputed after the jitter (DESIGN.md D5): the cell must match the jittered position.
+  // The level is recomputed after the jitter (docs/design/defects.md, D5): the cell must match the jittered position.
   int level_after = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, jittered, x_prev), p.level_min, p.level_max);
   int level_fixed = UnbiasedExponent(p.cell_size);
   int level = lod ? level_after : level_fixed;

@@ -1,5 +1,5 @@
 // One sample record as the GPU sees it (std430: nine 16-byte vectors, 144 bytes) and as the host stores it,
-// so a batch uploads with one copy. DESIGN.md, "Sample records", defines the fields.
+// so a batch uploads with one copy. docs/design/key-path.md defines the fields.
 #ifndef HPSF_CORE_SHARED_RECORD_LAYOUT_H
 #define HPSF_CORE_SHARED_RECORD_LAYOUT_H
 

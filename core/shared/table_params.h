@@ -20,12 +20,12 @@ struct TableParams {
   uint probe_limit;         // slots probed from slot0, wrapping at capacity
   float fixed_point_scale;  // 2^F, fixed64 only
   uint accumulation;        // kAccumulateFixed64 or kAccumulateFloat32
-  // The frame state (issue 14): with eviction, a slot a record is added to stores `frame` as its last-seen frame.
+  // The frame state: with eviction, a slot a record is added to stores `frame` as its last-seen frame.
   uint frame;
   uint track_last_seen;  // 1 with eviction, else 0 (the last-seen buffer is then not written)
   // 1 when the frame blends (a blending --temporal and a table before it): bindings 9 and 10 then hold the table
   // before the frame and the push constants' TemporalParams its mode (table_interface.glsl). The blend is a pass
-  // of its own after the accumulate; an accumulate reads none of it (DESIGN.md D10).
+  // of its own after the accumulate; an accumulate reads none of it (docs/design/defects.md, D10).
   uint blending;
   // 1 with priority eviction: a slot tagged kTombstoneTag (core/shared/eviction_priority.h) may be claimed, so an
   // insertion first looks for its cell in the whole window up to the first empty slot, then claims the first empty

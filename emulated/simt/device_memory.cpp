@@ -84,7 +84,7 @@ void DeviceMemory::ThrowOutOfBounds(const Address& address) const {
   if (address.buffer >= buffers_.size()) {
     throw KernelFault("access to buffer " + std::to_string(address.buffer) + ", which was never allocated");
   }
-  // An out-of-bounds access is a kernel defect (DESIGN.md D8); the emulator reports it instead of corrupting memory.
+  // An out-of-bounds access is a kernel defect (docs/design/defects.md, D8); the emulator reports it instead of corrupting memory.
   throw KernelFault("out-of-bounds access to buffer '" + buffers_[address.buffer].name + "' at index " +
                     std::to_string(address.index) + " of " + std::to_string(views_[address.buffer].size));
 }

@@ -11,7 +11,7 @@
 namespace hpsf::simt {
 namespace {
 
-// counter = counter + 1 as a plain load and a plain store: a lost update waiting to happen (DESIGN.md D9).
+// counter = counter + 1 as a plain load and a plain store: a lost update waiting to happen (docs/design/defects.md, D9).
 KernelTask NonAtomicIncrement(ThreadContext& ctx, std::uint32_t counter) {
   const std::uint64_t value = co_await ctx.Load(counter, 0);
   co_await ctx.Store(counter, 0, value + 1);

@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/key_batch.h"
-#include "property_tests/record_generators.h"
+#include "verifier/generators/record_generators.h"
 #include "tools/benchmarks/benchmark_vulkan.h"
 
 namespace hpsf {

@@ -8,8 +8,8 @@
 #include <tuple>
 
 #include "reference/reference_filter.h"
-#include "tools/checks/pixel_variance.h"
-#include "tools/checks/statistical_compare.h"
+#include "verifier/metrics/pixel_variance.h"
+#include "verifier/metrics/statistical_compare.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 

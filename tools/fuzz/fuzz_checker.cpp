@@ -4,7 +4,7 @@
 // placed" or past the end), zeroes a slot or swaps two slots; or changes a key word, which only must not crash.
 // A bug: the checker crashes, or misses a corruption that changes what the invariants describe. Those are all
 // changes to the dump's bits, except a float32 sum moved within the bound gamma(n - 1) * sum|c| of its slot's
-// exact sum (atomics may round anywhere inside it; DESIGN.md), or an empty slot's sum turned to -0.0, which is
+// exact sum (atomics may round anywhere inside it; docs/design/contract.md), or an empty slot's sum turned to -0.0, which is
 // still zero. A corruption that leaves the dump as it was is none.
 #include <array>
 #include <bit>
@@ -20,7 +20,7 @@
 #include "core/hash_table.h"
 #include "core/input_check.h"
 #include "emulated/emulated_filter.h"
-#include "tools/checks/table_checker.h"
+#include "verifier/checker/table_checker.h"
 #include "tools/fuzz/fuzz_batch.h"
 
 namespace hpsf {

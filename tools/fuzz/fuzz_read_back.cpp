@@ -5,7 +5,7 @@
 // leave it: words of one binding (keys, placements, tags, sums, counts, last-seen frames, the stats words, the
 // resolved pixels) overwritten with the input's bytes, a few at chosen places or all of them. The corrupted runs
 // go through the host's read-back (core/read_back_check.h: FinishReadBack) and the whole contract, exactly as
-// `hpsf crosscheck` judges a Vulkan run (tools/checks/contract_levels.h).
+// `hpsf crosscheck` judges a Vulkan run (verifier/contract/contract_levels.h).
 // A bug: a crash, a sanitizer report, a hang or an exception escaping the contract. Any verdict is accepted.
 // Built twice: as a libFuzzer target (preset fuzz) and as the ctest read_back_fuzz_tests, which runs the
 // checked-in corpus and a fixed number of inputs from the counter RNG (untrusted_inputs_main.cpp).
@@ -25,7 +25,7 @@
 #include "core/error.h"
 #include "core/read_back_check.h"
 #include "emulated/emulated_backend.h"
-#include "tools/checks/contract_levels.h"
+#include "verifier/contract/contract_levels.h"
 #include "tools/fuzz/fuzz_batch.h"
 
 namespace hpsf {

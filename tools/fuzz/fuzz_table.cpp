@@ -2,7 +2,7 @@
 // slots, any probe limit, 8 to 32 fingerprint bits, fixed64 or float32) and a batch built to collide, which the
 // reference and the emulated backend filter, faithfully (the input's warp size and schedule) and fast.
 // A bug: any table checker violation, any breach of the cross-check contract (levels 2 to 4, the same code as
-// hpsf crosscheck: tools/checks/contract_levels.h), a kernel fault, an exception, or a sanitizer report. HPSF_FUZZ_DEFECT=D9 (or D2, D3, D8, D8-unwrapped, D13)
+// hpsf crosscheck: verifier/contract/contract_levels.h), a kernel fault, an exception, or a sanitizer report. HPSF_FUZZ_DEFECT=D9 (or D2, D3, D8, D8-unwrapped, D13)
 // runs a known broken kernel instead, to show the target finds it.
 #include <cstdint>
 #include <cstdio>
@@ -13,7 +13,7 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include "emulated/defect_injection.h"
-#include "tools/checks/contract_levels.h"
+#include "verifier/contract/contract_levels.h"
 #include "tools/fuzz/fuzz_batch.h"
 
 namespace hpsf {

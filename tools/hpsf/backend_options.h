@@ -17,7 +17,7 @@
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/contract/crosscheck.h"
 #include "tools/hpsf/emulator_options.h"
 #include "vulkan/vulkan_filter.h"
 

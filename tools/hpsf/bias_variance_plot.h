@@ -1,4 +1,4 @@
-// The second plot of `hpsf sweep` (issue 17): relMSE's bias squared and variance (tools/checks/error_split.h)
+// The second plot of `hpsf sweep`: relMSE's bias squared and variance (verifier/metrics/error_split.h)
 // against filter width, both on log scales, one series per configuration the sweep varied only in its filter width.
 // A wider cell averages more samples (less variance) over a larger region (more bias); where the two cross is the
 // width that balances them. bias^2 is a line with filled points, the variance a line in the same colour with hollow

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "tools/checks/channel_image.h"
+#include "verifier/metrics/channel_image.h"
 
 namespace hpsf {
 

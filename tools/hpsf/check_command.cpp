@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "tools/gate/case_judgement.h"
-#include "tools/gate/check_report.h"
-#include "tools/gate/gate_file.h"
-#include "tools/gate/junit_report.h"
+#include "verifier/gate/case_judgement.h"
+#include "verifier/gate/check_report.h"
+#include "verifier/gate/gate_file.h"
+#include "verifier/gate/junit_report.h"
 #include "tools/hpsf/check_html_report.h"
 #include "tools/hpsf/commands.h"
 #include "tools/hpsf/html_report.h"

@@ -1,4 +1,4 @@
-// The HTML report of `hpsf check --html` (issue 16): one self-contained page (check.tpl, with the diff report's
+// The HTML report of `hpsf check --html`: one self-contained page (check.tpl, with the diff report's
 // style) holding a row per gate case in gate order, its outcome, time and first failure or warning, unfolding to
 // every failure, the command that reproduces it, its repro bundle and a link to its own report (a golden case's
 // comparisons); above them the run's split by family. A merge of shards renders the same page as the unsharded run.
@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "tools/gate/check_report.h"
+#include "verifier/gate/check_report.h"
 
 namespace hpsf {
 

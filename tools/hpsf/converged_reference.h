@@ -1,4 +1,4 @@
-// A converged image to measure error against (issue 17's `hpsf reference`): plain path tracing at many samples
+// A converged image to measure error against (`hpsf reference`): plain path tracing at many samples
 // per pixel, traced in passes of a few samples each, so that memory stays that of one pass, with each pixel's
 // variance of the mean from the spread of the pass means. Pass p traces with its own seed, drawn from the counter
 // RNG from (seed, frame, p), so the image is a pure function of the scene and the request: no bit depends on

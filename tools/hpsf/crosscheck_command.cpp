@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/contract/crosscheck.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"

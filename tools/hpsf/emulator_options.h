@@ -9,7 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "emulated/emulated_filter.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/contract/crosscheck.h"
 
 namespace hpsf {
 

@@ -26,7 +26,7 @@ struct FilterOptions {
   std::string temporal = "integrate";
   std::vector<std::string> force_effects;  // --force-effect, repeatable
   bool no_filter = false;
-  bool variance = false;  // also write each pixel's variance (tools/checks/pixel_variance.h)
+  bool variance = false;  // also write each pixel's variance (verifier/metrics/pixel_variance.h)
 };
 
 void AddFilterOptions(CLI::App& command, FilterOptions& options);

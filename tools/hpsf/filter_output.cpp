@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "tools/checks/pixel_variance.h"
+#include "verifier/metrics/pixel_variance.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/version.h"

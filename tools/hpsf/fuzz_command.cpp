@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "tools/checks/adversarial_case.h"
-#include "tools/checks/case_shrinker.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/fuzzing/adversarial_case.h"
+#include "verifier/fuzzing/case_shrinker.h"
+#include "verifier/contract/crosscheck.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"

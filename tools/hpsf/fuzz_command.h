@@ -1,4 +1,4 @@
-// `hpsf fuzz`: adversarial batches (tools/checks/adversarial_case.h) against the emulated backend, the Vulkan
+// `hpsf fuzz`: adversarial batches (verifier/fuzzing/adversarial_case.h) against the emulated backend, the Vulkan
 // backend or a team's own accumulate shader, each judged by the table checker and the cross-check contract. The
 // first failure is shrunk to a minimal batch and written as a repro bundle that `hpsf crosscheck` reproduces
 // exactly. Exit 0 clean, 2 a failure found, 3 bad input.

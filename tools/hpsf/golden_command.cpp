@@ -10,9 +10,9 @@
 #include <set>
 
 #include "core/error.h"
-#include "tools/checks/golden_manifest.h"
-#include "tools/checks/image_comparison.h"
-#include "tools/checks/statistical_compare.h"
+#include "verifier/gate/golden_manifest.h"
+#include "verifier/metrics/image_comparison.h"
+#include "verifier/metrics/statistical_compare.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"

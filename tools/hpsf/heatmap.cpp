@@ -11,7 +11,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
-#include "tools/checks/image_metrics.h"
+#include "verifier/metrics/image_metrics.h"
 
 namespace hpsf {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/checks/channel_image.h"
+#include "verifier/metrics/channel_image.h"
 
 namespace hpsf {
 

@@ -19,7 +19,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
-#include "tools/checks/diff_verdict.h"
+#include "verifier/metrics/diff_verdict.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/report_assets.h"
 #include "tools/hpsf/version.h"

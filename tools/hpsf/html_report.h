@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tools/checks/channel_image.h"
-#include "tools/checks/image_comparison.h"
+#include "verifier/metrics/channel_image.h"
+#include "verifier/metrics/image_comparison.h"
 
 namespace hpsf {
 

@@ -11,7 +11,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
-#include "tools/checks/srgb.h"
+#include "verifier/metrics/srgb.h"
 
 namespace hpsf {
 namespace {

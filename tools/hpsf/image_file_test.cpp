@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "tools/checks/statistical_compare.h"
+#include "verifier/metrics/statistical_compare.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/image_file.h"
 

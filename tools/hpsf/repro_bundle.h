@@ -1,4 +1,4 @@
-// The repro bundle a failed check leaves behind (DESIGN.md, "Tools"): the records, the report, copies of the user's
+// The repro bundle a failed check leaves behind (docs/design/README.md): the records, the report, copies of the user's
 // shaders (shaders/accumulate.spv, shaders/eviction.spv), and reproduce.sh, which reruns the same cross-check on
 // the same records with every option that decides the outcome and writes reproduced.json beside report.json. Every
 // path in it is relative to the bundle, and reproduce.sh finds hpsf through $HPSF or PATH and warns when its
@@ -15,7 +15,7 @@
 #include "core/record.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
-#include "tools/checks/crosscheck.h"
+#include "verifier/contract/crosscheck.h"
 
 namespace hpsf {
 

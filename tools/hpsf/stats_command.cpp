@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/footprint.h"
 #include "core/key_batch.h"
-#include "tools/checks/table_statistics.h"
+#include "verifier/theory/table_statistics.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
 #include "tracer/path_tracer.h"

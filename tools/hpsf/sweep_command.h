@@ -1,7 +1,7 @@
-// `hpsf sweep SCENE --grid "..."` (issue 17): what accuracy costs in time. Every configuration of the grid
+// `hpsf sweep SCENE --grid "..."`: what accuracy costs in time. Every configuration of the grid
 // (tools/hpsf/sweep_grid.h) is traced and filtered with K seeds, timed per phase, and measured against the scene's
 // converged image (`hpsf reference`, cached): MSE, relMSE, SSIM, and the MSE split into bias^2 and variance
-// (tools/checks/error_split.h); probe failures and aliased slots for the hashed backends. Each finished
+// (verifier/metrics/error_split.h); probe failures and aliased slots for the hashed backends. Each finished
 // configuration is kept in OUT/configs/ and not run again (a sweep resumes where it stopped, and --shard I/N runs
 // every N-th configuration, so shards in one OUT fill it); OUT/sweep.csv and OUT/sweep.json hold every finished
 // configuration in grid order.

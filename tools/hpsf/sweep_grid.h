@@ -1,4 +1,4 @@
-// The grid of `hpsf sweep` (issue 17): "spp=1,2,4; filter-width=2,4,8; method=pt,hpsf,radius; backend=reference,
+// The grid of `hpsf sweep`: "spp=1,2,4; filter-width=2,4,8; method=pt,hpsf,radius; backend=reference,
 // emulated" names axes and their values; the sweep runs every combination. Three axes are the sweep's own:
 //   spp      samples per pixel traced (default 4)
 //   method   pt (plain path tracing: the batch unfiltered), hpsf (hashed path space filtering on a backend),

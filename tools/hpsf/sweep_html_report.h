@@ -1,4 +1,4 @@
-// The HTML page of `hpsf sweep` (OUT/sweep.html, issue 17): the Pareto plot and the bias and variance against
+// The HTML page of `hpsf sweep` (OUT/sweep.html): the Pareto plot and the bias and variance against
 // filter width as uPlot charts (embedded, report_assets/vendor/), and a table of every configuration. Self-contained:
 // the page loads nothing.
 #ifndef HPSF_TOOLS_HPSF_SWEEP_HTML_REPORT_H

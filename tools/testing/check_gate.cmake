@@ -1,5 +1,5 @@
 # `hpsf check`, the CI gate: the default gate lists its 42 cases and its shards split them exactly; a gate with a
-# defective emulator backend fails with exit 2, its JUnit report validates against tools/gate/junit.xsd (and a
+# defective emulator backend fails with exit 2, its JUnit report validates against verifier/gate/junit.xsd (and a
 # report broken on purpose does not), names the level in the failure, and the failing case's bundle reproduces it;
 # its two shards, run apart and merged (--merge), give the unsharded report, JUnit and HTML page, and bad merges
 # exit 3; a gate of every family (statistics, goldens on a copy of golden/ with one golden changed, a fuzz budget

@@ -1,4 +1,4 @@
-// The accumulate pass of DESIGN.md, "The algorithm", record by record: the key from core/shared, then
+// The accumulate pass of docs/design/algorithm.md, record by record: the key from core/shared, then
 // bounded linear probing from slot0; a slot whose tag is the fingerprint is joined, an empty one claimed with
 // atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
 // reports wrap from the add's return value. With eviction, the slot's last-seen frame is stored after the adds;
@@ -25,7 +25,7 @@
 const uint kRecordsPerInvocation = 16u;
 layout(local_size_x = 128) in;
 
-// The test suite compiles this file once more per known defect of DESIGN.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
+// The test suite compiles this file once more per known defect of docs/design/defects.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
 // _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
 // --accumulate-spv: the gate must catch each. HPSF_DEFECT_D11, _COUNT_STORE_CLAIM_FIRST, _COUNT_STORE_JOIN_FIRST
 // and _LAST_SEEN_CLAIMER_ONLY are the classes `hpsf fuzz` must find unaided (a rounding defect the automatic F
@@ -113,7 +113,7 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale, bool claimed) {
     counts[slot] = uint64_t(1);
   }
 #else
-  // A count of 2^64 - 1 wraps to 0 (DESIGN.md D12): no frame sequence gets there, but a table loaded with one can.
+  // A count of 2^64 - 1 wraps to 0 (docs/design/defects.md, D12): no frame sequence gets there, but a table loaded with one can.
   if (atomicAdd(counts[slot], uint64_t(1)) == ~uint64_t(0)) atomicAdd(count_wraps, uint64_t(1));
 #endif
 }

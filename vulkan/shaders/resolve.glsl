@@ -1,4 +1,4 @@
-// The resolve pass of DESIGN.md, a separate pass after accumulate, pixel by pixel, no atomics: each
+// The resolve pass (docs/design/algorithm.md), a separate pass after accumulate, pixel by pixel, no atomics: each
 // record's value is radiance_before + throughput * the average of its slot (sum / count), or its own
 // contribution without a slot, or radiance_before alone without a vertex; the pixel is the mean of its
 // records in sample order. In double, operation for operation as core/resolve.cpp, so that with the same table

@@ -8,7 +8,7 @@
 //   4 counts      uint64_t[capacity], zeroed                                                  atomics
 //   5 placements  uint[n]: slot, kPlacementProbeFailure or kPlacementNotPlaced                write
 //   6 stats       uint64_t wraps: fixed64 adds whose sum wrapped; then uint64_t count_wraps:  atomics
-//                 adds whose count wrapped (DESIGN.md D12); both zeroed
+//                 adds whose count wrapped (docs/design/defects.md, D12); both zeroed
 //   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
 //   9 previous_sums    as sums: with table.blending, the table before the frame (for reading only;   -

@@ -1,6 +1,6 @@
 // The HTML report's behaviour (report.tpl). A and B travel as linear float16 RGB in base64, not as 8-bit
 // pictures, so that the exposure control can bring out what a fixed tone mapping would clip or crush: each
-// change re-runs exposure and the sRGB transfer function (as tools/checks/srgb.h) on every canvas. Plain
+// change re-runs exposure and the sRGB transfer function (as verifier/metrics/srgb.h) on every canvas. Plain
 // JavaScript with no library, since the page must open anywhere without the network. When every canvas is
 // drawn the script sets document.body.dataset.ready = "1", which the headless browser test waits for.
 'use strict';
@@ -36,7 +36,7 @@
     return values;
   }
 
-  // tools/checks/srgb.h: clamped to [0, 1], a value that is not finite to 0, then IEC 61966-2-1.
+  // verifier/metrics/srgb.h: clamped to [0, 1], a value that is not finite to 0, then IEC 61966-2-1.
   function encodeSrgb(linear) {
     const c = Number.isFinite(linear) ? Math.min(Math.max(linear, 0), 1) : 0;
     return c <= 0.0031308 ? 12.92 * c : 1.055 * Math.pow(c, 1 / 2.4) - 0.055;

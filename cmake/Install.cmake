@@ -1,0 +1,46 @@
+# install() and export rules: `cmake --install` puts the hpsf command, the libraries, their headers and the shader
+# interface under a prefix, with a CMake package a team's project finds by find_package(hpsf COMPONENTS ...).
+# Headers keep their paths below include/hpsf (core/key_batch.h, verifier/checker/table_checker.h), and the GLSL
+# interface sits beside them (vulkan/shaders/table_interface.glsl includes ../../core/shared/*.h), so one include
+# directory serves C++ and glslangValidator alike.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(HPSF_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hpsf)
+set(HPSF_INSTALL_INCLUDEDIR ${CMAKE_INSTALL_INCLUDEDIR}/hpsf)
+
+# Components and their targets. core is always there; the others are what a consumer asks for.
+set(HPSF_COMPONENT_core core simt emulated reference checker theory gate generators)
+set(HPSF_COMPONENT_vulkan vulkan contract fuzzing)
+set(HPSF_COMPONENT_tracer tracer)
+set(HPSF_COMPONENT_reports metrics)
+set(HPSF_COMPONENTS core vulkan tracer reports)
+
+foreach(component IN LISTS HPSF_COMPONENTS)
+  set(targets)
+  foreach(name IN LISTS HPSF_COMPONENT_${component})
+    list(APPEND targets hpsf_${name})
+    set_target_properties(hpsf_${name} PROPERTIES EXPORT_NAME ${name})
+    target_include_directories(hpsf_${name} PUBLIC $<INSTALL_INTERFACE:${HPSF_INSTALL_INCLUDEDIR}>)
+  endforeach()
+  install(TARGETS ${targets} EXPORT hpsf-${component}
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development)
+  install(EXPORT hpsf-${component} NAMESPACE hpsf:: FILE hpsf-${component}-targets.cmake
+    DESTINATION ${HPSF_INSTALL_CMAKEDIR} COMPONENT development)
+endforeach()
+
+install(TARGETS hpsf RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+
+# The headers of every installed library and the shader interface, tests left out.
+foreach(folder core emulated reference tracer vulkan verifier)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${HPSF_INSTALL_INCLUDEDIR}/${folder}
+    COMPONENT development
+    FILES_MATCHING PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.comp" PATTERN "*_test.h" EXCLUDE)
+endforeach()
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/hpsfConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/hpsfConfig.cmake INSTALL_DESTINATION ${HPSF_INSTALL_CMAKEDIR} PATH_VARS HPSF_INSTALL_INCLUDEDIR)
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/hpsfConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/hpsfConfig.cmake ${PROJECT_BINARY_DIR}/hpsfConfigVersion.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/FindOpenCVQuality.cmake DESTINATION ${HPSF_INSTALL_CMAKEDIR} COMPONENT development)

@@ -1,0 +1,52 @@
+// The slots of a hashed table that the contract classifies, over a sequence of frames (docs/design/contract.md: level 3 and
+// level 4 judge every record outside them): a slot whose placed records carry two or more full keys since it was
+// last empty (the fingerprint aliased them, in one frame or across frames), and a slot holding a cell some of whose
+// records failed to probe in an earlier frame (the reference kept them; the table never saw them). Within one
+// frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots. With priority
+// eviction, a cell the table evicted under pressure counts as failed too: the reference, which has no pressure,
+// kept it. With level seeds, a cell new in a frame is classified when a neighbour it may be seeded from (parent or
+// child, core/level_seed.h) failed, aliased or was evicted under pressure: the reference seeds from what it kept.
+#ifndef HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H
+#define HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "core/hashed_run.h"
+
+namespace hpsf {
+
+class ClassifiedSlots {
+ public:
+  explicit ClassifiedSlots(bool evicts_under_pressure = false, bool seeds_levels = false)
+      : evicts_under_pressure_(evicts_under_pressure), seeds_levels_(seeds_levels) {}
+
+  // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
+  const std::vector<bool>& AddFrame(const HashedRun& run);
+
+  // This frame's figures: slots aliased, records placed in classified slots, probe failures.
+  std::uint64_t aliased_slots() const { return aliased_slots_; }
+  std::uint64_t classified_records() const { return classified_records_; }
+  // Whether any slot was classified or any record failed, in any frame so far.
+  bool any() const { return any_; }
+
+ private:
+  using FullKey = std::array<std::uint32_t, 6>;
+  bool SeedTainted(const FullKey& key) const;
+
+  bool evicts_under_pressure_, seeds_levels_;
+  std::vector<std::optional<FullKey>> key_of_;   // per slot, the full key last placed there since it was empty
+  std::vector<std::vector<FullKey>> keys_here_;  // with pressure: per slot, every full key placed since it was empty
+  std::vector<bool> aliased_, after_failure_, classified_;
+  std::set<FullKey> failed_;   // cells with a probe failure in some frame
+  std::set<FullKey> tainted_;  // with level seeds: failed, aliased or evicted under pressure
+  std::uint64_t aliased_slots_ = 0, classified_records_ = 0;
+  bool any_ = false;
+};
+
+}  // namespace hpsf
+
+#endif  // HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H

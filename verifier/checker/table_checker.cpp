@@ -1,0 +1,415 @@
+#include "verifier/checker/table_checker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <set>
+
+#include "core/input_check.h"
+#include "core/shared/eviction_priority.h"
+#include "core/shared/fixed_point.h"
+
+namespace hpsf {
+namespace {
+
+constexpr std::size_t kMaxRecordsNamed = 8;
+
+std::string Records(const std::vector<std::uint32_t>& records) {
+  std::string s;
+  for (std::size_t i = 0; i < records.size() && i < kMaxRecordsNamed; ++i) s += (s.empty() ? "" : ", ") + std::to_string(records[i]);
+  if (records.size() > kMaxRecordsNamed) s += ", ... (" + std::to_string(records.size()) + " in all)";
+  return s;
+}
+
+std::string Decimal(unsigned __int128 x) {
+  std::string digits;
+  do {
+    digits.insert(digits.begin(), char('0' + int(x % 10)));
+    x /= 10;
+  } while (x != 0);
+  return digits;
+}
+
+std::string SumsText(const std::array<std::uint64_t, 3>& sums) {
+  return "(" + std::to_string(sums[0]) + ", " + std::to_string(sums[1]) + ", " + std::to_string(sums[2]) + ")";
+}
+
+// A slot the frame added to that held samples before it, under a blending temporal mode.
+void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<std::uint32_t>& here,
+                const CellState& before, std::vector<TableViolation>& violations) {
+  const HashTableDump& t = in.table;
+  const bool fixed = t.accumulation == Accumulation::kFixed64;
+  const float scale = shared::PowerOfTwo(t.fixed_point_bits);
+  const shared::TemporalParams params = MakeTemporalParams(in.temporal);
+  auto fail = [&](std::string detail) {
+    violations.push_back({TableInvariant::kTemporalBlend, s, here, std::move(detail)});
+  };
+  CellState accumulated = before;
+  accumulated.count += here.size();
+  std::array<double, 3> frame_exact{};
+  for (std::uint32_t i : here) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = in.records[i].contribution[c];
+      accumulated.fixed_sum[c] += shared::ToFixedPoint(v, scale);
+      frame_exact[c] += double(v);
+    }
+  }
+  if (fixed) {
+    const CellState expected = BlendCellState(params, true, before, accumulated);
+    if (t.counts[s] != expected.count || t.fixed_sums[s] != expected.fixed_sum) {
+      fail("count " + std::to_string(t.counts[s]) + ", sums " + SumsText(t.fixed_sums[s]) + "; the blend of count " +
+           std::to_string(before.count) + " + " + std::to_string(here.size()) + " gives count " +
+           std::to_string(expected.count) + ", sums " + SumsText(expected.fixed_sum));
+    }
+    return;
+  }
+  // float32: the backend's frame sums carry the rounding of its adds, so the blend is bounded, not replayed. ema's
+  // alpha, and so the count, does not depend on the sums; adaptive's lies between forgetting and integrating.
+  for (int c = 0; c < 3; ++c) accumulated.float_sum[c] = float(double(before.float_sum[c]) + frame_exact[c]);
+  const CellState by_exact = BlendCellState(params, false, before, accumulated);
+  const std::uint64_t n = here.size();
+  const std::uint64_t most = std::min(before.count, params.max_count) + n;
+  const bool count_ok = in.temporal.mode == TemporalMode::kEma ? t.counts[s] == by_exact.count
+                                                                 : t.counts[s] >= n && t.counts[s] <= most;
+  if (!count_ok) {
+    fail("count " + std::to_string(t.counts[s]) + ", expected " +
+         (in.temporal.mode == TemporalMode::kEma ? std::to_string(by_exact.count)
+                                                 : "[" + std::to_string(n) + ", " + std::to_string(most) + "]"));
+  }
+  // The frame's sum is (history + adds) - history in float: each of the n adds and the subtraction rounds by at
+  // most u of a running total no larger than the final one.
+  const double u = 0x1p-23, k = double(n + 1), gamma = k * u / (1.0 - k * u);
+  for (int c = 0; c < 3; ++c) {
+    const double history = double(before.float_sum[c]) / double(before.count);
+    const double error = gamma * (double(before.float_sum[c]) + frame_exact[c]);
+    const double frame_low = (frame_exact[c] - error) / double(n), frame_high = (frame_exact[c] + error) / double(n);
+    // Widened for the blend's double arithmetic and the sum's rounding to float.
+    const double low = std::min(history, frame_low) * (1.0 - 4 * u);
+    const double high = std::max(history, frame_high) * (1.0 + 4 * u);
+    const double average = t.counts[s] ? double(t.float_sums[s][c]) / double(t.counts[s]) : 0.0;
+    if (!(average >= low && average <= high)) {
+      fail("channel " + std::to_string(c) + ": average " + std::to_string(average) + " outside [" +
+           std::to_string(low) + ", " + std::to_string(high) + "], the history's and the frame's");
+    }
+  }
+}
+
+}  // namespace
+
+const char* ToString(TableInvariant invariant) {
+  switch (invariant) {
+    case TableInvariant::kPlacementOfUnkeyedRecord: return "placement of an unkeyed record";
+    case TableInvariant::kSlotOutsideWindow: return "slot outside the probe window";
+    case TableInvariant::kTagIsNotTheFingerprint: return "tag is not the record's fingerprint";
+    case TableInvariant::kEarlierSlotEmptyOrMatching: return "earlier slot of the window empty or matching";
+    case TableInvariant::kFailureWindowNotFull:
+      return "probe failure with an empty, matching or claimable slot in its window";
+    case TableInvariant::kCountMismatch: return "count differs from the records placed";
+    case TableInvariant::kSumMismatch: return "sum differs from the records placed";
+    case TableInvariant::kEmptySlotNotZero: return "empty slot with a count or sum";
+    case TableInvariant::kOrphanTag: return "tag without a placed record";
+    case TableInvariant::kTotalMismatch: return "table total differs from the placed contributions";
+    case TableInvariant::kTagChangedAcrossFrames:
+      return "slot claimed in an earlier frame lost its tag";
+    case TableInvariant::kEvictionPolicy:
+      return "eviction differs from the policy";
+    case TableInvariant::kLastSeenWrong:
+      return "last-seen frame wrong";
+    case TableInvariant::kHoleBeforeLiveSlot:
+      return "tombstone emptied before a live slot that may need it";
+    case TableInvariant::kTombstoneKept:
+      return "tombstone kept that no live slot needs";
+    case TableInvariant::kTemporalBlend:
+      return "blended cell differs from the temporal blend";
+    case TableInvariant::kCellSplit:
+      return "slot claimed though the cell lived in the window before the frame";
+  }
+  return "?";
+}
+
+std::string TableViolation::ToString() const {
+  std::string s = hpsf::ToString(invariant);
+  if (slot != 0xFFFFFFFFu) s += " at slot " + std::to_string(slot);
+  if (!records.empty()) s += ", records " + Records(records);
+  return detail.empty() ? s : s + ": " + detail;
+}
+
+std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
+  const HashTableDump& t = in.table;
+  const std::uint32_t mask = t.capacity - 1u;
+  const bool fixed = t.accumulation == Accumulation::kFixed64;
+  const float scale = shared::PowerOfTwo(t.fixed_point_bits);
+  std::vector<TableViolation> violations;
+  // Before the frame: the earlier frames' tags, counts and sums (all zero for a table of this frame alone).
+  const HashTableDump* before = in.before;
+  auto tag_before = [&](std::uint32_t s) { return before ? before->tags[s] : kEmptyTag; };
+  auto count_before = [&](std::uint32_t s) { return before ? before->counts[s] : 0; };
+  // A dump holds the sums of its own mode only.
+  auto fixed_before = [&](std::uint32_t s, int c) { return before && fixed ? before->fixed_sums[s][c] : 0; };
+  auto float_before = [&](std::uint32_t s, int c) { return before && !fixed ? before->float_sums[s][c] : 0.0f; };
+  auto violate = [&](TableInvariant invariant, std::uint32_t slot, std::vector<std::uint32_t> records, std::string detail) {
+    violations.push_back({invariant, slot, std::move(records), std::move(detail)});
+  };
+
+  // The tags the frame's lookups saw: with eviction, a tombstone the reclaim emptied after them still held its tag
+  // (whether the reclaim was right to empty it is the tombstone check's question below).
+  // With priority eviction a slot tagged kTombstoneTag after the frame was a live victim during it, or a tombstone
+  // before it; either way it held its tag from before.
+  const bool evicting = in.eviction.enabled();
+  const bool priority = in.eviction.by_priority();
+  auto tombstone_tag = [&](SlotTag tag) { return priority && tag == shared::kTombstoneTag; };
+  auto window_tag = [&](std::uint32_t s) {
+    return evicting && (t.tags[s] == kEmptyTag || tombstone_tag(t.tags[s])) ? tag_before(s) : t.tags[s];
+  };
+  std::vector<std::vector<std::uint32_t>> placed(t.capacity);
+  for (std::uint32_t i = 0; i < in.records.size(); ++i) {
+    const KeyResult& key = in.keys[i];
+    const std::uint32_t slot = in.placements[i];
+    const bool keyed = key.status == shared::kKeyed && CheckRecordInputs(in.records[i]) == InputVerdict::kAccepted;
+    if (!keyed || slot == kNotPlaced) {
+      if (keyed != (slot != kNotPlaced)) violate(TableInvariant::kPlacementOfUnkeyedRecord, 0xFFFFFFFFu, {i}, keyed ? "keyed but never probed" : "placed without a key");
+      continue;
+    }
+    if (slot == kProbeFailure) {
+      for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
+        const std::uint32_t s = (key.slot0 + probe) & mask;
+        if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint || tombstone_tag(window_tag(s))) {
+          violate(TableInvariant::kFailureWindowNotFull, s, {i},
+                  "tag " + std::to_string(window_tag(s)) + " at probe " + std::to_string(probe));
+          break;
+        }
+      }
+      continue;
+    }
+    if (slot >= t.capacity) {
+      violate(TableInvariant::kSlotOutsideWindow, slot, {i}, "slot beyond capacity " + std::to_string(t.capacity));
+      continue;
+    }
+    const std::uint32_t distance = (slot - key.slot0) & mask;
+    if (distance >= t.probe_limit) {
+      violate(TableInvariant::kSlotOutsideWindow, slot, {i}, "slot0 " + std::to_string(key.slot0) + ", probe " + std::to_string(distance));
+    }
+    if (t.tags[slot] != key.fingerprint) {
+      violate(TableInvariant::kTagIsNotTheFingerprint, slot, {i},
+              "tag " + std::to_string(t.tags[slot]) + ", fingerprint " + std::to_string(key.fingerprint));
+    }
+    // With priority, an insertion claims the first tombstone, but a cell that lived before the frame is found past
+    // one.
+    const bool new_cell = tag_before(slot) != key.fingerprint;
+    // A live slot holding the fingerprint before the frame, with no empty slot before it in the window, is where
+    // the record belongs (its cell, or an alias): a record that claimed another slot split it (past a priority
+    // tombstone). Past an empty slot it may be an alias from another slot0 (D7's hole the reclaim check catches).
+    for (std::uint32_t probe = 0; new_cell && probe < t.probe_limit; ++probe) {
+      const std::uint32_t s = (key.slot0 + probe) & mask;
+      if (tag_before(s) == kEmptyTag) break;
+      if (s != slot && tag_before(s) == key.fingerprint && count_before(s) > 0) {
+        violate(TableInvariant::kCellSplit, slot, {i}, "the fingerprint lived at slot " + std::to_string(s));
+        break;
+      }
+    }
+    for (std::uint32_t probe = 0; probe < std::min(distance, t.probe_limit); ++probe) {
+      const std::uint32_t s = (key.slot0 + probe) & mask;
+      const SlotTag seen = window_tag(s);
+      if (seen == kEmptyTag || seen == key.fingerprint || (new_cell && tombstone_tag(seen))) {
+        violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
+                "tag " + std::to_string(window_tag(s)) + " before slot " + std::to_string(slot));
+        break;
+      }
+    }
+    placed[slot].push_back(i);
+  }
+
+  // Eviction: the state the policy leaves between the evict and the reclaim passes (the snapshot), from the table
+  // before, this frame's placements and the last-seen frames alone.
+  const Eviction& eviction = in.eviction;
+  if (evicting && (t.last_seen.size() != t.capacity || (before && before->last_seen.size() != t.capacity))) {
+    violate(TableInvariant::kLastSeenWrong, 0xFFFFFFFFu, {}, "a table without a last-seen frame per slot");
+    return violations;
+  }
+  auto last_seen_before = [&](std::uint32_t s) { return before && evicting ? before->last_seen[s] : 0u; };
+  // Priority: in the window of each record that found no slot, the untouched live slot of lowest priority.
+  std::vector<std::uint32_t> victim_of(priority ? t.capacity : 0, kNotPlaced);  // per slot, a record choosing it
+  for (std::uint32_t i = 0; priority && i < in.records.size(); ++i) {
+    if (in.placements[i] != kProbeFailure) continue;
+    std::optional<std::uint32_t> victim;
+    for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
+      const std::uint32_t s = (in.keys[i].slot0 + probe) & mask;
+      if (!placed[s].empty() || tag_before(s) == kEmptyTag || tombstone_tag(tag_before(s)) || count_before(s) == 0)
+        continue;
+      auto priority_of = [&](std::uint32_t slot) {
+        return shared::EvictionPriority(last_seen_before(slot), count_before(slot));
+      };
+      if (!victim || shared::EvictedBefore(priority_of(s), tag_before(s), priority_of(*victim), tag_before(*victim)))
+        victim = s;
+    }
+    if (victim && victim_of[*victim] == kNotPlaced) victim_of[*victim] = i;
+  }
+  auto evicted_now = [&](std::uint32_t s) {
+    return evicting && placed[s].empty() && tag_before(s) != kEmptyTag && count_before(s) > 0 &&
+           (priority ? victim_of[s] != kNotPlaced : eviction.Evicts(in.frame, last_seen_before(s)));
+  };
+  auto snapshot_tag = [&](std::uint32_t s) { return placed[s].empty() ? tag_before(s) : t.tags[s]; };
+  auto snapshot_live = [&](std::uint32_t s) {
+    return snapshot_tag(s) != kEmptyTag && (!placed[s].empty() || (count_before(s) > 0 && !evicted_now(s)));
+  };
+  // A tombstone is kept exactly when a live slot follows it within the probe limit with no empty slot between.
+  auto live_slot_after = [&](std::uint32_t s) -> std::uint32_t {
+    for (std::uint32_t distance = 1; distance < std::min(t.probe_limit, t.capacity); ++distance) {
+      const std::uint32_t next = (s + distance) & mask;
+      if (snapshot_tag(next) == kEmptyTag) break;
+      if (snapshot_live(next)) return next;
+    }
+    return 0xFFFFFFFFu;
+  };
+
+  // The seed of a slot new this frame, from the table before it: of the cell its records key (of whichever of an
+  // aliased slot's cells gives the count found; the backends seed from the one record that claims the seeding).
+  auto SeedOfSlot = [&](std::uint32_t s, const std::vector<std::uint32_t>& here) {
+    CellState chosen;
+    if (!in.level_seed.enabled || !before || here.empty() || count_before(s) != 0) return chosen;
+    const CellLookup lookup = [&](const shared::KeyWords& w) { return FindInTable(*before, w, in.normal_in_index); };
+    std::set<std::array<std::uint32_t, 6>> tried;
+    for (std::size_t n = 0; n < here.size(); ++n) {
+      const shared::KeyWords& w = in.keys[here[n]].words;
+      if (!tried.insert({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra}).second) continue;
+      const CellState seed = SeedOf(w, in.level_seed, fixed, lookup);
+      if (n == 0 || seed.count + here.size() == t.counts[s]) chosen = seed;
+    }
+    return chosen;
+  };
+
+  // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
+  // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
+  std::array<unsigned __int128, 3> table_total{}, placed_total{};
+  // Counts in 128 bits: a 64-bit count that wrapped (D12) must not look right because the checker's sum wrapped too.
+  unsigned __int128 total_count = 0, expected_total_count = 0;
+  auto sums_are_zero = [&](std::uint32_t s) {
+    return fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
+  };
+  for (std::uint32_t s = 0; s < t.capacity; ++s) {
+    const std::vector<std::uint32_t>& here = placed[s];
+    if (evicting && t.last_seen[s] != (here.empty() ? last_seen_before(s) : in.frame)) {
+      violate(TableInvariant::kLastSeenWrong, s, here,
+              "last seen " + std::to_string(t.last_seen[s]) + ", frame " + std::to_string(in.frame) +
+                  (here.empty() ? ", untouched, before " + std::to_string(last_seen_before(s)) : ", touched"));
+    }
+    if (evicting && snapshot_tag(s) != kEmptyTag && !snapshot_live(s)) {
+      const std::uint32_t live = live_slot_after(s);
+      const SlotTag tombstone = priority ? shared::kTombstoneTag : snapshot_tag(s);
+      const SlotTag expected = live != 0xFFFFFFFFu ? tombstone : kEmptyTag;
+      // A priority victim left live keeps its tag: the policy check below reports it, once.
+      const bool left_live = priority && t.tags[s] == snapshot_tag(s) && t.counts[s] != 0;
+      if (t.tags[s] != expected && !left_live) {
+        const TableInvariant invariant = t.tags[s] == kEmptyTag    ? TableInvariant::kHoleBeforeLiveSlot
+                                         : t.tags[s] == tombstone ? TableInvariant::kTombstoneKept
+                                                                   : TableInvariant::kTagChangedAcrossFrames;
+        violate(
+            invariant, s, here,
+            "tombstone of tag " + std::to_string(snapshot_tag(s)) + ", tag " + std::to_string(t.tags[s]) + " after; " +
+                (live != 0xFFFFFFFFu ? "live slot " + std::to_string(live) + " after it" : "no live slot after it"));
+      }
+    } else if (tag_before(s) != kEmptyTag && t.tags[s] != tag_before(s) &&
+               !(tombstone_tag(tag_before(s)) && !here.empty()) &&
+               !(tombstone_tag(t.tags[s]) && here.empty() && count_before(s) > 0)) {
+      // (With priority, a tombstone claimed this frame takes its claimant's tag, and a live slot evicted the
+      // policy's tag, which the policy check below judges.)
+      violate(TableInvariant::kTagChangedAcrossFrames, s, here,
+              "tag " + std::to_string(tag_before(s)) + " before the frame, " + std::to_string(t.tags[s]) + " after");
+    }
+    const bool evicted_by_policy = evicted_now(s);
+    const bool looks_evicted = t.counts[s] == 0 && sums_are_zero(s);
+    if (evicting && here.empty() && tag_before(s) != kEmptyTag && count_before(s) > 0 &&
+        evicted_by_policy != looks_evicted) {
+      const std::string why =
+          !priority ? "last seen in frame " + std::to_string(last_seen_before(s)) + ", policy " + eviction.ToString() +
+                          " after frame " + std::to_string(in.frame)
+          : evicted_by_policy ? "the lowest priority in the window of record " + std::to_string(victim_of[s]) +
+                                    ", which found no slot: priority"
+                              : "not the lowest priority in the window of any record that found no slot (last seen " +
+                                    std::to_string(last_seen_before(s)) + ", count " + std::to_string(count_before(s)) +
+                                    "): priority";
+      violate(TableInvariant::kEvictionPolicy, s, {},
+              why + (evicted_by_policy ? " evicts it, but it holds count " + std::to_string(t.counts[s])
+                                       : " keeps it, but it was emptied"));
+      continue;  // reported once: its count and sums are the policy's question, not the accumulate's
+    }
+    // A slot new this frame may start from its seed (core/level_seed.h) instead of nothing.
+    const CellState seed = SeedOfSlot(s, here);
+    const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s) + seed.count;
+    auto fixed_base = [&](int c) -> std::uint64_t {
+      return evicted_by_policy ? 0 : fixed_before(s, c) + seed.fixed_sum[c];
+    };
+    auto float_base = [&](int c) -> float { return evicted_by_policy ? 0.0f : float_before(s, c) + seed.float_sum[c]; };
+    if (t.tags[s] == kEmptyTag) {
+      if (t.counts[s] != 0 || !sums_are_zero(s))
+        violate(TableInvariant::kEmptySlotNotZero, s, here, "count " + std::to_string(t.counts[s]));
+      // What should be here still counts in the totals: a record placed on an empty slot lost its add.
+      expected_total_count += base_count + here.size();
+      for (int c = 0; c < 3; ++c) {
+        placed_total[c] += fixed_base(c);
+        for (std::uint32_t i : here) placed_total[c] += shared::ToFixedPoint(in.records[i].contribution[c], scale);
+      }
+      continue;
+    }
+    if (here.empty() && tag_before(s) == kEmptyTag)
+      violate(TableInvariant::kOrphanTag, s, {}, "tag " + std::to_string(t.tags[s]));
+    total_count += t.counts[s];
+    if (in.temporal.blends() && base_count > seed.count && !here.empty()) {  // a seeded slot is new: no blend
+      CheckBlend(in, s, here,
+                 {fixed ? before->fixed_sums[s] : std::array<std::uint64_t, 3>{},
+                  fixed ? std::array<float, 3>{} : before->float_sums[s], base_count - seed.count},
+                 violations);
+      // The blend check is this slot's whole check: the totals take it as it is.
+      expected_total_count += t.counts[s];
+      continue;
+    }
+    const unsigned __int128 expected_count = (unsigned __int128)base_count + here.size();
+    expected_total_count += expected_count;
+    if (t.counts[s] != expected_count) {
+      violate(TableInvariant::kCountMismatch, s, here,
+              "count " + std::to_string(t.counts[s]) + (seed.count > 0 ? ", seeded " : ", before ") +
+                  std::to_string(base_count) + " + placed " +
+                  std::to_string(here.size()) + (expected_count >> 64 ? ": more than a 64-bit count holds (D12)" : ""));
+    }
+    for (int c = 0; c < 3; ++c) {
+      unsigned __int128 exact = fixed_base(c);
+      double exact_float = double(float_base(c)), magnitude = std::abs(exact_float);
+      for (std::uint32_t i : here) {
+        const float v = in.records[i].contribution[c];
+        exact += shared::ToFixedPoint(v, scale);
+        exact_float += double(v);
+        magnitude += std::abs(double(v));
+      }
+      if (fixed) {
+        table_total[c] += t.fixed_sums[s][c];
+        placed_total[c] += exact;
+        if (exact != t.fixed_sums[s][c]) {
+          violate(TableInvariant::kSumMismatch, s, here, "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) +
+                                                              ", exact " + std::to_string(std::uint64_t(exact)));
+        }
+      } else {
+        // Float atomics are not promised to round to nearest: u = 2^-23, gamma(k) = k u / (1 - k u), over the k
+        // adds after the first term (the sum before the frame counts as one when there is one).
+        const std::size_t terms = here.size() + (base_count > 0 ? 1 : 0);
+        const double k = double(terms > 0 ? terms - 1 : 0), u = 0x1p-23;
+        const double bound = k * u / (1.0 - k * u) * magnitude;
+        if (!(std::abs(double(t.float_sums[s][c]) - exact_float) <= bound)) {
+          violate(TableInvariant::kSumMismatch, s, here, "channel " + std::to_string(c) + ": sum " + std::to_string(t.float_sums[s][c]) +
+                                                              ", exact " + std::to_string(exact_float) + ", bound " + std::to_string(bound));
+        }
+      }
+    }
+  }
+  if (total_count != expected_total_count) {
+    violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {},
+            "count " + Decimal(total_count) + ", expected " + Decimal(expected_total_count));
+  }
+  for (int c = 0; c < 3; ++c) {
+    if (fixed && table_total[c] != placed_total[c]) {
+      violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {}, "channel " + std::to_string(c) + " total differs");
+    }
+  }
+  return violations;
+}
+
+}  // namespace hpsf

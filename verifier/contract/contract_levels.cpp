@@ -1,0 +1,357 @@
+#include "verifier/contract/contract_levels.h"
+
+#include <bit>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "core/footprint.h"
+#include "core/input_check.h"
+#include "core/read_back_check.h"
+#include "emulated/simt/kernel_fault.h"
+#include "reference/float_replay.h"
+#include "reference/reference_backend.h"
+#include "verifier/checker/classified_slots.h"
+#include "verifier/contract/image_check.h"
+#include "verifier/contract/rerun_check.h"
+#include "verifier/checker/table_checker.h"
+
+namespace hpsf {
+namespace {
+
+constexpr std::size_t kFailuresShown = 20;
+
+void Fail(LevelVerdict& verdict, std::string failure) {
+  verdict.passed = false;
+  if (verdict.failures.size() < kFailuresShown) verdict.failures.push_back(std::move(failure));
+}
+
+// A verdict's note gathers what each backend contributed to it.
+void Note(LevelVerdict& verdict, const std::string& backend, const std::string& text) {
+  verdict.note += (verdict.note.empty() ? "" : " | ") + backend + ": " + text;
+}
+
+std::string WorkerThreads(int threads) {
+  return threads == 0 ? "all cores" : threads == 1 ? "one worker thread" : std::to_string(threads) + " worker threads";
+}
+
+// Level 1: the backend's key words, slot0 and fingerprint for every accepted record equal core's. Returns how many
+// records were compared.
+std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, std::span<const KeyResult> backend_keys,
+                          const std::string& prefix, LevelVerdict& keys) {
+  const KeyParams params =
+      MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height),
+                    std::uint32_t(batch.records.size()));
+  std::uint64_t compared = 0;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    if (CheckRecordInputs(batch.records[i]) != InputVerdict::kAccepted) continue;
+    const KeyResult expected = shared::ComputeKey(params, batch.records[i]);
+    const auto want = KeyResultWords(expected), got = KeyResultWords(backend_keys[i]);
+    ++compared;
+    for (int w = 0; w < int(want.size()); ++w) {
+      if (want[w] != got[w]) {
+        Fail(keys, prefix + "record " + std::to_string(i) + ": " + KeyResultWordName(w) + " differs (core " +
+                       std::to_string(want[w]) + ", backend " + std::to_string(got[w]) + ")");
+        break;
+      }
+    }
+  }
+  return compared;
+}
+
+// Level 2: the table checker on one frame of a hashed run, from the table before it.
+void CheckFrameTable(const std::string& who, const RecordBatch& batch, const HashedRun& run,
+                     const std::optional<HashTableDump>& before, const FilterConfig& config, LevelVerdict& tables) {
+  TableCheckInput input{run.table, batch.records, run.keys, run.placements};
+  input.before = before ? &*before : nullptr;
+  input.eviction = config.eviction;
+  input.frame = config.frame;
+  input.temporal = config.temporal;
+  input.level_seed = config.level_seed;
+  input.normal_in_index = config.normal_in_index;
+  for (const TableViolation& v : CheckTable(input)) Fail(tables, who + ": " + v.ToString());
+}
+
+// Level 3 for one frame of a hashed run: every record outside the classified slots (probe failures, aliases,
+// cells that failed before) sits in a slot whose count, and in fixed64 whose sums, equal its reference cell's;
+// with nothing classified in fixed64, the image is the reference's, bit for bit; and every image is the resolve
+// of its own table. Returns how many records were compared.
+std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference,
+                                   const HashedRun& run, const HashTableDump* before,
+                                   const std::vector<bool>& classified, const std::string& prefix,
+                                   LevelVerdict& ideal) {
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  std::uint64_t compared = 0, failures = 0;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    const std::uint32_t slot = run.placements[i], cell = reference.placement[i];
+    failures += slot == kProbeFailure;
+    if (slot == kProbeFailure || (slot < run.table.capacity && classified[slot])) continue;
+    if ((slot < run.table.capacity) != (cell != kNoCell)) {
+      Fail(ideal, prefix + "record " + std::to_string(i) +
+                      ": placed in the table but not in the reference, or the other way round");
+      continue;
+    }
+    if (cell == kNoCell) continue;
+    ++compared;
+    const TableCell& c = reference.cells[cell];
+    // The adaptive blend's count follows the cell's float averages, whose rounding follows the order of float adds:
+    // a float32 slot with a history is held to the checker's count bounds (level 2), not to the reference's count.
+    const bool adaptive_float_history =
+        !fixed && config.temporal.mode == TemporalMode::kAdaptive && before && before->counts[slot] != 0;
+    if (adaptive_float_history) continue;
+    if (run.table.counts[slot] != c.count) {
+      Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": count " +
+                      std::to_string(run.table.counts[slot]) + ", reference " + std::to_string(c.count));
+    } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
+      Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) +
+                      ": sums differ from the reference cell's");
+    }
+  }
+  if (fixed && failures == 0 && std::count(classified.begin(), classified.end(), true) == 0 &&
+      !SameBits(run.image, reference.image)) {
+    Fail(ideal, prefix + "nothing failed or aliased, yet the image differs from the reference");
+  }
+  // Every image, classified records included, is the resolve of its own table: bit for bit in fixed64, within
+  // the float32 bound of the exact sums.
+  for (const std::string& pixel : CheckImageAgainstTable(batch, run, before)) Fail(ideal, prefix + "image: " + pixel);
+  return compared;
+}
+
+// Level 3, the faithful emulator in float32: each slot's recorded order of adds, replayed by the reference, gives
+// its bits, for every slot that held nothing before the frame (a sum carried over starts elsewhere).
+void CompareFloatOrder(const RecordBatch& batch, const EmulatedRun& run, const std::optional<HashTableDump>& before,
+                       const std::string& prefix, LevelVerdict& ideal) {
+  for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
+    const std::uint32_t slot = std::uint32_t(entry / 3);
+    const int channel = int(entry % 3);
+    if (before && before->counts[slot] != 0) continue;
+    if (!run.seeded_slots.empty() && run.seeded_slots[slot]) continue;  // its seed was added after the frame's adds
+    const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
+    if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
+      Fail(ideal, prefix + "slot " + std::to_string(slot) + " channel " + std::to_string(channel) +
+                      ": the replayed order of " + std::to_string(run.float_add_order[entry].size()) +
+                      " adds gives other bits");
+    }
+  }
+}
+
+// Filters one frame; a kernel that writes outside its buffers faults, and a shader whose output words cannot be
+// used (core/read_back_check.h) is refused: either is itself the defect, with no table to judge. The refused
+// run's key results, values only, go to `refused_keys` for level 1.
+const HashedRun* FilterOrFault(Backend& backend, const RecordBatch& batch, const FilterConfig& config,
+                               const std::string& who, LevelVerdict& tables,
+                               std::vector<KeyResult>* refused_keys = nullptr) {
+  try {
+    backend.FilterFrame(batch, config);
+    return backend.LastHashedRun();
+  } catch (const simt::KernelFault& fault) {
+    Fail(tables, who + ": the kernel faulted: " + fault.what());
+  } catch (const ShaderOutputError& error) {
+    for (const std::string& fault : error.faults()) Fail(tables, who + ": invalid shader output: " + fault);
+    if (refused_keys && error.keys().size() == batch.records.size()) *refused_keys = error.keys();
+  }
+  return nullptr;
+}
+
+// What the contract judged of one hashed backend over the sequence.
+struct SequenceState {
+  SequenceState(bool evicts_under_pressure, bool seeds_levels)
+      : classes(evicts_under_pressure, seeds_levels), rerun_classes(evicts_under_pressure, seeds_levels) {}
+  ClassifiedSlots classes, rerun_classes;
+  std::optional<HashTableDump> before, rerun_before;  // the tables before this frame
+  QualityFigures quality;
+  std::uint64_t keys_compared = 0, records_compared = 0;
+  bool replayed_float_order = false;
+  std::set<std::string> promises;
+  bool faulted = false;
+  std::string fault_at;  // " from frame N on", in a sequence
+};
+
+}  // namespace
+
+EmulatedPair::EmulatedPair(const EmulatorOptions& emulator, Defect defect)
+    : options_(emulator),
+      backend_(emulator, KernelWithDefect(defect)),
+      rerun_(RerunOptions(emulator), KernelWithDefect(defect)) {}
+
+EmulatorOptions EmulatedPair::RerunOptions(const EmulatorOptions& emulator) {
+  EmulatorOptions rerun = emulator;
+  if (emulator.mode == simt::Mode::kFast) rerun.threads = emulator.threads == 1 ? 0 : 1;
+  return rerun;
+}
+
+JudgedBackend EmulatedPair::Judged() {
+  const bool ordered = options_.mode == simt::Mode::kFaithful;
+  const std::string how =
+      ordered ? "faithful rerun" : "fast rerun with " + WorkerThreads(RerunOptions(options_).threads);
+  return {"emulated", &backend_, &rerun_, how, ordered, false};
+}
+
+CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
+                               FilterConfig config, std::span<const JudgedBackend> hashed) {
+  const bool any_hashed = !hashed.empty();
+  const bool several = frames.size() > 1;
+  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  LevelVerdict keys{1, "keys", false, true, "", {}};
+  LevelVerdict tables{2, "tables", any_hashed, true, "", {}};
+  LevelVerdict ideal{3, "agreement with the reference", any_hashed, true, "", {}};
+  LevelVerdict determinism{4, "determinism", any_hashed, true, "", {}};
+  ReferenceBackend reference;
+  std::vector<SequenceState> states;
+  for (std::size_t b = 0; b < hashed.size(); ++b) {
+    states.emplace_back(config.eviction.by_priority(), config.level_seed.enabled);
+    hashed[b].backend->Reset();
+    hashed[b].rerun->Reset();
+    states[b].quality.backend = hashed[b].name;
+  }
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    config.frame = numbers[k];
+    const RecordBatch& batch = frames[k];
+    reference.FilterFrame(batch, config);
+    const int fixed_point_bits = reference.result().stats.fixed_point_bits;
+    for (std::size_t b = 0; b < hashed.size(); ++b) {
+      const JudgedBackend& judged = hashed[b];
+      SequenceState& s = states[b];
+      if (s.faulted) continue;
+      const std::string who = several ? judged.name + ", frame " + std::to_string(numbers[k]) : judged.name;
+      std::vector<KeyResult> refused_keys;
+      const HashedRun* run = FilterOrFault(*judged.backend, batch, config, who, tables, &refused_keys);
+      const HashedRun* again = run ? FilterOrFault(*judged.rerun, batch, config, who + " rerun", tables) : nullptr;
+      if (judged.judge_keys && !refused_keys.empty()) {
+        s.keys_compared += CompareKeys(batch, config, refused_keys, who + ": ", keys);
+      }
+      if (!run || !again) {
+        s.faulted = true;
+        s.fault_at = several ? " from frame " + std::to_string(numbers[k]) + " on" : "";
+        continue;
+      }
+      if (judged.judge_keys) s.keys_compared += CompareKeys(batch, config, run->keys, who + ": ", keys);
+      if (run->table.fixed_point_bits != fixed_point_bits) {
+        Fail(tables, who + ": F " + std::to_string(run->table.fixed_point_bits) + ", the reference's " +
+                         std::to_string(fixed_point_bits) + ": sums of different scales cannot be compared");
+      }
+
+      CheckFrameTable(who, batch, *run, s.before, config, tables);
+      CheckFrameTable(who + " rerun", batch, *again, s.rerun_before, config, tables);
+
+      const std::vector<bool>& classified = s.classes.AddFrame(*run);
+      s.rerun_classes.AddFrame(*again);
+      s.quality.probe_failures += run->probe_failures;
+      s.quality.aliased_slots += s.classes.aliased_slots();
+      s.quality.aliased_records += s.classes.classified_records();
+
+      const auto* emulated = dynamic_cast<const EmulatedBackend*>(judged.backend);
+      if (emulated && !emulated->run().float_add_order.empty()) {
+        s.replayed_float_order = true;
+        CompareFloatOrder(batch, emulated->run(), s.before, who + ": ", ideal);
+      }
+      s.records_compared += CompareWithReference(batch, config, reference.result(), *run,
+                                                 s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
+
+      if (judged.ordered && emulated &&
+          dynamic_cast<const EmulatedBackend&>(*judged.rerun).run().launch.trace_hash !=
+              emulated->run().launch.trace_hash) {
+        Fail(determinism, who + ": the trace hash changed between two identical runs");
+      }
+      const RerunPromise promise =
+          RerunPromiseFor(judged.ordered, config.accumulation, s.classes.any() || s.rerun_classes.any());
+      s.promises.insert(ToString(promise));
+      for (const std::string& difference : CompareReruns(*run, *again, promise)) {
+        Fail(determinism, who + ": " + difference);
+      }
+      if (k + 1 < frames.size()) {
+        s.before = run->table;
+        s.rerun_before = again->table;
+      }
+    }
+  }
+
+  const std::string over = several ? " over " + std::to_string(frames.size()) + " frames" : "";
+  keys.note = "joins with the Vulkan backend; the emulator calls the same core code as the reference";
+  tables.note = any_hashed ? "table checker on every hashed backend and its rerun" +
+                                 std::string(several ? ", each frame from the table before it" : "")
+                           : "no hashed backend";
+  CrosscheckReport report;
+  report.fixed_point_bits = frames.empty() ? 0 : reference.result().stats.fixed_point_bits;
+  report.accumulation = config.accumulation;
+  for (std::size_t b = 0; b < hashed.size(); ++b) {
+    const JudgedBackend& judged = hashed[b];
+    const SequenceState& s = states[b];
+    report.quality.push_back(s.quality);
+    if (judged.judge_keys) {
+      keys.applicable = true;
+      keys.note = judged.name + " against core, word for word: " + std::to_string(s.keys_compared) +
+                  " accepted records compared" + over;
+    }
+    if (s.faulted) {
+      Note(ideal, judged.name, "not judged" + s.fault_at + ", the kernel faulted or its output was invalid");
+      Note(determinism, judged.name, "not judged" + s.fault_at + ", the kernel faulted or its output was invalid");
+      continue;
+    }
+    const std::string sums =
+        fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
+              : std::string("float32: counts exact outside the classified records") +
+                    (config.temporal.mode == TemporalMode::kAdaptive
+                         ? " (adaptive: a slot with a history within level 2's bounds); "
+                         : "; ") +
+                    (s.replayed_float_order
+                         ? "each new slot's recorded order of adds, replayed by the reference, gives its bits"
+                         : "sums inside the bound at level 2");
+    Note(ideal, judged.name,
+         sums + "; " + std::to_string(s.records_compared) + " records compared" + over + "; image " +
+             (fixed ? "equals the resolve of its table" : "within the float32 bound of its table's exact resolve"));
+    std::string promised;
+    for (const std::string& p : s.promises) promised += (promised.empty() ? "" : ", ") + p;
+    Note(determinism, judged.name, judged.rerun_how + "; promised: " + promised);
+  }
+  report.levels = {keys, tables, ideal, determinism};
+  report.frames = std::uint32_t(frames.size());
+  return report;
+}
+
+CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config,
+                                    const EmulatorOptions& emulator, Defect defect) {
+  EmulatedPair emulated(emulator, defect);
+  const JudgedBackend judged = emulated.Judged();
+  return JudgeSequence(std::span<const RecordBatch>(&batch, 1), std::span<const std::uint32_t>(&config.frame, 1),
+                       config, std::span<const JudgedBackend>(&judged, 1));
+}
+
+bool CrosscheckReport::Passed() const {
+  return std::all_of(levels.begin(), levels.end(), [](const LevelVerdict& v) { return !v.applicable || v.passed; });
+}
+
+std::string CrosscheckReport::FirstFailure() const {
+  for (const LevelVerdict& v : levels) {
+    if (v.applicable && !v.passed) {
+      return "level " + std::to_string(v.level) + " " + v.name + ": " + (v.failures.empty() ? v.note : v.failures[0]);
+    }
+  }
+  return "";
+}
+
+nlohmann::json CrosscheckReport::ToJson() const {
+  nlohmann::json j = {{"version", 2},
+                      {"passed", Passed()},
+                      {"frames", frames},
+                      {"accumulation", ToString(accumulation)},
+                      {"fixed_point_bits", fixed_point_bits}};
+  if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
+  for (const LevelVerdict& v : levels) {
+    j["levels"].push_back({{"level", v.level},
+                           {"name", v.name},
+                           {"applicable", v.applicable},
+                           {"passed", v.passed},
+                           {"note", v.note},
+                           {"failures", v.failures}});
+  }
+  for (const QualityFigures& q : quality) {
+    j["quality"].push_back({{"backend", q.backend},
+                            {"probe_failures", q.probe_failures},
+                            {"aliased_slots", q.aliased_slots},
+                            {"aliased_records", q.aliased_records}});
+  }
+  return j;
+}
+
+}  // namespace hpsf

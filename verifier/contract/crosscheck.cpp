@@ -1,0 +1,74 @@
+#include "verifier/contract/crosscheck.h"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "core/error.h"
+#include "verifier/contract/contract_levels.h"
+#include "vulkan/vulkan_backend.h"
+
+namespace hpsf {
+
+// The Vulkan backend and its rerun, on one device.
+struct Crosschecker::VulkanContext {
+  VulkanDevice device;
+  VulkanBackend backend, rerun;
+  std::string description;
+  explicit VulkanContext(const VulkanBackendOptions& options)
+      : device(options.device_filter, options.staging),
+        backend(device, options.accumulate_spv, options.eviction_spv),
+        rerun(device, options.accumulate_spv, options.eviction_spv),
+        description(device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info +
+                    "), memory " + device.info().memory) {}
+};
+
+Crosschecker::Crosschecker(const std::vector<std::string>& backends, Defect defect, const VulkanBackendOptions& vulkan)
+    : backends_(backends), defect_(defect), vulkan_options_(vulkan) {
+  for (const std::string& b : backends_) {
+    if (b != "reference" && b != "emulated" && b != "vulkan") {
+      throw ConfigError("--backends", "'" + b + "' is not a backend; expected reference, emulated or vulkan");
+    }
+  }
+}
+
+Crosschecker::~Crosschecker() = default;
+
+CrosscheckReport Crosschecker::Check(const RecordBatch& batch, const FilterConfig& config,
+                                     const EmulatorOptions& emulator) {
+  return Judge(std::span<const RecordBatch>(&batch, 1), std::span<const std::uint32_t>(&config.frame, 1), config,
+               emulator);
+}
+
+CrosscheckReport Crosschecker::CheckFrames(std::span<const RecordBatch> frames, const FilterConfig& config,
+                                           const EmulatorOptions& emulator) {
+  std::vector<std::uint32_t> numbers;
+  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
+  return Judge(frames, numbers, config, emulator);
+}
+
+CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
+                                     const FilterConfig& config, const EmulatorOptions& emulator) {
+  auto has = [&](const char* name) { return std::find(backends_.begin(), backends_.end(), name) != backends_.end(); };
+  std::vector<JudgedBackend> hashed;
+  std::optional<EmulatedPair> emulated;
+  if (has("emulated")) {
+    emulated.emplace(emulator, defect_);
+    hashed.push_back(emulated->Judged());
+  }
+  if (has("vulkan")) {
+    if (!vulkan_) vulkan_ = std::make_unique<VulkanContext>(vulkan_options_);
+    hashed.push_back({"vulkan", &vulkan_->backend, &vulkan_->rerun, "rerun on the device", false, true});
+  }
+  CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed);
+  if (has("vulkan")) report.vulkan_device = vulkan_->description;
+  return report;
+}
+
+CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config,
+                            const std::vector<std::string>& backends, const EmulatorOptions& emulator, Defect defect,
+                            const VulkanBackendOptions& vulkan) {
+  return Crosschecker(backends, defect, vulkan).Check(batch, config, emulator);
+}
+
+}  // namespace hpsf

@@ -1,0 +1,81 @@
+#include "verifier/contract/rerun_check.h"
+
+#include <array>
+#include <cstring>
+#include <vector>
+
+namespace hpsf {
+namespace {
+
+constexpr std::size_t kDifferencesShown = 20;
+
+// Float sums bitwise, as core/image.h compares images; no memcmp on an empty vector's null data.
+bool SameBits(const std::vector<std::array<float, 3>>& a, const std::vector<std::array<float, 3>>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
+bool Placed(const HashedRun& run, std::size_t record) { return run.placements[record] < run.table.capacity; }
+
+// Per record: placed in both runs or in neither, and its slot's count (and in fixed64 its sums) the same in both.
+void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, bool sums, std::vector<std::string>& out) {
+  const bool fixed = first.table.accumulation == Accumulation::kFixed64;
+  for (std::size_t i = 0; i < first.placements.size() && out.size() < kDifferencesShown; ++i) {
+    const std::string record = "record " + std::to_string(i) + ": ";
+    if (Placed(first, i) != Placed(second, i)) {
+      out.push_back(record + "placed in one run and not in the other");
+      continue;
+    }
+    if (!Placed(first, i)) continue;
+    const std::uint32_t a = first.placements[i], b = second.placements[i];
+    if (first.table.counts[a] != second.table.counts[b]) {
+      out.push_back(record + "its slot's count is " + std::to_string(first.table.counts[a]) + " in one run (slot " +
+                    std::to_string(a) + ") and " + std::to_string(second.table.counts[b]) + " in the other (slot " +
+                    std::to_string(b) + ")");
+    } else if (sums && fixed && first.table.fixed_sums[a] != second.table.fixed_sums[b]) {
+      out.push_back(record + "its slot's fixed-point sums differ between the runs (slots " + std::to_string(a) + " and " +
+                    std::to_string(b) + ")");
+    }
+  }
+}
+
+void CompareWholeTables(const HashedRun& first, const HashedRun& second, std::vector<std::string>& out) {
+  if (first.placements != second.placements) out.push_back("the placements differ");
+  if (first.table.tags != second.table.tags) out.push_back("the tags differ");
+  if (first.table.counts != second.table.counts) out.push_back("the counts differ");
+  if (first.table.fixed_sums != second.table.fixed_sums) out.push_back("the fixed-point sums differ");
+  if (!SameBits(first.table.float_sums, second.table.float_sums)) out.push_back("the float sums differ");
+}
+
+}  // namespace
+
+const char* ToString(RerunPromise promise) {
+  switch (promise) {
+    case RerunPromise::kEverything: return "ordered run: table, placements and image bit for bit";
+    case RerunPromise::kCountsSumsAndImage: return "fixed64, nothing failed or aliased: each record's count and sums, and the image";
+    case RerunPromise::kCounts: return "float32, nothing failed or aliased: each record's count (sums follow the order of adds)";
+    case RerunPromise::kNothing: return "probe failures or aliases: which records they hit follows the order of atomics";
+  }
+  return "?";
+}
+
+RerunPromise RerunPromiseFor(bool ordered, Accumulation accumulation, bool failed_or_aliased) {
+  if (ordered) return RerunPromise::kEverything;
+  if (failed_or_aliased) return RerunPromise::kNothing;
+  return accumulation == Accumulation::kFixed64 ? RerunPromise::kCountsSumsAndImage : RerunPromise::kCounts;
+}
+
+std::vector<std::string> CompareReruns(const HashedRun& first, const HashedRun& second, RerunPromise promise) {
+  std::vector<std::string> out;
+  if (promise == RerunPromise::kNothing) return out;
+  if (first.placements.size() != second.placements.size()) return {"the runs placed different numbers of records"};
+  switch (promise) {
+    case RerunPromise::kEverything: CompareWholeTables(first, second, out); break;
+    case RerunPromise::kCountsSumsAndImage: CompareSlotsOfEachRecord(first, second, true, out); break;
+    case RerunPromise::kCounts: CompareSlotsOfEachRecord(first, second, false, out); break;
+    case RerunPromise::kNothing: break;
+  }
+  if (promise != RerunPromise::kCounts && !SameBits(first.image, second.image)) out.push_back("the image changed");
+  return out;
+}
+
+}  // namespace hpsf

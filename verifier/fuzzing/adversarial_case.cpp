@@ -1,0 +1,350 @@
+#include "verifier/fuzzing/adversarial_case.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "core/eviction.h"
+#include "core/footprint.h"
+#include "core/temporal.h"
+#include "core/shared/key.h"
+#include "core/shared/rng.h"
+#include "verifier/generators/record_generators.h"
+
+namespace hpsf {
+namespace {
+
+using testing::RecordGenerator;
+
+constexpr double kFovY = 0.5;  // with height 1, the footprint scale the key-path family's records are solved for
+
+// Keys chosen by cell: level of detail off, unit cells, no jitter, no normal bucket, so a record at the centre of
+// a cell has that cell, and its slot0 and fingerprint are known before it is filtered.
+FilterConfig CellKeyedConfig(RecordGenerator& g) {
+  FilterConfig c;
+  c.lod = false;
+  c.cell_size = 1.0f;
+  c.jitter_scale = 0.0f;
+  c.normal = {NormalMode::kNone, 0};
+  c.seed = g.Bits();
+  return c;
+}
+
+KeyResult KeyOfCell(const shared::KeyParams& params, glm::ivec3 cell) {
+  VertexSample v;
+  v.position = glm::vec3(cell) + glm::vec3(0.5f);
+  v.previous = v.position + glm::vec3(0.0f, 0.0f, -10.0f);
+  return shared::ComputeKey(params, MakeVertexRecord(v));
+}
+
+glm::ivec3 RandomCell(RecordGenerator& g, int extent) {
+  return {g.UniformInt(-extent, extent), g.UniformInt(-extent, extent), g.UniformInt(-extent, extent)};
+}
+
+// Cells along a random line of the grid, each with its key, until `visit` says it has enough (or 2^16 cells).
+template <typename Visit>
+void ScanCells(RecordGenerator& g, const FilterConfig& config, Visit visit) {
+  const shared::KeyParams params = MakeKeyParams(config, 0.01f, 1);
+  const glm::ivec3 start = RandomCell(g, 1 << 20);
+  for (int x = 0; x < 1 << 16; ++x) {
+    const glm::ivec3 cell = start + glm::ivec3(x, 0, 0);
+    if (visit(KeyOfCell(params, cell), cell)) return;
+  }
+}
+
+// Up to `count` distinct cells whose key satisfies `wanted`.
+template <typename Wanted>
+std::vector<glm::ivec3> SearchCells(RecordGenerator& g, const FilterConfig& config, std::size_t count, Wanted wanted) {
+  std::vector<glm::ivec3> found;
+  ScanCells(g, config, [&](const KeyResult& k, glm::ivec3 cell) {
+    if (wanted(k)) found.push_back(cell);
+    return found.size() >= count;
+  });
+  return found;
+}
+
+glm::vec3 Contribution(RecordGenerator& g) {
+  glm::vec3 c(g.Uniform(0.0f, 4.0f), g.Uniform(0.0f, 4.0f), g.Uniform(0.0f, 4.0f));
+  if (g.Bits() % 8u == 0u) c[g.UniformInt(0, 2)] = 0.0f;  // a zero channel, as a saturated albedo gives
+  return c;
+}
+
+VertexSample CellVertex(RecordGenerator& g, glm::ivec3 cell, std::uint32_t pixel) {
+  VertexSample v;
+  v.pixel = pixel;
+  v.position = glm::vec3(cell) + glm::vec3(0.5f);
+  v.previous = v.position + glm::vec3(0.0f, 0.0f, -10.0f);
+  v.normal = glm::vec3(0.0f, 0.0f, (g.Bits() & 1u) ? 1.0f : -1.0f);
+  v.contribution = Contribution(g);
+  v.throughput = glm::vec3(g.Uniform(0.125f, 1.0f));
+  v.radiance_before = glm::vec3(g.Uniform(0.0f, 0.5f));
+  return v;
+}
+
+// One in sixteen records becomes one a table must never hold, or one it must leave alone: rejected inputs (NaN,
+// infinite, negative), an unkeyable position (|q| >= 2^31) and a sample without a filter vertex.
+Record Spoil(RecordGenerator& g, Record r) {
+  if (g.Bits() % 16u != 0u) return r;
+  const int channel = g.UniformInt(0, 2);
+  switch (g.Bits() % 5u) {
+    case 0: r.contribution[channel] = std::numeric_limits<float>::quiet_NaN(); break;
+    case 1: r.contribution[channel] = std::numeric_limits<float>::infinity(); break;
+    case 2: r.contribution[channel] = -g.Uniform(0.001f, 2.0f); break;
+    case 3:
+      r.position.x = 3e9f;
+      r.previous.x = 3e9f;
+      break;
+    default: return MakeRecordWithoutVertex(r.path.x, 0u, glm::vec3(r.radiance_before));
+  }
+  return r;
+}
+
+// Records over the given cells: each cell once, in order (the searched cells come first, so a short batch keeps
+// them), then in runs, each record repeating the previous one's cell with probability 1/2, so neighbours (one
+// subgroup, one warp) often share a cell or race for one slot.
+std::vector<Record> RecordsOverCells(RecordGenerator& g, const std::vector<glm::ivec3>& cells, std::uint32_t count) {
+  std::vector<Record> records;
+  std::size_t cell = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (i < cells.size()) {
+      cell = i;
+    } else if (g.Bits() & 1u) {
+      cell = g.Bits() % cells.size();
+    }
+    records.push_back(Spoil(g, MakeVertexRecord(CellVertex(g, cells[cell], i))));
+  }
+  return records;
+}
+
+std::uint32_t PowerOfTwo(RecordGenerator& g, int low_log2, int high_log2) { return 1u << g.UniformInt(low_log2, high_log2); }
+
+std::uint32_t ProbeLimit(RecordGenerator& g, std::uint32_t capacity, std::uint32_t at_most) {
+  return std::uint32_t(g.UniformInt(1, int(std::min(capacity, at_most))));
+}
+
+// A crowded tiny table: 1 to 64 slots and a handful of cells.
+std::vector<glm::ivec3> Crowded(RecordGenerator& g, FilterConfig& c) {
+  c.capacity = PowerOfTwo(g, 0, 6);
+  c.probe_limit = ProbeLimit(g, c.capacity, 8);
+  c.fingerprint_bits = std::array{8u, 16u, 32u}[g.Bits() % 3u];
+  std::vector<glm::ivec3> cells(std::size_t(g.UniformInt(1, 12)));
+  for (glm::ivec3& cell : cells) cell = RandomCell(g, 8);
+  return cells;
+}
+
+// Keys whose fingerprint, reduced to 8..10 bits, is 0 before the fix that keeps it off the empty tag.
+std::vector<glm::ivec3> ZeroFingerprint(RecordGenerator& g, FilterConfig& c) {
+  c.capacity = PowerOfTwo(g, 2, 8);
+  c.probe_limit = ProbeLimit(g, c.capacity, 8);
+  c.fingerprint_bits = std::uint32_t(g.UniformInt(8, 10));
+  const std::uint32_t bits = c.fingerprint_bits;
+  std::vector<glm::ivec3> cells = SearchCells(g, c, std::size_t(g.UniformInt(1, 3)), [&](const KeyResult& k) {
+    return (shared::FullFingerprint(k.words) >> (32u - bits)) == 0u;
+  });
+  for (int filler = g.UniformInt(0, 6); filler > 0; --filler) cells.push_back(RandomCell(g, 8));
+  return cells;
+}
+
+// Distinct keys whose windows reach the last slot, so probing must wrap to slot 0.
+std::vector<glm::ivec3> WrappingWindows(RecordGenerator& g, FilterConfig& c) {
+  c.capacity = PowerOfTwo(g, 1, 8);
+  c.probe_limit = std::max(2u, ProbeLimit(g, c.capacity, 8));
+  c.fingerprint_bits = std::array{8u, 32u}[g.Bits() % 2u];
+  std::vector<glm::ivec3> cells = SearchCells(g, c, std::size_t(g.UniformInt(2, 6)),
+                                              [&](const KeyResult& k) { return k.slot0 + c.probe_limit > c.capacity; });
+  for (int filler = g.UniformInt(0, 3); filler > 0; --filler) cells.push_back(RandomCell(g, 8));
+  return cells;
+}
+
+// Pairs of distinct keys with the same slot0 and the same 8-bit fingerprint: aliases a table cannot tell apart.
+std::vector<glm::ivec3> SharedFingerprint(RecordGenerator& g, FilterConfig& c) {
+  c.capacity = PowerOfTwo(g, 2, 6);
+  c.probe_limit = ProbeLimit(g, c.capacity, 4);
+  c.fingerprint_bits = 8;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, glm::ivec3> first_of;
+  std::vector<glm::ivec3> cells;
+  const std::size_t pairs = std::size_t(g.UniformInt(1, 3));
+  ScanCells(g, c, [&](const KeyResult& k, glm::ivec3 cell) {
+    const auto [it, inserted] = first_of.try_emplace({k.slot0, k.fingerprint}, cell);
+    if (!inserted) cells.insert(cells.end(), {it->second, cell});
+    return cells.size() >= 2 * pairs;
+  });
+  for (int filler = g.UniformInt(0, 4); filler > 0; --filler) cells.push_back(RandomCell(g, 8));
+  return cells;
+}
+
+// The key path's hard cases from the property-test generators (cell and level boundaries, far positions,
+// signed-zero normals, no vertex) under any key configuration, in a crowded table.
+std::vector<Record> KeyPath(RecordGenerator& g, FilterConfig& c, std::uint32_t count) {
+  testing::KeyCase key_case = g.Case();
+  const std::uint32_t seed = c.seed;
+  c = key_case.config;
+  c.seed = seed;
+  c.frame = 0;
+  c.capacity = PowerOfTwo(g, 0, 8);
+  c.probe_limit = ProbeLimit(g, c.capacity, 16);
+  const shared::KeyParams params = MakeKeyParams(c, FootprintScale(c.filter_width_px, kFovY, 1), count);
+  std::vector<Record> records;
+  for (Record& r : g.MixedBatch(params, count)) records.push_back(Spoil(g, r));
+  return records;
+}
+
+// A few cells over 2 to 4 workgroups of the Vulkan accumulate. Layouts: aligned (every workgroup visits the same
+// cells in the same order, so two worker threads claim and join one cell at the same moment), strided (record i's
+// cell is i mod the cell count) and runs (a cell's records in runs that cross the workgroups' boundaries).
+std::vector<Record> Spread(RecordGenerator& g, FilterConfig& c) {
+  c.capacity = PowerOfTwo(g, 8, 12);
+  c.probe_limit = ProbeLimit(g, c.capacity, 16);
+  c.fingerprint_bits = 32;
+  const std::uint32_t workgroups = std::uint32_t(g.UniformInt(2, 4));
+  const std::uint32_t count = (workgroups - 1) * kAccumulateRecordsPerWorkgroup +
+                              std::uint32_t(g.UniformInt(1, int(kAccumulateRecordsPerWorkgroup)));
+  std::vector<glm::ivec3> cells(std::size_t(g.UniformInt(1, int(c.capacity / 4))));
+  for (glm::ivec3& cell : cells) cell = RandomCell(g, 64);
+  std::vector<std::uint32_t> order(kAccumulateRecordsPerWorkgroup);  // the aligned layout's cell per offset
+  for (std::uint32_t& o : order) o = g.Bits() % std::uint32_t(cells.size());
+  const std::uint32_t layout = g.Bits() % 3u;
+  std::vector<Record> records;
+  std::uint32_t cell = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (layout == 0) {
+      cell = order[i % kAccumulateRecordsPerWorkgroup];
+    } else if (layout == 1) {
+      cell = i % std::uint32_t(cells.size());
+    } else if (g.Bits() % 64u == 0u) {
+      cell = g.Bits() % std::uint32_t(cells.size());
+    }
+    records.push_back(Spoil(g, MakeVertexRecord(CellVertex(g, cells[cell], i))));
+  }
+  return records;
+}
+
+// A later frame of a sequence: each record of the first frame again with probability 3/4 (a cell joined, not
+// claimed), then up to a quarter as many records over fresh cells (new claims, eviction pressure). Pixels follow
+// the records' order.
+RecordBatch LaterFrame(RecordGenerator& g, const RecordBatch& first, std::uint32_t number) {
+  RecordBatch frame = first;
+  frame.records.clear();
+  for (const Record& r : first.records) {
+    if (g.Bits() % 4u != 0u) frame.records.push_back(r);
+  }
+  const int fresh = g.UniformInt(0, int(first.records.size() / 4));
+  for (int n = 0; n < fresh; ++n) {
+    frame.records.push_back(MakeVertexRecord(CellVertex(g, RandomCell(g, 8), 0)));
+  }
+  if (frame.records.empty()) frame.records.push_back(first.records.front());
+  for (std::uint32_t i = 0; i < frame.records.size(); ++i) frame.records[i].path.x = i;
+  frame.width = std::uint32_t(frame.records.size());
+  frame.frame = number;
+  return frame;
+}
+
+// The table's life over a sequence: a policy and a temporal mode of every kind (priority reserves the tag
+// 0xFFFFFFFF, so it keeps fingerprints of 31 bits or fewer).
+void DrawSequenceConfig(RecordGenerator& g, FilterConfig& c) {
+  const char* const evictions[] = {"none", "strict", "stale:1", "stale:2", "stale:3", "priority"};
+  const char* const temporals[] = {"integrate", "ema:0.5", "ema:0.25:8", "adaptive"};
+  c.eviction = ParseEviction(evictions[g.Bits() % 6u]);
+  c.temporal = ParseTemporal(temporals[g.Bits() % 4u]);
+  if (c.eviction.by_priority() && c.fingerprint_bits > 24) c.fingerprint_bits = 24;
+}
+
+}  // namespace
+
+std::vector<RecordBatch> AdversarialCase::Frames() const {
+  std::vector<RecordBatch> frames = {batch};
+  frames.insert(frames.end(), later.begin(), later.end());
+  return frames;
+}
+
+std::size_t AdversarialCase::Records() const {
+  std::size_t records = batch.records.size();
+  for (const RecordBatch& frame : later) records += frame.records.size();
+  return records;
+}
+
+const char* ToString(AdversarialFamily family) {
+  switch (family) {
+    case AdversarialFamily::kCrowded: return "crowded";
+    case AdversarialFamily::kZeroFingerprint: return "zero-fingerprint";
+    case AdversarialFamily::kWrappingWindows: return "wrapping-windows";
+    case AdversarialFamily::kSharedFingerprint: return "shared-fingerprint";
+    case AdversarialFamily::kKeyPath: return "key-path";
+    case AdversarialFamily::kSpread: return "spread";
+  }
+  return "?";
+}
+
+std::string AdversarialCase::ToString() const {
+  std::string s = std::string(hpsf::ToString(family)).append(": ").append(std::to_string(Records()));
+  s.append(" records");
+  if (!later.empty()) s.append(" in ").append(std::to_string(later.size() + 1)).append(" frames");
+  s.append(", ").append(config.ToString());
+  if (emulator.mode == simt::Mode::kFaithful) {
+    s.append(", faithful warp ").append(std::to_string(emulator.warp_size)).append(" schedule ").append(emulator.schedule);
+  } else {
+    s.append(", fast");
+  }
+  return s;
+}
+
+AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options) {
+  RecordGenerator g(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 0u, 0u}, 0xADF0u));
+  AdversarialCase a;
+  a.family = AdversarialFamily(g.Bits() % std::uint32_t(options.spread ? kAdversarialFamilies : kAdversarialFamilies - 1));
+  a.config = CellKeyedConfig(g);
+  const Accumulation accumulation = g.Bits() % 4u == 0u ? Accumulation::kFloat32 : Accumulation::kFixed64;
+  const std::uint32_t count = std::uint32_t(g.UniformInt(2, int(std::max(2u, options.max_records))));
+  std::vector<glm::ivec3> cells;
+  switch (a.family) {
+    case AdversarialFamily::kCrowded: cells = Crowded(g, a.config); break;
+    case AdversarialFamily::kZeroFingerprint: cells = ZeroFingerprint(g, a.config); break;
+    case AdversarialFamily::kWrappingWindows: cells = WrappingWindows(g, a.config); break;
+    case AdversarialFamily::kSharedFingerprint: cells = SharedFingerprint(g, a.config); break;
+    case AdversarialFamily::kKeyPath: a.batch.records = KeyPath(g, a.config, count); break;
+    case AdversarialFamily::kSpread: a.batch.records = Spread(g, a.config); break;
+  }
+  // After the family, whose key-path configuration replaces the whole config: a user's shader handles its mode only.
+  a.config.accumulation = options.accumulation ? *options.accumulation : accumulation;
+  if (a.family != AdversarialFamily::kKeyPath && a.family != AdversarialFamily::kSpread) {
+    if (cells.empty()) cells.push_back(RandomCell(g, 8));  // a search that found nothing still gives a batch
+    a.batch.records = RecordsOverCells(g, cells, count);
+  }
+  a.batch.width = std::uint32_t(a.batch.records.size());
+  a.batch.height = 1;
+  a.batch.samples_per_pixel = 1;
+  a.batch.fov_y_radians = kFovY;
+
+  // The emulator: mostly faithful warps under a drawn schedule, where races replay from the seed.
+  if (options.allow_fast_mode && g.Bits() % 4u == 0u) {
+    a.emulator.mode = simt::Mode::kFast;
+  } else {
+    a.emulator.mode = simt::Mode::kFaithful;
+    a.emulator.warp_size = std::array{8u, 32u, 64u}[g.Bits() % 3u];
+    const std::uint32_t schedule_seed = g.Bits() % 100000u;
+    switch (g.Bits() % 3u) {
+      case 0: a.emulator.schedule = "round-robin"; break;
+      case 1: a.emulator.schedule = "random:" + std::to_string(schedule_seed); break;
+      default: a.emulator.schedule = "pct:" + std::to_string(schedule_seed) + ":" + std::to_string(g.UniformInt(1, 4)); break;
+    }
+  }
+  // Rounding: a small F of the case's own, where truncation and rounding differ.
+  if (a.config.accumulation == Accumulation::kFixed64 && g.Bits() % 4u == 0u) {
+    a.config.fixed_point_bits = g.UniformInt(-2, 9);
+  }
+  // Frame state: a sequence through one table.
+  if (g.Bits() % 4u == 0u) {
+    DrawSequenceConfig(g, a.config);
+    const int frames = g.UniformInt(2, 6);
+    for (int k = 1; k < frames; ++k) a.later.push_back(LaterFrame(g, a.batch, std::uint32_t(k)));
+    a.config.frames = std::uint32_t(frames);
+  }
+  a.config.Validate();
+  return a;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,180 @@
+// The adversarial cases of hpsf fuzz: a pure function of (seed, run), always valid, every family drawn, and each
+// family reaching what it is built for in nearly every case (else the fuzzer's power is luck).
+#include "verifier/fuzzing/adversarial_case.h"
+
+#include <array>
+#include <cstring>
+#include <map>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/footprint.h"
+#include "core/input_check.h"
+#include "core/shared/key.h"
+
+namespace hpsf {
+namespace {
+
+std::vector<KeyResult> Keys(const AdversarialCase& c) {
+  const shared::KeyParams params = MakeKeyParams(
+      c.config, FootprintScale(c.config.filter_width_px, c.batch.fov_y_radians, c.batch.height), std::uint32_t(c.batch.records.size()));
+  std::vector<KeyResult> keys;
+  for (const Record& r : c.batch.records) {
+    keys.push_back(CheckRecordInputs(r) == InputVerdict::kAccepted ? shared::ComputeKey(params, r) : KeyResult{});
+  }
+  return keys;
+}
+
+using Words = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
+Words WordsOf(const KeyResult& k) { return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal}; }
+
+// What the family is built to reach, read from the keys core computes for the case's records.
+bool ReachesItsAim(const AdversarialCase& c) {
+  const std::vector<KeyResult> keys = Keys(c);
+  std::set<Words> distinct;
+  switch (c.family) {
+    case AdversarialFamily::kCrowded:  // neighbours share a cell
+      for (std::size_t i = 1; i < keys.size(); ++i) {
+        if (keys[i].status == shared::kKeyed && keys[i - 1].status == shared::kKeyed && WordsOf(keys[i]) == WordsOf(keys[i - 1])) return true;
+      }
+      return false;
+    case AdversarialFamily::kZeroFingerprint:  // a key whose reduced fingerprint is 0 before the fix
+      for (const KeyResult& k : keys) {
+        if (k.status == shared::kKeyed && (shared::FullFingerprint(k.words) >> (32u - c.config.fingerprint_bits)) == 0u) return true;
+      }
+      return false;
+    case AdversarialFamily::kWrappingWindows:  // two distinct keys whose windows reach the last slot
+      for (const KeyResult& k : keys) {
+        if (k.status == shared::kKeyed && k.slot0 + c.config.probe_limit > c.config.capacity) distinct.insert(WordsOf(k));
+      }
+      return distinct.size() >= 2;
+    case AdversarialFamily::kSharedFingerprint: {  // two distinct keys with one slot0 and one fingerprint
+      std::map<std::pair<std::uint32_t, std::uint32_t>, std::set<Words>> by_slot_and_tag;
+      for (const KeyResult& k : keys) {
+        if (k.status == shared::kKeyed) by_slot_and_tag[{k.slot0, k.fingerprint}].insert(WordsOf(k));
+      }
+      for (const auto& [slot_and_tag, words] : by_slot_and_tag) {
+        if (words.size() >= 2) return true;
+      }
+      return false;
+    }
+    case AdversarialFamily::kKeyPath: return true;  // the property-test generators' own reach is generator_tests'
+    case AdversarialFamily::kSpread: {  // a cell whose records sit in two workgroups of the Vulkan accumulate
+      std::map<Words, std::set<std::size_t>> workgroups;
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (keys[i].status == shared::kKeyed) workgroups[WordsOf(keys[i])].insert(i / kAccumulateRecordsPerWorkgroup);
+      }
+      for (const auto& [words, groups] : workgroups) {
+        if (groups.size() >= 2) return true;
+      }
+      return false;
+    }
+  }
+  return false;
+}
+
+TEST(AdversarialCase, IsAPureFunctionOfSeedAndRun) {
+  for (std::uint64_t run : {0ull, 1ull, 77ull, 1ull << 40}) {
+    const AdversarialCase a = MakeAdversarialCase(5, run), b = MakeAdversarialCase(5, run);
+    EXPECT_EQ(a.ToString(), b.ToString());
+    ASSERT_EQ(a.batch.records.size(), b.batch.records.size());
+    EXPECT_EQ(std::memcmp(a.batch.records.data(), b.batch.records.data(), a.batch.records.size() * sizeof(Record)), 0);
+  }
+  EXPECT_NE(MakeAdversarialCase(5, 0).ToString(), MakeAdversarialCase(6, 0).ToString());
+}
+
+TEST(AdversarialCase, EveryCaseIsValidAndEveryFamilyIsDrawn) {
+  std::array<int, kAdversarialFamilies> families{};
+  std::array<int, 4> spoiled{};  // rejected inputs, unkeyable records, records without a vertex, float32 tables
+  int sequences = 0, small_f = 0;
+  std::set<std::string> policies, temporals;
+  for (std::uint64_t run = 0; run < 2000; ++run) {
+    const AdversarialCase c = MakeAdversarialCase(1, run);
+    ++families[std::size_t(c.family)];
+    EXPECT_NO_THROW(c.config.Validate());
+    EXPECT_NO_THROW(c.emulator.Validate());
+    ASSERT_EQ(std::size_t(c.batch.width) * c.batch.height * c.batch.samples_per_pixel, c.batch.records.size());
+    if (c.family == AdversarialFamily::kSpread) {  // over 2 to 4 workgroups
+      ASSERT_GT(c.batch.records.size(), kAccumulateRecordsPerWorkgroup);
+      ASSERT_LE(c.batch.records.size(), 4 * kAccumulateRecordsPerWorkgroup);
+    } else {
+      ASSERT_GE(c.batch.records.size(), 2u);
+      ASSERT_LE(c.batch.records.size(), 96u);
+    }
+    // A sequence: 2 to 6 frames numbered 1, 2, ... after the first, each a valid batch, F room for all of them.
+    EXPECT_EQ(c.config.frames, c.later.size() + 1);
+    ASSERT_LE(c.later.size(), 5u);
+    for (std::size_t k = 0; k < c.later.size(); ++k) {
+      EXPECT_EQ(c.later[k].frame, k + 1);
+      ASSERT_GE(c.later[k].records.size(), 1u);
+      ASSERT_EQ(std::size_t(c.later[k].width) * c.later[k].height * c.later[k].samples_per_pixel, c.later[k].records.size());
+    }
+    sequences += !c.later.empty();
+    if (!c.later.empty()) {
+      policies.insert(c.config.eviction.ToString());
+      temporals.insert(c.config.temporal.ToString());
+    }
+    if (c.config.fixed_point_bits) {
+      small_f += 1;
+      EXPECT_GE(*c.config.fixed_point_bits, -2);
+      EXPECT_LE(*c.config.fixed_point_bits, 9);
+    }
+    const std::vector<KeyResult> keys = Keys(c);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const InputVerdict verdict = CheckRecordInputs(c.batch.records[i]);
+      spoiled[0] += verdict != InputVerdict::kAccepted;
+      spoiled[1] += verdict == InputVerdict::kAccepted && keys[i].status == shared::kKeyUnkeyable;
+      spoiled[2] += !shared::RecordHasVertex(c.batch.records[i]);
+    }
+    spoiled[3] += c.config.accumulation == Accumulation::kFloat32;
+  }
+  // 333 expected per family; a binomial's standard deviation is 17.
+  for (int f = 0; f < kAdversarialFamilies; ++f) {
+    EXPECT_GT(families[std::size_t(f)], 250) << ToString(AdversarialFamily(f));
+    EXPECT_LT(families[std::size_t(f)], 420) << ToString(AdversarialFamily(f));
+  }
+  // One case in four a sequence (500 expected, sd 19), one fixed64 case in four a small F (375, sd 17), every
+  // policy and temporal mode drawn.
+  EXPECT_GT(sequences, 420);
+  EXPECT_LT(sequences, 580);
+  EXPECT_GT(small_f, 300);
+  EXPECT_LT(small_f, 450);
+  EXPECT_EQ(policies, (std::set<std::string>{"none", "priority", "stale:1", "stale:2", "stale:3", "strict"}));
+  EXPECT_EQ(temporals.size(), 4u);
+  for (int kind = 0; kind < 4; ++kind) EXPECT_GT(spoiled[std::size_t(kind)], 100) << "kind " << kind;
+}
+
+// A user's shader handles one mode: with --accum given, every case of every family is in it (the key-path family
+// once replaced the whole configuration, and ran fixed64 cases against a float32 shader).
+TEST(AdversarialCase, AGivenModeHoldsInEveryFamily) {
+  for (const Accumulation mode : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+    std::set<int> families;
+    for (std::uint64_t run = 0; run < 300; ++run) {
+      const AdversarialCase c = MakeAdversarialCase(4, run, {96, true, mode, true});
+      families.insert(int(c.family));
+      ASSERT_EQ(c.config.accumulation, mode) << c.ToString();
+    }
+    EXPECT_EQ(families.size(), std::size_t(kAdversarialFamilies));
+  }
+}
+
+TEST(AdversarialCase, EachFamilyReachesItsAim) {
+  std::array<int, kAdversarialFamilies> drawn{}, reached{};
+  for (std::uint64_t run = 0; run < 2000; ++run) {
+    const AdversarialCase c = MakeAdversarialCase(2, run);
+    if (c.family == AdversarialFamily::kCrowded && c.batch.records.size() < 16) continue;  // few records may not repeat
+    ++drawn[std::size_t(c.family)];
+    reached[std::size_t(c.family)] += ReachesItsAim(c);
+  }
+  for (int f = 0; f < kAdversarialFamilies; ++f) {
+    std::printf("%-18s reached its aim in %d of %d cases\n", ToString(AdversarialFamily(f)), reached[std::size_t(f)], drawn[std::size_t(f)]);
+    EXPECT_GE(reached[std::size_t(f)], drawn[std::size_t(f)] * 9 / 10) << ToString(AdversarialFamily(f));
+  }
+}
+
+}  // namespace
+}  // namespace hpsf

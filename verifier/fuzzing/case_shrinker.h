@@ -1,0 +1,32 @@
+// Shrinks a failing adversarial case to a small one that still fails, so a repro bundle shows the defect in a
+// few records: a sequence's frames dropped one at a time, then delta debugging (Zeller and Hildebrandt 2002, ddmin)
+// over each frame's records, then greedy simplifications of the configuration (no eviction, integrating, the
+// automatic F, full fingerprints, fixed64 unless kept, the round-robin schedule, warp 8, the shortest probe limit),
+// then the frames and records once more. The result is 1-minimal in each frame's records: removing any one of them
+// makes the case pass. "Fails" is whatever the caller's predicate says, typically "the cross-check
+// contract does not hold".
+#ifndef HPSF_VERIFIER_FUZZING_CASE_SHRINKER_H
+#define HPSF_VERIFIER_FUZZING_CASE_SHRINKER_H
+
+#include <cstdint>
+#include <functional>
+
+#include "verifier/fuzzing/adversarial_case.h"
+
+namespace hpsf {
+
+using CaseFailsFn = std::function<bool(const AdversarialCase&)>;
+
+struct ShrinkResult {
+  AdversarialCase shrunk;
+  std::uint64_t checks = 0;   // calls of the predicate
+  bool exhausted = false;     // stopped at max_checks: smaller, but maybe not 1-minimal
+};
+
+// keep_accumulation: the mode was the user's choice (a shader may handle one mode only), so it is not simplified.
+ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, bool keep_accumulation = false,
+                        std::uint64_t max_checks = 4000);
+
+}  // namespace hpsf
+
+#endif  // HPSF_VERIFIER_FUZZING_CASE_SHRINKER_H

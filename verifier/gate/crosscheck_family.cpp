@@ -1,0 +1,57 @@
+// The gate's crosscheck family (gate_families.h): scene x config x backend x sequence x seed, each case one
+// `hpsf crosscheck` of a backend beside the reference.
+#include "verifier/gate/gate_families.h"
+
+namespace hpsf::gate {
+
+using nlohmann::json;
+
+void ExpandCrosscheck(const json& c, const std::string& folder, const GateError& error, Gate& gate) {
+  const std::string at = "/crosscheck";
+  if (!c.is_object()) error.At(at, "expected an object");
+  RequireKeys(c, {"scenes", "size", "spp", "seeds", "configs", "backends", "sequences"}, at, error);
+  const std::vector<SceneEntry> scenes = Scenes(c, at, folder, error);
+  const std::vector<std::string> trace = TraceArguments(c, at, error);
+  const std::vector<std::uint32_t> seeds = Seeds(c, at, error);
+  const std::vector<Named> configs = NamedOptions(c, "configs", {{"default", json::object()}}, at, error);
+  if (!c.contains("backends")) error.At(at + "/backends", "expected an object of named backends");
+  const std::vector<Named> backends = NamedOptions(c, "backends", json(), at, error);
+  const std::vector<Named> sequences = NamedOptions(c, "sequences", {{"one-frame", json::object()}}, at, error);
+  for (const Named& b : backends) {
+    if (!b.options.contains("backend") || !b.options["backend"].is_string()) {
+      error.At(b.pointer + "/backend", "expected the backend checked beside the reference: emulated or vulkan");
+    }
+  }
+  for (const SceneEntry& scene : scenes) {
+    // A recorded sequence holds its own frames.
+    const std::set<std::string> skipped =
+        scene.recorded ? std::set<std::string>{"frames", "frame"} : std::set<std::string>{};
+    for (const Named& config : configs) {
+      for (const Named& backend : backends) {
+        for (const Named& sequence : sequences) {
+          for (const std::uint32_t seed : seeds) {
+            GateCase gc;
+            gc.family = "crosscheck";
+            gc.id = "crosscheck/" + scene.name + "/" + config.name + "/" + backend.name + "/" + sequence.name +
+                    "/seed" + std::to_string(seed);
+            gc.where = scene.pointer + ", " + config.pointer + ", " + backend.pointer + ", " + sequence.pointer;
+            gc.arguments = {"crosscheck", scene.input};
+            if (!scene.recorded) gc.arguments.insert(gc.arguments.end(), trace.begin(), trace.end());
+            gc.arguments.insert(gc.arguments.end(), {"--seed", std::to_string(seed)});
+            for (const Named* set : {&config, &sequence}) {
+              const std::vector<std::string> a = Arguments(*set, folder, skipped, error);
+              gc.arguments.insert(gc.arguments.end(), a.begin(), a.end());
+            }
+            const std::vector<std::string> b = Arguments(backend, folder, {"backend"}, error);
+            gc.arguments.insert(gc.arguments.end(), b.begin(), b.end());
+            const std::string checked = backend.options["backend"].get<std::string>();
+            gc.arguments.insert(gc.arguments.end(), {"--backends", "reference," + checked});
+            gate.cases.push_back(std::move(gc));
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace hpsf::gate

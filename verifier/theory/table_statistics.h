@@ -1,0 +1,71 @@
+// The figures a team needs to size a table for its scene (`hpsf stats`): the load the batch's distinct keys put
+// on the configured capacity, their probe lengths and probe failures per probe limit beside linear probing's
+// theory (probe_theory), fingerprint aliases per width beside the prediction from the windows (alias_theory),
+// records per cell, and the jitter tests' p-values (jitter_statistics). Each measured rate is held to its
+// theory: it exceeds it when the theory lies below the rate's Clopper-Pearson interval, whose level is
+// Sidak-corrected so that all the rates together hold at 0.001.
+#ifndef HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
+#define HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/filter_config.h"
+#include "core/key_batch.h"
+#include "core/record.h"
+#include "verifier/theory/jitter_statistics.h"
+
+namespace hpsf {
+
+// A measured rate of `events` in `trials` beside its theory.
+struct RateFigure {
+  std::uint64_t events = 0, trials = 0;
+  double theory = 0.0;
+  double low = 0.0, high = 1.0;  // the measured rate's Clopper-Pearson interval (family level 0.001)
+  double Rate() const { return trials == 0 ? 0.0 : double(events) / double(trials); }
+  bool ExceedsTheory() const { return theory < low; }
+};
+
+struct ProbeLimitFigure {
+  std::uint32_t probe_limit = 0;
+  // Keys inserted in the batch's order that found their window full. The theory is an upper bound: it counts
+  // failed keys as inserted, so the table it assumes is fuller.
+  RateFigure failures;
+};
+
+struct AliasFigure {
+  std::uint32_t fingerprint_bits = 0;
+  RateFigure aliases;   // keys that joined another key's slot; theory: the prediction from the windows
+};
+
+struct TableStatistics {
+  std::uint64_t records = 0, keyed_records = 0, distinct_keys = 0;
+  std::uint32_t capacity = 0, probe_limit = 0, fingerprint_bits = 0;
+  double load = 0.0;  // distinct keys / capacity
+  // Probes of a successful search per key, inserted without a limit (empty when the keys fill the table).
+  std::vector<double> probe_histogram, probe_histogram_theory;  // [k]: share of keys found after k + 1 probes
+  double mean_probes = 0.0, mean_probes_theory = 0.0;
+  std::vector<ProbeLimitFigure> probe_limits;
+  std::vector<AliasFigure> fingerprints;
+  double extrapolated_alias_rate_32 = 0.0;  // aliases per key at 32 bits, from the widths measured
+  std::vector<std::uint64_t> records_per_cell;  // [k]: keys with 2^k .. 2^(k+1) - 1 records
+  std::uint64_t max_records_per_cell = 0;
+  std::vector<JitterVerdict> jitter;
+  double jitter_alpha = 0.0;  // each jitter test's level (Sidak, family 0.001)
+
+  bool ExceedsTheory() const;  // any rate above its theory, or a jitter test rejected
+  nlohmann::json ToJson() const;
+};
+
+// The distinct full keys among the keyed results, in the order they first come, and how many results carry each.
+std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys, std::vector<std::uint64_t>* results_per_key = nullptr);
+
+TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
+                                       const FilterConfig& config);
+
+}  // namespace hpsf
+
+#endif  // HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
