@@ -7,8 +7,9 @@
 // config.fixed_point_bits) and kept: sums of different F cannot be added. Nothing that shapes the table or the
 // keys may change within a sequence, only the frame number (a ConfigError names what changed).
 //
-// Each backend's own results (the reference's cells, a hashed backend's table dump, keys and placements) come
-// from its concrete class: reference/reference_backend.h, emulated/emulated_backend.h, vulkan/vulkan_backend.h.
+// What tools need of a frame comes through this interface alone: the exact result (the reference), the hashed run
+// (a hashed backend's table dump, keys and placements), and where the frame's time went, in milliseconds on every
+// backend. Which backends exist, and how each is made, is core/backend_registry.h.
 #ifndef HPSF_CORE_BACKEND_H
 #define HPSF_CORE_BACKEND_H
 
@@ -17,11 +18,23 @@
 #include <string>
 
 #include "core/filter_config.h"
+#include "core/filter_result.h"
 #include "core/hashed_run.h"
 #include "core/image.h"
 #include "core/record.h"
 
 namespace hpsf {
+
+// A frame's wall time in milliseconds, grouped alike on every backend. No output bit depends on it.
+struct FrameTimings {
+  std::optional<double> keys_ms;  // keys, input checks and the choice of F; absent where the accumulate computes keys
+  double accumulate_ms = 0;       // clearing or preparing the table and the adds
+  double level_seed_ms = 0;       // the seed pass of resolution changes (core/level_seed.h)
+  double temporal_ms = 0;         // the temporal blend (core/temporal.h)
+  double eviction_ms = 0;         // the evict and reclaim passes (core/eviction.h)
+  double resolve_ms = 0;          // the table's dump and the resolve into pixels
+  std::optional<double> transfer_ms;  // copies between host and device; absent where there is no device
+};
 
 class Backend {
  public:
@@ -40,6 +53,10 @@ class Backend {
   // table checker and the cross-check judge; null for the reference, whose table is the exact map, and before a
   // frame.
   virtual const HashedRun* LastHashedRun() const { return nullptr; }
+  // The reference's last frame: the exact map's cells and each record's placement; null for a hashed backend.
+  virtual const FilterResult* LastExactResult() const { return nullptr; }
+  // Where the last frame's time went; all zero for the reference, which times nothing.
+  virtual FrameTimings LastFrameTimings() const { return {}; }
 
   // Frames filtered since Reset.
   std::uint32_t frames_filtered() const { return frames_filtered_; }

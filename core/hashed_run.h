@@ -24,6 +24,13 @@ struct HashedRun {
   std::uint64_t evicted = 0;                 // live slots this frame's eviction made tombstones
   std::uint64_t tombstones = 0;              // tombstones left after the frame (core/hash_table.h)
   std::uint64_t seeded = 0;                  // new slots seeded from another level (core/level_seed.h)
+  // Where the backend chooses the interleaving (the faithful emulator): a hash of the schedule's trace, equal on
+  // two runs of one seed; 0 elsewhere. And in float32 there, for slot s and channel c, [3 s + c] lists the
+  // records in the order their adds applied, and with --level-change seed the slots a seed was added to (after
+  // the adds); both empty elsewhere.
+  std::uint64_t trace_hash = 0;
+  std::vector<std::vector<std::uint32_t>> float_add_order;
+  std::vector<bool> seeded_slots;
 };
 
 // Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).

@@ -21,4 +21,16 @@ void EmulatedBackend::ForgetTable() {
   run_.reset();
 }
 
+FrameTimings EmulatedBackend::LastFrameTimings() const {
+  if (!run_) return {};
+  const EmulatedTimings& t = run_->timings;
+  return {.keys_ms = t.keys_ms + t.fixed_point_ms,
+          .accumulate_ms = t.clear_ms + t.accumulate_ms,
+          .level_seed_ms = t.level_seed_ms,
+          .temporal_ms = t.temporal_ms,
+          .eviction_ms = t.eviction_ms,
+          .resolve_ms = t.read_back_ms + t.resolve_ms,
+          .transfer_ms = std::nullopt};
+}
+
 }  // namespace hpsf

@@ -20,6 +20,8 @@ class EmulatedBackend : public Backend {
   const HashedRun* LastHashedRun() const override { return run_ ? &*run_ : nullptr; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
   const EmulatedRun& run() const { return *run_; }
+  const EmulatorOptions& options() const { return options_; }
+  FrameTimings LastFrameTimings() const override;
 
  protected:
   const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override;

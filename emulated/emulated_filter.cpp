@@ -30,10 +30,10 @@ void AllCores(std::size_t n, const std::function<void(std::size_t, std::size_t)>
 
 class PhaseClock {
  public:
-  // Seconds since the previous lap.
-  double Lap() {
+  // Milliseconds since the previous lap.
+  double LapMs() {
     const auto now = std::chrono::steady_clock::now();
-    return std::chrono::duration<double>(now - std::exchange(last_, now)).count();
+    return std::chrono::duration<double, std::milli>(now - std::exchange(last_, now)).count();
   }
 
  private:
@@ -77,7 +77,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     }
   });
 
-  run.timings.keys = clock.Lap();
+  run.timings.keys_ms = clock.LapMs();
   HashTableDump& table = run.table;
   table.capacity = config.capacity;
   table.probe_limit = config.probe_limit;
@@ -89,7 +89,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
 
-  run.timings.fixed_point = clock.Lap();
+  run.timings.fixed_point_ms = clock.LapMs();
   simt::DeviceMemory memory;
   AccumulateArgs args;
   args.records = batch.records;
@@ -159,7 +159,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     args.eviction = &eviction;
   }
 
-  run.timings.clear = clock.Lap();
+  run.timings.clear_ms = clock.LapMs();
   const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
   if (options.mode == simt::Mode::kFast) {
     simt::LaunchFast(memory, n, kernel, options.threads,
@@ -177,9 +177,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       };
     }
     run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule, observer);
+    run.trace_hash = run.launch.trace_hash;
   }
 
-  run.timings.accumulate = clock.Lap();
+  run.timings.accumulate_ms = clock.LapMs();
   // The passes after the accumulate run one thread per slot. Faithful mode schedules them by the run's policy; an
   // exhaustive search drives only the accumulate launch, so they then take round-robin.
   const auto launch = [&](std::uint32_t threads, const simt::Kernel& kernel) {
@@ -213,9 +214,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     for (std::size_t s = 0; s < config.capacity; ++s) run.seeded_slots[s] = flags[s] == 2;
   }
   // A skipped pass reads zero, not the clock's few nanoseconds between two laps.
-  run.timings.level_seed = seeding ? clock.Lap() : 0.0;
+  run.timings.level_seed_ms = seeding ? clock.LapMs() : 0.0;
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
-  run.timings.temporal = blending ? clock.Lap() : 0.0;
+  run.timings.temporal_ms = blending ? clock.LapMs() : 0.0;
   if (evicting) {
     if (config.eviction.by_priority()) {
       launch(n, [&](simt::ThreadContext& ctx) { return eviction_kernels.select(ctx, eviction); });
@@ -225,7 +226,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     run.evicted = memory.Words64(eviction.evicted)[0];
   }
   if (tracking) table.last_seen = memory.TakeWords32(b.last_seen);
-  run.timings.eviction = evicting ? clock.Lap() : 0.0;
+  run.timings.eviction_ms = evicting ? clock.LapMs() : 0.0;
   // The dump: the final state of the device buffers, moved out where the layouts agree.
   table.tags = memory.TakeWords32(b.tags);
   table.counts = memory.TakeWords64(b.counts);
@@ -256,7 +257,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     kept.device_sums32 = memory.TakeWords32(b.sums);
   }
 
-  run.timings.read_back = clock.Lap();
+  run.timings.read_back_ms = clock.LapMs();
   // Resolve, one pixel per task as on a GPU, each record reading its slot's average; the probe-length
   // histogram and the failures follow from the placements in the same pass. Integer tallies: the totals do not
   // depend on how the pixels are split.
@@ -319,7 +320,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.probe_lengths = tally.probe_lengths;
   kept.accepted = std::move(accepted);
   kept.entering = std::move(entering);
-  run.timings.resolve = clock.Lap();
+  run.timings.resolve_ms = clock.LapMs();
   return run;
 }
 

@@ -32,24 +32,22 @@ struct EmulatorOptions {
   void Validate() const;                 // ConfigError naming the option
 };
 
-// Wall time of each phase of a run, in seconds, for benchmarks and reports; no output bit depends on them.
+// Wall time of each phase of a run in milliseconds, as VulkanTimings has its passes', for benchmarks and reports;
+// no output bit depends on them.
 struct EmulatedTimings {
-  double keys = 0;         // keys, input checks and the contributions for F, all cores
-  double fixed_point = 0;  // the choice of F
-  double clear = 0;        // allocating and zeroing the table
-  double accumulate = 0;   // the accumulate launch
-  double level_seed = 0;   // the seed launch of resolution changes; 0 without --level-change seed
-  double temporal = 0;     // the temporal blend launch; 0 when integrating
-  double eviction = 0;     // the evict and reclaim launches; 0 without eviction
-  double read_back = 0;    // the dump of the table
-  double resolve = 0;      // averages, pixels and the probe statistics, all cores
+  double keys_ms = 0;         // keys, input checks and the contributions for F, all cores
+  double fixed_point_ms = 0;  // the choice of F
+  double clear_ms = 0;        // allocating and zeroing the table
+  double accumulate_ms = 0;   // the accumulate launch
+  double level_seed_ms = 0;   // the seed launch of resolution changes; 0 without --level-change seed
+  double temporal_ms = 0;     // the temporal blend launch; 0 when integrating
+  double eviction_ms = 0;     // the evict and reclaim launches; 0 without eviction
+  double read_back_ms = 0;    // the dump of the table
+  double resolve_ms = 0;      // averages, pixels and the probe statistics, all cores
 };
 
 struct EmulatedRun : HashedRun {
   simt::LaunchReport launch;  // faithful mode: trace hash and step statistics
-  // Faithful float32: for slot s and channel c, [3 s + c] lists the records in the order their adds applied.
-  std::vector<std::vector<std::uint32_t>> float_add_order;
-  std::vector<bool> seeded_slots;  // with --level-change seed: the slots a seed was added to (after the adds)
   EmulatedTimings timings;
 };
 

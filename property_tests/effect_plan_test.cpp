@@ -8,6 +8,7 @@
 // level-seed where --level-min = --level-max (no cell has a parent or child). Each runs on a backend that filtered
 // another sequence before (Reset between), so a forced pass that read a previous sequence's leftovers would show.
 
+#include "core/backend_registry.h"
 #include "core/effect_plan.h"
 
 #include <gtest/gtest.h>
@@ -126,17 +127,9 @@ const std::vector<SkipCase>& SkipCases() {
 
 // The phase timer of `effect` in the backend's last frame, in seconds; the reference has none (-1).
 double PhaseSeconds(const Backend& backend, Effect effect) {
-  if (const auto* emulated = dynamic_cast<const EmulatedBackend*>(&backend)) {
-    const EmulatedTimings& t = emulated->run().timings;
-    return effect == Effect::kTemporal ? t.temporal : effect == Effect::kLevelSeed ? t.level_seed : t.eviction;
-  }
-  if (const auto* vulkan = dynamic_cast<const VulkanBackend*>(&backend)) {
-    const VulkanTimings& t = vulkan->run().timings;
-    return 1e-3 * (effect == Effect::kTemporal    ? t.temporal_ms
-                   : effect == Effect::kLevelSeed ? t.level_seed_ms
-                                                  : t.eviction_ms);
-  }
-  return -1.0;
+  if (!backend.LastHashedRun()) return -1.0;
+  const FrameTimings t = backend.LastFrameTimings();
+  return 1e-3 * (effect == Effect::kTemporal ? t.temporal_ms : effect == Effect::kLevelSeed ? t.level_seed_ms : t.eviction_ms);
 }
 
 // Every bit of the backend's last image and table. Where the slots and the float adds' order depend on timing (the
@@ -165,7 +158,7 @@ std::vector<std::vector<std::uint64_t>> SlotSet(const HashTableDump& t, bool wit
 
 FrameBits BitsOf(const Backend& backend, const Image& image) {
   FrameBits bits;
-  const bool timed = dynamic_cast<const VulkanBackend*>(&backend) != nullptr;
+  const bool timed = FindBackend(backend.Name(), "backend").on_device;
   if (const HashedRun* run = timed ? backend.LastHashedRun() : nullptr) {
     const bool fixed = run->table.accumulation == Accumulation::kFixed64;
     if (fixed) {
@@ -192,7 +185,7 @@ FrameBits BitsOf(const Backend& backend, const Image& image) {
     bits.last_seen = t.last_seen;
     bits.placements = run->placements;
   } else {
-    const FilterResult& exact = dynamic_cast<const ReferenceBackend&>(backend).result();
+    const FilterResult& exact = *backend.LastExactResult();
     for (const TableCell& cell : exact.cells) {
       bits.tags.insert(bits.tags.end(), cell.key.begin(), cell.key.end());
       bits.counts.push_back(cell.count);

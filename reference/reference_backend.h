@@ -16,6 +16,7 @@ class ReferenceBackend : public Backend {
   std::string Name() const override { return "reference"; }
   // The last frame's result: its placements and counts, and every cell of the table. Only after a frame.
   const FilterResult& result() const { return *result_; }
+  const FilterResult* LastExactResult() const override { return result_ ? &*result_ : nullptr; }
 
  protected:
   const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override;

@@ -22,6 +22,17 @@ class VulkanBackend : public Backend {
   const HashedRun* LastHashedRun() const override { return run_ ? &*run_ : nullptr; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.
   const VulkanRun& run() const { return *run_; }
+  FrameTimings LastFrameTimings() const override {
+    if (!run_) return {};
+    const VulkanTimings& t = run_->timings;
+    return {.keys_ms = std::nullopt,  // computed in the accumulate pass
+            .accumulate_ms = t.accumulate_ms,
+            .level_seed_ms = t.level_seed_ms,
+            .temporal_ms = t.temporal_ms,
+            .eviction_ms = t.eviction_ms,
+            .resolve_ms = t.resolve_ms,
+            .transfer_ms = t.UploadMs() + t.ReadBackMs()};
+  }
 
  protected:
   const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) override {

@@ -17,47 +17,28 @@
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
+#include "verifier/contract/backend_factory.h"
 #include "verifier/contract/crosscheck.h"
 #include "tools/hpsf/emulator_options.h"
 #include "vulkan/vulkan_filter.h"
 
 namespace hpsf {
 
-// Backends this build has: reference, emulated, vulkan.
-void CheckBackend(const std::string& backend);
-
-struct BackendOutput {
-  Image image;
-  nlohmann::json stats;
-  std::optional<FilterResult> reference;
-  std::optional<EmulatedRun> emulated;
-  std::optional<VulkanRun> vulkan;
-};
-
-// A backend (core/backend.h) with what it needs kept alive: the Vulkan device, which the backend uses.
-struct BackendInstance {
-  std::unique_ptr<VulkanDevice> device;  // declared first: destroyed after the backend
-  std::unique_ptr<Backend> backend;
-  EmulatorOptions emulator;
-};
-
+// A backend by name (core/backend_registry.h: a ConfigError naming --backend otherwise), made with its options.
 BackendInstance MakeBackend(const std::string& backend, const EmulatorOptions& emulator, Defect defect = Defect::kNone,
                             const VulkanBackendOptions& vulkan = {});
 
-// The last frame the backend filtered, as render and replay report it.
-BackendOutput LastFrameOutput(const BackendInstance& instance);
-
+// The last frame's image, from whichever backend filtered it.
+const Image& LastFrameImage(const Backend& backend);
 // The last frame's eviction, for a report's per-frame entry: cells_evicted (reference), or evicted, tombstones
 // and eviction_s, the evict and reclaim passes' time (hashed backends).
-nlohmann::json LastFrameEviction(const BackendInstance& instance);
+nlohmann::json LastFrameEviction(const Backend& backend);
 // The temporal blend's pass time of the last frame: {"temporal_s": seconds} for a hashed backend; the reference
 // blends inside its filter ({}).
-nlohmann::json LastFrameTemporal(const BackendInstance& instance);
+nlohmann::json LastFrameTemporal(const Backend& backend);
 // The last frame's level seeds (--level-change seed): cells_seeded (reference), or seeded and level_seed_s, the
 // seed pass's time (hashed backends).
-nlohmann::json LastFrameLevelSeed(const BackendInstance& instance);
-
-nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options);
+nlohmann::json LastFrameLevelSeed(const Backend& backend);
 
 }  // namespace hpsf
 

@@ -105,21 +105,4 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }
 
-nlohmann::json ToJson(const FilterStats& s) {
-  return {{"records", s.records},
-          {"records_with_vertex", s.records_with_vertex},
-          {"records_without_vertex", s.records_without_vertex},
-          {"unkeyable", s.unkeyable},
-          {"rejected_non_finite", s.rejected_non_finite},
-          {"rejected_negative", s.rejected_negative},
-          {"cells", s.cells},
-          {"mean_records_per_cell", s.mean_records_per_cell},
-          {"max_records_per_cell", s.max_records_per_cell},
-          {"fixed_point_bits", s.fixed_point_bits},
-          {"fixed64_wraps", s.fixed_point_wraps},
-          {"count_wraps", s.count_wraps},
-          {"cells_evicted", s.cells_evicted},
-          {"cells_seeded", s.cells_seeded}};
-}
-
 }  // namespace hpsf

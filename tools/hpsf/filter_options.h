@@ -36,7 +36,6 @@ FilterConfig ResolveFilterConfig(const FilterOptions& options);
 void CheckVarianceSamples(const FilterOptions& options, std::uint32_t samples_per_pixel, const std::string& source);
 
 nlohmann::json ToJson(const FilterConfig& config);
-nlohmann::json ToJson(const FilterStats& stats);
 
 }  // namespace hpsf
 

@@ -15,19 +15,15 @@
 namespace hpsf {
 namespace {
 
-// The hashed backend's run, emulated or Vulkan.
-const HashedRun& Hashed(const BackendOutput& result) {
-  return result.emulated ? static_cast<const HashedRun&>(*result.emulated) : *result.vulkan;
-}
-
 // The variance from the groups whose averages the backend's resolve used: the reference's cells or a hashed
 // table's slots (a probe failure or an unplaced record is past the capacity), or none without the filter.
-PixelVariance EstimateVariance(const RecordBatch& batch, const BackendOutput& result, bool filtered) {
+PixelVariance EstimateVariance(const RecordBatch& batch, const Backend& backend, bool filtered) {
   if (!filtered) return EstimatePixelVariance(batch, {}, 0);
-  if (result.reference) {
-    return EstimatePixelVariance(batch, result.reference->placement, result.reference->cells.size());
+  if (const FilterResult* exact = backend.LastExactResult()) {
+    return EstimatePixelVariance(batch, exact->placement, exact->cells.size());
   }
-  return EstimatePixelVariance(batch, Hashed(result).placements, Hashed(result).table.capacity);
+  const HashedRun& hashed = *backend.LastHashedRun();
+  return EstimatePixelVariance(batch, hashed.placements, hashed.table.capacity);
 }
 
 // Each pixel holds its tile's variance, so the file keeps one size for every channel.
@@ -56,13 +52,12 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
   CheckVarianceSamples(options, batch.samples_per_pixel, "the batch of " + request.scene);
   nlohmann::json report;
   const auto filter_start = std::chrono::steady_clock::now();
-  backend.backend->FilterFrame(batch, config);
-  const BackendOutput result = LastFrameOutput(backend);
+  const Image& filtered = backend.backend->FilterFrame(batch, config);
   const double filter_seconds = SecondsSince(filter_start);
-  const Image image = options.no_filter ? UnfilteredImage(batch) : result.image;
-  // A Vulkan run has no emulated part: its F is in its own table (reading the empty emulated one wrote garbage).
+  const Image image = options.no_filter ? UnfilteredImage(batch) : filtered;
+  const FilterResult* exact = backend.backend->LastExactResult();
   const int fixed_point_bits =
-      result.reference ? result.reference->stats.fixed_point_bits : Hashed(result).table.fixed_point_bits;
+      exact ? exact->stats.fixed_point_bits : backend.backend->LastHashedRun()->table.fixed_point_bits;
 
   std::map<std::string, std::string> metadata = {{"scene", request.scene},
                                                  {"config", config.ToString()},
@@ -73,7 +68,7 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
   std::optional<PixelVariance> variance;
   if (options.variance) {
     const auto variance_start = std::chrono::steady_clock::now();
-    variance = EstimateVariance(batch, result, !options.no_filter);
+    variance = EstimateVariance(batch, *backend.backend, !options.no_filter);
     report["timings"]["variance_s"] = SecondsSince(variance_start);
     metadata["mean_variance"] = Digits(variance->mean_variance);
     metadata["spp"] = std::to_string(batch.samples_per_pixel);
@@ -89,7 +84,7 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
   report["filtered"] = !options.no_filter;
   report["backend"] = request.backend;
   report["config"] = ToJson(config);
-  report["stats"] = result.stats;
+  report["stats"] = backend.last_frame_stats();
   report["output"] = request.output;
   report["preview"] = preview;
   report["timings"]["filter_s"] = filter_seconds;

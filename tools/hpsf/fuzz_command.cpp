@@ -72,7 +72,7 @@ struct Failure {
 
 // How often a case is checked before it counts as passing while shrinking: the emulator replays its schedule, but
 // a race on a device fails only on some runs (lavapipe's worker threads interleave workgroups by timing).
-int Tries(const std::string& backend) { return backend == "vulkan" ? 3 : 1; }
+int Tries(const BackendInfo& backend) { return backend.on_device ? 3 : 1; }
 
 // The first failing report of up to `tries` checks of c, or the last passing one.
 CrosscheckReport CheckUntilFails(Crosschecker& checker, const AdversarialCase& c, int tries) {
@@ -121,13 +121,15 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, 
 }
 
 int Run(FuzzOptions& o, bool options_only) {
-  CheckBackend(o.backend);
-  if (o.backend == "reference") throw ConfigError("--backend", "the reference is the oracle; fuzz emulated or vulkan");
+  const BackendInfo& backend = FindBackend(o.backend, "--backend");
+  if (!backend.hashed) {
+    throw ConfigError("--backend", "the reference is the oracle; fuzz " + BackendNames(true));
+  }
   const Defect defect = ParseDefect(o.defect);
-  if (defect != Defect::kNone && o.backend != "emulated") {
+  if (defect != Defect::kNone && backend.kind != BackendKind::kEmulated) {
     throw ConfigError("--inject-defect", "breaks the emulated backend's kernel; for Vulkan give a broken shader with --accumulate-spv");
   }
-  if (!o.vulkan.accumulate_spv.empty() && o.backend != "vulkan") {
+  if (!o.vulkan.accumulate_spv.empty() && !backend.runs_user_shaders) {
     throw ConfigError("--accumulate-spv", "runs on the Vulkan backend; add --backend vulkan");
   }
   if (o.accumulation.empty() && !o.vulkan.accumulate_spv.empty()) {
@@ -143,7 +145,7 @@ int Run(FuzzOptions& o, bool options_only) {
   const std::vector<std::string> backends = {"reference", o.backend};
   Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
   // A broken kernel's races must replay from the schedule, which the emulator's fast mode does not promise.
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, o.backend == "vulkan"};
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();
@@ -173,7 +175,7 @@ int Run(FuzzOptions& o, bool options_only) {
 
   if (failure) {
     const Clock::time_point shrink_start = Clock::now();
-    const int tries = Tries(o.backend);
+    const int tries = Tries(backend);
     // A failure that does not repeat on every run of the case as found depends on timing: shrinking it would chase
     // luck, so it is bundled as found.
     for (int t = 1; t < tries && !failure->timing_dependent; ++t) {

@@ -86,14 +86,14 @@ nlohmann::json FilterSequenceFrame(BackendInstance& backend, const RecordBatch& 
     backend.backend->FilterFrame(batch, config);
     frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
   }
-  if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(backend);
-  if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(backend);
-  if (config.level_seed.enabled) frame["level_seed"] = LastFrameLevelSeed(backend);
+  if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(*backend.backend);
+  if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(*backend.backend);
+  if (config.level_seed.enabled) frame["level_seed"] = LastFrameLevelSeed(*backend.backend);
   return report;
 }
 
 void RunRender(RenderOptions& o, bool options_only) {
-  CheckBackend(o.backend);
+  FindBackend(o.backend, "--backend");
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ParseSize(o.size, o.trace);
   o.trace.seed = o.filter.config.seed;
@@ -184,7 +184,7 @@ struct ReplayOptions {
 // Every frame of the file through one table, each as its own frame number; the last goes to -o, each one to
 // --frame-out's file when given.
 void RunReplay(ReplayOptions& o, bool options_only) {
-  CheckBackend(o.backend);
+  FindBackend(o.backend, "--backend");
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   ResolveFilterConfig(o.filter);
   if (!o.frame_out.empty()) CheckFramePattern(o.frame_out);

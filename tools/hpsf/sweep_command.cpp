@@ -125,17 +125,12 @@ class Runner {
       backend.backend->Reset();
       run.image = backend.backend->FilterFrame(batch, config);
       run.filter_s = SecondsSince(start);
-      const BackendOutput output = LastFrameOutput(backend);
-      if (output.emulated) {
-        const EmulatedTimings& t = output.emulated->timings;
-        run.phases = {{"key_s", t.keys + t.fixed_point},
-                      {"accumulate_s", t.clear + t.accumulate},
-                      {"resolve_s", t.read_back + t.resolve}};
-      } else if (output.vulkan) {
-        const VulkanTimings& t = output.vulkan->timings;
-        run.phases = {{"accumulate_s", 1e-3 * t.accumulate_ms},  // keys are computed in the accumulate pass
-                      {"resolve_s", 1e-3 * t.resolve_ms},
-                      {"transfer_s", 1e-3 * (t.UploadMs() + t.ReadBackMs())}};
+      if (backend.info->hashed) {  // the reference times none of its phases
+        const FrameTimings t = backend.backend->LastFrameTimings();
+        if (t.keys_ms) run.phases["key_s"] = *t.keys_ms / 1e3;  // Vulkan computes keys in its accumulate pass
+        run.phases["accumulate_s"] = t.accumulate_ms / 1e3;
+        run.phases["resolve_s"] = t.resolve_ms / 1e3;
+        if (t.transfer_ms) run.phases["transfer_s"] = *t.transfer_ms / 1e3;
       }
       if (const HashedRun* hashed = backend.backend->LastHashedRun()) {
         run.probe_failures = hashed->probe_failures;

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <set>
 
+#include "core/backend_registry.h"
 #include "core/error.h"
 
 namespace hpsf {
@@ -37,8 +38,9 @@ void CheckValue(const std::string& axis, const std::string& value) {
       refuse("expected pt, hpsf, radius or screen");
     }
   } else if (axis == "backend") {
-    if (value != "reference" && value != "emulated" && value != "vulkan") {
-      refuse("expected reference, emulated or vulkan");
+    const auto backends = RegisteredBackends();
+    if (std::none_of(backends.begin(), backends.end(), [&](const BackendInfo& b) { return value == b.name; })) {
+      refuse("expected one of " + BackendNames());
     }
   }
 }

@@ -119,7 +119,7 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
 
 // Level 3, the faithful emulator in float32: each slot's recorded order of adds, replayed by the reference, gives
 // its bits, for every slot that held nothing before the frame (a sum carried over starts elsewhere).
-void CompareFloatOrder(const RecordBatch& batch, const EmulatedRun& run, const std::optional<HashTableDump>& before,
+void CompareFloatOrder(const RecordBatch& batch, const HashedRun& run, const std::optional<HashTableDump>& before,
                        const std::string& prefix, LevelVerdict& ideal) {
   for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
     const std::uint32_t slot = std::uint32_t(entry / 3);
@@ -240,17 +240,14 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
       s.quality.aliased_slots += s.classes.aliased_slots();
       s.quality.aliased_records += s.classes.classified_records();
 
-      const auto* emulated = dynamic_cast<const EmulatedBackend*>(judged.backend);
-      if (emulated && !emulated->run().float_add_order.empty()) {
+      if (!run->float_add_order.empty()) {
         s.replayed_float_order = true;
-        CompareFloatOrder(batch, emulated->run(), s.before, who + ": ", ideal);
+        CompareFloatOrder(batch, *run, s.before, who + ": ", ideal);
       }
       s.records_compared += CompareWithReference(batch, config, reference.result(), *run,
                                                  s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
 
-      if (judged.ordered && emulated &&
-          dynamic_cast<const EmulatedBackend&>(*judged.rerun).run().launch.trace_hash !=
-              emulated->run().launch.trace_hash) {
+      if (judged.ordered && again->trace_hash != run->trace_hash) {
         Fail(determinism, who + ": the trace hash changed between two identical runs");
       }
       const RerunPromise promise =

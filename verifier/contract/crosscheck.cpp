@@ -6,30 +6,27 @@
 
 #include "core/error.h"
 #include "verifier/contract/contract_levels.h"
-#include "vulkan/vulkan_backend.h"
+#include "core/backend_registry.h"
+#include "verifier/contract/backend_factory.h"
 
 namespace hpsf {
 
 // The Vulkan backend and its rerun, on one device.
 struct Crosschecker::VulkanContext {
-  VulkanDevice device;
-  VulkanBackend backend, rerun;
+  BackendInstance backend, rerun;  // the rerun on the first one's device
   std::string description;
+
   explicit VulkanContext(const VulkanBackendOptions& options)
-      : device(options.device_filter, options.staging),
-        backend(device, options.accumulate_spv, options.eviction_spv),
-        rerun(device, options.accumulate_spv, options.eviction_spv),
-        description(device.info().name + ", driver " + device.info().driver_name + " (" + device.info().driver_info +
-                    "), memory " + device.info().memory) {}
+      : backend(MakeBackend(FindBackend("vulkan", "--backends"), {.vulkan = options})),
+        rerun(MakeBackend(*backend.info, {.vulkan = options}, backend.device.get())) {
+    const VulkanDeviceInfo& info = backend.device->info();
+    description = info.name + ", driver " + info.driver_name + " (" + info.driver_info + "), memory " + info.memory;
+  }
 };
 
 Crosschecker::Crosschecker(const std::vector<std::string>& backends, Defect defect, const VulkanBackendOptions& vulkan)
     : backends_(backends), defect_(defect), vulkan_options_(vulkan) {
-  for (const std::string& b : backends_) {
-    if (b != "reference" && b != "emulated" && b != "vulkan") {
-      throw ConfigError("--backends", "'" + b + "' is not a backend; expected reference, emulated or vulkan");
-    }
-  }
+  for (const std::string& b : backends_) FindBackend(b, "--backends");
 }
 
 Crosschecker::~Crosschecker() = default;
@@ -58,7 +55,8 @@ CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::s
   }
   if (has("vulkan")) {
     if (!vulkan_) vulkan_ = std::make_unique<VulkanContext>(vulkan_options_);
-    hashed.push_back({"vulkan", &vulkan_->backend, &vulkan_->rerun, "rerun on the device", false, true});
+    hashed.push_back({"vulkan", vulkan_->backend.backend.get(), vulkan_->rerun.backend.get(), "rerun on the device", false,
+                      true});
   }
   CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed);
   if (has("vulkan")) report.vulkan_device = vulkan_->description;

@@ -1,5 +1,8 @@
 // The gate's crosscheck family (gate_families.h): scene x config x backend x sequence x seed, each case one
 // `hpsf crosscheck` of a backend beside the reference.
+#include <algorithm>
+
+#include "core/backend_registry.h"
 #include "verifier/gate/gate_families.h"
 
 namespace hpsf::gate {
@@ -18,8 +21,13 @@ void ExpandCrosscheck(const json& c, const std::string& folder, const GateError&
   const std::vector<Named> backends = NamedOptions(c, "backends", json(), at, error);
   const std::vector<Named> sequences = NamedOptions(c, "sequences", {{"one-frame", json::object()}}, at, error);
   for (const Named& b : backends) {
-    if (!b.options.contains("backend") || !b.options["backend"].is_string()) {
-      error.At(b.pointer + "/backend", "expected the backend checked beside the reference: emulated or vulkan");
+    const auto hashed = RegisteredBackends();
+    const bool known = b.options.contains("backend") && b.options["backend"].is_string() &&
+                       std::any_of(hashed.begin(), hashed.end(), [&](const BackendInfo& info) {
+                         return info.hashed && b.options["backend"] == info.name;
+                       });
+    if (!known) {
+      error.At(b.pointer + "/backend", "expected the backend checked beside the reference: " + BackendNames(true));
     }
   }
   for (const SceneEntry& scene : scenes) {
