@@ -3,7 +3,7 @@
 // Each case asserts that every image pixel is finite, that the cross-check contract holds at every level, and
 // that the records keyed, without a vertex, unkeyable and rejected are what the case was built to give; then
 // what the case itself is about (a level at its clamp, the F chosen, a firefly kept to its cells, ...). Each
-// prints one line of figures for the README's table ("hard case | ...").
+// prints one line of figures for docs/results.md's table ("hard case | ...").
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>

@@ -7,7 +7,7 @@
 // reaches with probability below 0.002 (over 40 pairs: 4 at alpha 0.01, 11 at 0.1), so a correct test trips it
 // with probability at most 0.002 per row. What it catches: the per-pixel z-test (every pair the issue tried at 4
 // spp), and Welch's test without the variance floor against a precise image (43% of pairs at 4 against 256 spp).
-// 64x64, 4 and 16 spp, each against the same spp and against 256; the README's table has 200 pairs at 2 to 64 spp.
+// 64x64, 4 and 16 spp, each against the same spp and against 256; docs/results.md's table has 200 pairs at 2 to 64 spp.
 #include <cstdio>
 
 #include <boost/math/distributions/binomial.hpp>
@@ -48,7 +48,7 @@ TEST(StatisticalCalibration, FalseAlarmsStayWithinAlphaAndA5PercentBiasIsSeen) {
           << what << ": false alarms at alpha " << plan.alphas[k];
     }
     // Power: at 16 spp a 5% bias is caught in 36 to 40 of the 40 pairs (measured with these seeds; 0.90 to 0.94 in
-    // the README's 200 pairs); half of them is a test that lost most of its power.
+    // docs/results.md's 200 pairs); half of them is a test that lost most of its power.
     if (row.spp == 16) {
       EXPECT_GE(row.detections[0], row.pairs / 2) << what << ": a 5% bias no longer seen";
     }

@@ -2,7 +2,7 @@
 # How fast `hpsf fuzz` finds three classes of bug (a race, a rounding, frame state), unaided: for each broken shader (Vulkan) and
 # broken emulator kernel, SEEDS seeds of `hpsf fuzz --runs BUDGET --json`, and per class the runs to find (median
 # and max), how many seeds missed, the shrunk records (max) and how many failures were timing-dependent (bundled as
-# found). The README's table comes from this; the ctest budgets (tools/CMakeLists.txt) are set from its maxima.
+# found). docs/results.md's table comes from this; the ctest budgets (tools/Tests.cmake) are set from its maxima.
 # Usage: scripts/fuzz-classes.sh [SEEDS (20)] [BUDGET (2000)]; CLASSES=REGEX picks classes by name; needs
 # build/default and jq.
 set -euo pipefail

@@ -1,6 +1,6 @@
 # The tools' tests, benchmarks and the statistical calibration: only when HPSF_BUILD_TESTING (the top-level
 # project, by default), so a project that adds hpsf builds none of it.
-# The measured false-alarm rate and power of the statistical comparison: the README's table and a verdicts test.
+# The measured false-alarm rate and power of the statistical comparison: docs/results.md's table and a verdicts test.
 add_library(hpsf_calibration calibration/statistical_calibration.cpp)
 target_include_directories(hpsf_calibration PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
 target_link_libraries(hpsf_calibration PUBLIC hpsf_verifier hpsf_reference hpsf_tracer nlohmann_json::nlohmann_json)
@@ -184,7 +184,7 @@ hpsf_add_cli_test(HpsfCrosscheck.UserFloat32ShaderPasses vulkan 0 "level 2 table
   $<TARGET_FILE:hpsf> ${variant_run} --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/accumulate_correct_float32.spv
     --accum float32)
 # The three classes fuzz must find unaided, each within a budget of over ten times its worst run to find
-# over 20 seeds (README, "What it finds"; the race's 12,000 runs are 6.5 times its worst under load, where a miss
+# over 20 seeds (docs/results.md, "Fuzzing"; the race's 12,000 runs are 6.5 times its worst under load, where a miss
 # has a probability near e^-22): rounding (D11, where the automatic F hides it), frame state (last-seen
 # stored by the claimer only) and the count race with the joiners' branch first are deterministic, so each is
 # shrunk and its bundle reproduces; with the claimer's branch first lavapipe hides the race inside a workgroup, and

@@ -1,6 +1,6 @@
 // The false-alarm rate and the power of `hpsf diff --statistical`, measured rather than assumed: pairs of renders
 // of one scene that differ only in their seed must be judged consistent with noise in all but alpha of the
-// pairs, and one scaled by 1 + bias must be caught. Used by `statistical_calibration` (the README's table) and by
+// pairs, and one scaled by 1 + bias must be caught. Used by `statistical_calibration` (docs/results.md's table) and by
 // the verdicts test that fails when the rates drift; every render is a fixed seed, so each count is one outcome.
 #ifndef HPSF_TOOLS_CALIBRATION_STATISTICAL_CALIBRATION_H
 #define HPSF_TOOLS_CALIBRATION_STATISTICAL_CALIBRATION_H

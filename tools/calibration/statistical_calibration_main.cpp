@@ -1,4 +1,4 @@
-// statistical_calibration: the false-alarm rate and power table of `hpsf diff --statistical` (README,
+// statistical_calibration: the false-alarm rate and power table of `hpsf diff --statistical` (docs/results.md,
 // "Statistical comparison"). Usage: statistical_calibration [PAIRS [SIZE [SCENE...]]] > table.md, the table
 // then its figures as JSON.
 #include <cstdio>

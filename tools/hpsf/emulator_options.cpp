@@ -18,9 +18,9 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
           "where no device memory is host-cached (auto)")
       ->default_str("auto");
   command.add_option("--accumulate-spv", flags.vulkan.accumulate_spv,
-                     "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface (README)");
+                     "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface (docs/reference/buffer-interface.md)");
   command.add_option("--eviction-spv", flags.vulkan.eviction_spv,
-                     "Vulkan backend: run this SPIR-V eviction shader (evict and reclaim passes, README) with --eviction");
+                     "Vulkan backend: run this SPIR-V eviction shader (evict and reclaim passes, docs/reference/buffer-interface.md) with --eviction");
   command.add_option("--inject-defect", flags.defect, "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
                      "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")
       ->capture_default_str();

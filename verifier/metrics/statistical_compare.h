@@ -18,7 +18,7 @@
 // render that missed the rare bright samples has a mean too low and a variance too small at once: without the floor
 // 4 spp against 256 false-alarmed in 43% of pairs).
 // The t-test takes each mean as normal; tile means of 64 n samples are close enough from kMinimumStatisticalSpp
-// on, and below it the comparison refuses (measured false-alarm rates, README "Statistical comparison").
+// on, and below it the comparison refuses (measured false-alarm rates, docs/results.md, "Statistical comparison").
 // Power against a shift delta of one channel's image mean: Phi(delta / sigma - t) + Phi(-delta / sigma - t)
 // (MeanTestPower), t the mean threshold (3.14 at alpha 0.01), sigma = sqrt(V_a + V_b).
 #ifndef HPSF_VERIFIER_METRICS_STATISTICAL_COMPARE_H
