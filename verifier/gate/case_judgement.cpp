@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "verifier/gate/diff_thresholds.h"
 
 namespace hpsf {
 namespace {
@@ -66,7 +67,7 @@ std::vector<std::string> GoldenProblems(const json& report) {
   std::vector<std::string> lines;
   for (const json& check : report.value("checks", json::array())) {
     const std::string verdict = check["verdict"].get<std::string>();
-    if (verdict == "pass") continue;
+    if (verdict == ToString(DiffVerdict::kPass)) continue;  // as `hpsf golden check` writes it
     lines.push_back(check["case"].get<std::string>() + " on " + check["backend"].get<std::string>() + ": " +
                     check["explanation"].get<std::string>());
     for (const json& artifact : check["artifacts"]) lines.push_back("  left " + artifact.get<std::string>());

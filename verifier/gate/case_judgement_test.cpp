@@ -31,6 +31,20 @@ TEST(CaseJudgement, FailedCheckNamesItsLevel) {
   EXPECT_EQ(r.fixed_point, "fixed64, F 50");
 }
 
+// A golden check's report lists every comparison; the message is the first one that did not pass, in the words
+// `hpsf golden check` writes its verdicts in.
+TEST(CaseJudgement, GoldenFailureNamesTheComparisonThatFailedNotOneThatPassed) {
+  const nlohmann::json check = {{"checks",
+                                 {{{"case", "cornell"}, {"backend", "reference"}, {"verdict", "PASS"},
+                                   {"explanation", "PASS: max 0 <= 0"}, {"artifacts", nlohmann::json::array()}},
+                                  {{"case", "cornell"}, {"backend", "vulkan"}, {"verdict", "FAIL"},
+                                   {"explanation", "FAIL: max 0.5 > 0"}, {"artifacts", {"heat.png"}}}}}};
+  const GateCaseResult r = Judged({2, 0, "", check}, "golden");
+  EXPECT_EQ(r.outcome, CaseOutcome::kFailed);
+  EXPECT_EQ(r.message, "cornell on vulkan: FAIL: max 0.5 > 0");
+  EXPECT_EQ(r.details.find("on reference"), std::string::npos) << r.details;
+}
+
 TEST(CaseJudgement, StatesTheAccumulationAndFOfItsReport) {
   EXPECT_EQ(Judged({0, 0, "", nlohmann::json{{"accumulation", "float32"}, {"fixed_point_bits", 40}}}).fixed_point,
             "float32");
