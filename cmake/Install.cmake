@@ -44,3 +44,22 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/hpsfConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/hpsfConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/hpsfConfig.cmake ${PROJECT_BINARY_DIR}/hpsfConfigVersion.cmake
   ${PROJECT_SOURCE_DIR}/cmake/FindOpenCVQuality.cmake DESTINATION ${HPSF_INSTALL_CMAKEDIR} COMPONENT development)
+
+# A Debian package of all of it (cpack -G DEB in the build folder): the command, the libraries, their headers and
+# the CMake package, under /usr. Its dependencies are the shared libraries the command links, found by
+# dpkg-shlibdeps, the Vulkan loader (which Vulkan-Hpp opens at run time, so dpkg-shlibdeps cannot see it), and the
+# -dev packages a consumer's find_package(hpsf) needs for the core component.
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME hpsf)
+set(CPACK_PACKAGE_VENDOR "hpsf")
+set(CPACK_PACKAGE_CONTACT "hpsf maintainers <hpsf@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Makes GPU hash tables for hashed path space filtering trustworthy")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION devel)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libvulkan1, libglm-dev, nlohmann-json3-dev, libtbb-dev, libnanoflann-dev")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "mesa-vulkan-drivers")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libvulkan-dev, libspirv-cross-c-shared-dev, libembree-dev, libtinyobjloader-dev, \
+libopencv-contrib-dev, glslang-tools")
+include(CPack)

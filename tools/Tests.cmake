@@ -324,3 +324,9 @@ endforeach()
 add_test(NAME Docs.TheRepositoryStandsOnItsOwn
   COMMAND ${CMAKE_COMMAND} -DSOURCE=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/self_contained.cmake)
 set_tests_properties(Docs.TheRepositoryStandsOnItsOwn PROPERTIES LABELS unit)
+
+# The Debian package (cpack -G DEB), extracted into a scratch root, and its hpsf --version.
+add_test(NAME Package.DebianPackageInstallsAndRuns
+  COMMAND ${CMAKE_COMMAND} -DBUILD=${PROJECT_BINARY_DIR} -DOUT=${CMAKE_CURRENT_BINARY_DIR}/debian_package
+    -DVERSION=${PROJECT_VERSION} -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/debian_package.cmake)
+set_tests_properties(Package.DebianPackageInstallsAndRuns PROPERTIES LABELS "unit;install")

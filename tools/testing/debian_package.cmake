@@ -1,0 +1,37 @@
+# The Debian package from CPack, installed into a scratch root: it holds the command, the libraries, the headers,
+# the GLSL interface and the CMake package, declares the shared libraries it needs, and its hpsf runs.
+# -DBUILD=<hpsf build tree> -DOUT=<scratch folder> -DVERSION=<hpsf's version>
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+execute_process(COMMAND cpack -G DEB --config ${BUILD}/CPackConfig.cmake -B ${OUT}
+  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "cpack -G DEB failed:\n${out}")
+endif()
+file(GLOB packages ${OUT}/hpsf_*.deb)
+list(LENGTH packages count)
+if(NOT count EQUAL 1)
+  message(FATAL_ERROR "expected one hpsf_*.deb in ${OUT}, found: ${packages}")
+endif()
+execute_process(COMMAND dpkg-deb --field ${packages} Package Version Depends OUTPUT_VARIABLE fields)
+message(STATUS "${fields}")
+foreach(expected "Version: ${VERSION}" "libvulkan1" "libopenimageio" "libembree" "libglm-dev")
+  if(NOT fields MATCHES "${expected}")
+    message(FATAL_ERROR "the package's fields lack ${expected}:\n${fields}")
+  endif()
+endforeach()
+execute_process(COMMAND dpkg-deb --extract ${packages} ${OUT}/root RESULT_VARIABLE code)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "dpkg-deb --extract failed")
+endif()
+foreach(installed usr/bin/hpsf usr/include/hpsf/core/shared/key.h usr/include/hpsf/vulkan/shaders/table_interface.glsl
+        usr/include/hpsf/verifier/checker/table_checker.h usr/lib/cmake/hpsf/hpsfConfig.cmake
+        usr/lib/libhpsf_checker.a)
+  if(NOT EXISTS ${OUT}/root/${installed})
+    message(FATAL_ERROR "the package lacks /${installed}")
+  endif()
+endforeach()
+execute_process(COMMAND ${OUT}/root/usr/bin/hpsf --version RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT code EQUAL 0 OR NOT out MATCHES "^hpsf ${VERSION}")
+  message(FATAL_ERROR "the packaged hpsf --version: exit ${code}, '${out}'")
+endif()
