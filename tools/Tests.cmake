@@ -330,3 +330,9 @@ add_test(NAME Package.DebianPackageInstallsAndRuns
   COMMAND ${CMAKE_COMMAND} -DBUILD=${PROJECT_BINARY_DIR} -DOUT=${CMAKE_CURRENT_BINARY_DIR}/debian_package
     -DVERSION=${PROJECT_VERSION} -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/debian_package.cmake)
 set_tests_properties(Package.DebianPackageInstallsAndRuns PROPERTIES LABELS "unit;install")
+
+# The command-line reference page is what the command line's definitions give, word for word.
+add_test(NAME Docs.CliReferenceMatchesTheCommandLine
+  COMMAND ${CMAKE_COMMAND} -DGENERATOR=$<TARGET_FILE:cli_reference> -DCOMMITTED=${PROJECT_SOURCE_DIR}/docs/reference/cli.md
+    -DOUT=${CMAKE_CURRENT_BINARY_DIR}/cli_reference.md -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/cli_reference.cmake)
+set_tests_properties(Docs.CliReferenceMatchesTheCommandLine PROPERTIES LABELS unit)

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/backend_registry.h"
 #include "core/error.h"
 #include "verifier/fuzzing/adversarial_case.h"
 #include "verifier/fuzzing/case_shrinker.h"
@@ -230,7 +231,8 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<FuzzOptions>();
   CLI::App* c = app.add_subcommand("fuzz", "Adversarial batches against a backend or your accumulate shader, judged by the "
                                            "table checker and the cross-check contract; a failure is shrunk to a repro bundle");
-  c->add_option("--backend", o->backend, "emulated or vulkan")->capture_default_str();
+  c->add_option("--backend", o->backend, "The backend fuzzed beside the reference: " + BackendNames(true))
+      ->capture_default_str();
   c->add_option("--accumulate-spv", o->vulkan.accumulate_spv, "Vulkan: your accumulate shader (SPIR-V) through the stable buffer interface");
   c->add_option("--accum", o->accumulation, "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
   c->add_option("--inject-defect", o->defect, "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "

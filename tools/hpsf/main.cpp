@@ -14,7 +14,7 @@
 #include "vulkan/vulkan_device.h"
 
 int main(int argc, char** argv) {
-  CLI::App app("hpsf: makes GPU hash tables for hashed path space filtering trustworthy", "hpsf");
+  CLI::App app(hpsf::kHpsfDescription, "hpsf");
   hpsf::CommandContext context;
   app.set_version_flag("--version", std::string("hpsf ") + hpsf::kHpsfVersion);
   hpsf::AddCommands(app, context);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/backend_registry.h"
 #include "core/error.h"
 #include "core/record_file.h"
 #include "tools/hpsf/effect_report.h"
@@ -223,7 +224,7 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
   c->add_option("scene", o->scene, "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
                                    "cornell-zero-red) or a scene file")->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
-  c->add_option("--backend", o->backend, "Filter backend: reference, emulated or vulkan")->capture_default_str();
+  c->add_option("--backend", o->backend, "Filter backend: " + BackendNames())->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth,
@@ -253,7 +254,7 @@ void AddReplayCommand(CLI::App& app, CommandContext& context) {
   c->add_option("records", o->records, "The .hpsfv file; its frames go through one table, each as its number")
       ->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
-  c->add_option("--backend", o->backend, "Filter backend: reference, emulated or vulkan")->capture_default_str();
+  c->add_option("--backend", o->backend, "Filter backend: " + BackendNames())->capture_default_str();
   c->add_option("--frame-out", o->frame_out,
                 "Also write every frame, to PATTERN with {frame} for its number: out/f-{frame}.exr");
   c->add_flag("--json", o->json, "Print the report as JSON");
