@@ -39,6 +39,10 @@ foreach(folder core emulated reference tracer vulkan verifier)
     FILES_MATCHING PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.comp" PATTERN "*_test.h" EXCLUDE)
 endforeach()
 
+# The gate file's JSON Schema, for editors and CI linters (hpsf check --schema prints the same).
+install(FILES ${PROJECT_SOURCE_DIR}/verifier/gate/gate_schema.json DESTINATION ${CMAKE_INSTALL_DATADIR}/hpsf
+  COMPONENT runtime)
+
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/hpsfConfig.cmake.in
   ${PROJECT_BINARY_DIR}/hpsfConfig.cmake INSTALL_DESTINATION ${HPSF_INSTALL_CMAKEDIR} PATH_VARS HPSF_INSTALL_INCLUDEDIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/hpsfConfigVersion.cmake COMPATIBILITY SameMinorVersion)

@@ -336,3 +336,8 @@ add_test(NAME Docs.CliReferenceMatchesTheCommandLine
   COMMAND ${CMAKE_COMMAND} -DGENERATOR=$<TARGET_FILE:cli_reference> -DCOMMITTED=${PROJECT_SOURCE_DIR}/docs/reference/cli.md
     -DOUT=${CMAKE_CURRENT_BINARY_DIR}/cli_reference.md -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/cli_reference.cmake)
 set_tests_properties(Docs.CliReferenceMatchesTheCommandLine PROPERTIES LABELS unit)
+
+# A JSON or YAML file against a JSON Schema: the gate files against the gate schema, the CI examples against their
+# services' published schemas (examples/ci/schemas/).
+add_executable(schema_check schema_check/schema_check.cpp)
+target_link_libraries(schema_check PRIVATE hpsf_gate yaml-cpp)

@@ -13,6 +13,7 @@
 #include "verifier/gate/case_judgement.h"
 #include "verifier/gate/check_report.h"
 #include "verifier/gate/gate_file.h"
+#include "verifier/gate/gate_schema.h"
 #include "verifier/gate/junit_report.h"
 #include "tools/hpsf/check_html_report.h"
 #include "tools/hpsf/commands.h"
@@ -30,6 +31,7 @@ struct CheckOptions {
   std::string out = "hpsf-check";
   bool json = false;
   bool list = false;
+  bool schema = false;  // --schema: print the gate file's JSON Schema
   std::vector<std::string> merge;  // --merge: the shards' output directories
 };
 
@@ -192,6 +194,10 @@ int RunMerge(const CheckOptions& o) {
 }
 
 int RunCheck(const CheckOptions& o, bool options_only) {
+  if (o.schema) {
+    if (!options_only) std::cout << kGateSchemaJson;
+    return kExitOk;
+  }
   if (!o.merge.empty()) {
     if (!o.gate_file.empty() || o.shard != "1/1" || o.list) {
       throw ConfigError("--merge", "merges the reports of a run's shards: give no gate file, --shard or --list");
@@ -242,6 +248,7 @@ void AddCheckCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--out", o->out, "Where reports and the failing cases' repro bundles go")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   c->add_flag("--list", o->list, "List the cases of this shard and exit");
+  c->add_flag("--schema", o->schema, "Print the gate file's JSON Schema (for editors and CI linters) and exit");
   c->add_option("--merge", o->merge,
                 "Merge the reports of a gate's shards (each DIR a shard's --out, holding its check.json) into one "
                 "JUnit, JSON report and summary, as the unsharded run gives")

@@ -8,6 +8,8 @@
 
 #include "core/error.h"
 #include "verifier/gate/gate_families.h"
+#include "verifier/gate/gate_schema.h"
+#include "verifier/gate/json_schema.h"
 
 namespace hpsf {
 namespace {
@@ -91,6 +93,10 @@ Gate ExpandGate(const std::string& text, const std::string& source, const std::s
   for (const GateCase& c : gate.cases) {
     if (!ids.insert(c.id).second) error.At(c.where, "two cases share the id " + c.id);
   }
+  // The published schema, which editors and CI linters check a gate file by: a file the checks above accept must
+  // conform to it too, so the two cannot drift apart unnoticed.
+  const std::vector<std::string> violations = SchemaViolations(json::parse(kGateSchemaJson), document);
+  if (!violations.empty()) error.At("", "does not conform to the gate file's schema: " + violations.front());
   return gate;
 }
 
