@@ -55,22 +55,30 @@ CellState SeedOf(const shared::KeyWords& cell, const LevelSeed& seed, bool fixed
   return sum;
 }
 
-std::optional<CellState> FindInTable(const HashTableDump& table, const shared::KeyWords& words, bool normal_in_index) {
+std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const shared::KeyWords& words,
+                                             bool normal_in_index) {
   const std::uint32_t mask = table.capacity - 1u;
   const std::uint32_t slot0 = shared::IndexHash(words, normal_in_index ? 1u : 0u) & mask;
   const SlotTag fingerprint = shared::Fingerprint(words, table.fingerprint_bits);
-  const bool fixed = table.accumulation == Accumulation::kFixed64;
   for (std::uint32_t probe = 0; probe < table.probe_limit; ++probe) {
     const std::uint32_t s = (slot0 + probe) & mask;
     if (table.tags[s] == kEmptyTag) break;
-    if (table.tags[s] != fingerprint || table.counts[s] == 0) continue;
-    CellState state;
-    state.count = table.counts[s];
-    if (fixed) state.fixed_sum = table.fixed_sums[s];
-    if (!fixed) state.float_sum = table.float_sums[s];
-    return state;
+    if (table.tags[s] == fingerprint && table.counts[s] != 0) return s;
   }
   return std::nullopt;
+}
+
+std::optional<CellState> FindInTable(const HashTableDump& table, const shared::KeyWords& words, bool normal_in_index) {
+  const std::optional<std::uint32_t> s = FindSlotInTable(table, words, normal_in_index);
+  if (!s) return std::nullopt;
+  CellState state;
+  state.count = table.counts[*s];
+  if (table.accumulation == Accumulation::kFixed64) {
+    state.fixed_sum = table.fixed_sums[*s];
+  } else {
+    state.float_sum = table.float_sums[*s];
+  }
+  return state;
 }
 
 }  // namespace hpsf

@@ -341,3 +341,12 @@ set_tests_properties(Docs.CliReferenceMatchesTheCommandLine PROPERTIES LABELS un
 # services' published schemas (examples/ci/schemas/).
 add_executable(schema_check schema_check/schema_check.cpp)
 target_link_libraries(schema_check PRIVATE hpsf_gate yaml-cpp)
+
+# Level seeds through 8-bit fingerprints (found by fuzz_read_back): a new cell's parent is looked up in the table
+# before the frame, and the first slot of its window with the parent's fingerprint holds another cell. A hashed
+# backend seeds from that cell, the reference from the parent: the contract classifies the record, never blames it.
+hpsf_add_cli_test(HpsfCrosscheck.ASeedLookupThatAliasesIsClassifiedNotBlamed "unit;verdicts" 0
+  "vulkan: probe failures 0, aliased slots 0, records in aliased slots 1" ""
+  $<TARGET_FILE:hpsf> crosscheck ${hpsf_data}/seed_lookup_alias.hpsfv --backends reference,emulated,vulkan --normal none
+  --normal-in-fingerprint-only --capacity 32 --probe-limit 32 --fingerprint-bits 8 --seed 1456416002
+  --level-change seed:1 --repro-dir ${hpsf_out}/seed_lookup_alias)

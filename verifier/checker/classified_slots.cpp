@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/level_seed.h"
 #include "core/shared/level_seed.h"
 
 namespace hpsf {
@@ -11,11 +12,21 @@ bool ClassifiedSlots::SeedTainted(const FullKey& key) const {
   auto tainted = [&](const shared::KeyWords& n) {
     return tainted_.contains({n.cell_x, n.cell_y, n.cell_z, n.level, n.normal, n.extra});
   };
-  if (tainted(shared::ParentKeyWords(w))) return true;
+  const shared::KeyWords parent = shared::ParentKeyWords(w);
+  if (tainted(parent) || LookupAliased(parent)) return true;
   for (std::uint32_t child = 0; child < shared::kLevelSeedChildren; ++child) {
-    if (tainted(shared::ChildKeyWords(w, child))) return true;
+    const shared::KeyWords c = shared::ChildKeyWords(w, child);
+    if (tainted(c) || LookupAliased(c)) return true;
   }
   return false;
+}
+
+bool ClassifiedSlots::LookupAliased(const shared::KeyWords& n) const {
+  if (!previous_table_) return false;
+  const std::optional<std::uint32_t> slot = FindSlotInTable(*previous_table_, n, normal_in_index_);
+  if (!slot) return false;
+  const FullKey wanted{n.cell_x, n.cell_y, n.cell_z, n.level, n.normal, n.extra};
+  return previous_key_of_[*slot] != wanted;
 }
 
 const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
@@ -26,6 +37,7 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     after_failure_.assign(capacity, false);
     if (evicts_under_pressure_) keys_here_.assign(capacity, {});
   }
+  if (seeds_levels_) previous_key_of_ = key_of_;
   auto key_of = [&](std::size_t i) {
     const shared::KeyWords& w = run.keys[i].words;
     return FullKey{w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
@@ -70,6 +82,7 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
       aliased_[s] = after_failure_[s] = false;
     }
   }
+  if (seeds_levels_) previous_table_ = run.table;
   return classified_;
 }
 

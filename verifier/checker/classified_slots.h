@@ -5,7 +5,9 @@
 // frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots. With priority
 // eviction, a cell the table evicted under pressure counts as failed too: the reference, which has no pressure,
 // kept it. With level seeds, a cell new in a frame is classified when a neighbour it may be seeded from (parent or
-// child, core/level_seed.h) failed, aliased or was evicted under pressure: the reference seeds from what it kept.
+// child, core/level_seed.h) failed, aliased or was evicted under pressure: the reference seeds from what it kept;
+// and when a neighbour's lookup in the table before the frame aliased (its fingerprint's first slot in the window
+// holds another cell, which a hashed backend's seed then reads).
 #ifndef HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H
 #define HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H
 
@@ -16,13 +18,15 @@
 #include <vector>
 
 #include "core/hashed_run.h"
+#include "core/shared/key_words.h"
 
 namespace hpsf {
 
 class ClassifiedSlots {
  public:
-  explicit ClassifiedSlots(bool evicts_under_pressure = false, bool seeds_levels = false)
-      : evicts_under_pressure_(evicts_under_pressure), seeds_levels_(seeds_levels) {}
+  // normal_in_index: the key's, for the windows a seed's neighbours are looked up in.
+  explicit ClassifiedSlots(bool evicts_under_pressure = false, bool seeds_levels = false, bool normal_in_index = true)
+      : evicts_under_pressure_(evicts_under_pressure), seeds_levels_(seeds_levels), normal_in_index_(normal_in_index) {}
 
   // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
   const std::vector<bool>& AddFrame(const HashedRun& run);
@@ -36,8 +40,11 @@ class ClassifiedSlots {
  private:
   using FullKey = std::array<std::uint32_t, 6>;
   bool SeedTainted(const FullKey& key) const;
+  bool LookupAliased(const shared::KeyWords& neighbour) const;
 
-  bool evicts_under_pressure_, seeds_levels_;
+  bool evicts_under_pressure_, seeds_levels_, normal_in_index_;
+  std::optional<HashTableDump> previous_table_;             // with level seeds: the table before this frame
+  std::vector<std::optional<FullKey>> previous_key_of_;     // and the live cell of each of its slots
   std::vector<std::optional<FullKey>> key_of_;   // per slot, the full key last placed there since it was empty
   std::vector<std::vector<FullKey>> keys_here_;  // with pressure: per slot, every full key placed since it was empty
   std::vector<bool> aliased_, after_failure_, classified_;

@@ -155,8 +155,9 @@ const HashedRun* FilterOrFault(Backend& backend, const RecordBatch& batch, const
 
 // What the contract judged of one hashed backend over the sequence.
 struct SequenceState {
-  SequenceState(bool evicts_under_pressure, bool seeds_levels)
-      : classes(evicts_under_pressure, seeds_levels), rerun_classes(evicts_under_pressure, seeds_levels) {}
+  SequenceState(bool evicts_under_pressure, bool seeds_levels, bool normal_in_index)
+      : classes(evicts_under_pressure, seeds_levels, normal_in_index),
+        rerun_classes(evicts_under_pressure, seeds_levels, normal_in_index) {}
   ClassifiedSlots classes, rerun_classes;
   std::optional<HashTableDump> before, rerun_before;  // the tables before this frame
   QualityFigures quality;
@@ -199,7 +200,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
   ReferenceBackend reference;
   std::vector<SequenceState> states;
   for (std::size_t b = 0; b < hashed.size(); ++b) {
-    states.emplace_back(config.eviction.by_priority(), config.level_seed.enabled);
+    states.emplace_back(config.eviction.by_priority(), config.level_seed.enabled, config.normal_in_index);
     hashed[b].backend->Reset();
     hashed[b].rerun->Reset();
     states[b].quality.backend = hashed[b].name;
