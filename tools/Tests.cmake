@@ -350,3 +350,19 @@ hpsf_add_cli_test(HpsfCrosscheck.ASeedLookupThatAliasesIsClassifiedNotBlamed "un
   $<TARGET_FILE:hpsf> crosscheck ${hpsf_data}/seed_lookup_alias.hpsfv --backends reference,emulated,vulkan --normal none
   --normal-in-fingerprint-only --capacity 32 --probe-limit 32 --fingerprint-bits 8 --seed 1456416002
   --level-change seed:1 --repro-dir ${hpsf_out}/seed_lookup_alias)
+
+# The tutorial (docs/guide/gate-your-table.md), followed literally: the example shader gated, a planted bug's failing
+# case and its bundle; the files it shows equal examples/.
+add_test(NAME Examples.TheTutorialGatesTheExampleShaderAndAPlantedBugFails
+  COMMAND ${CMAKE_COMMAND} -DSOURCE=${PROJECT_SOURCE_DIR} -DBIN=$<TARGET_FILE_DIR:hpsf> -DOUT=${CMAKE_CURRENT_BINARY_DIR}/tutorial
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/tutorial.cmake)
+set_tests_properties(Examples.TheTutorialGatesTheExampleShaderAndAPlantedBugFails PROPERTIES LABELS "slow;vulkan")
+# The CI examples against their services' published schemas (vendored in examples/ci/schemas/).
+foreach(config github-actions:github-workflow gitlab-ci:gitlab-ci)
+  string(REPLACE ":" ";" pair ${config})
+  list(GET pair 0 file)
+  list(GET pair 1 schema)
+  add_test(NAME Examples.CiConfigurationsFollowTheirSchemas_${file}
+    COMMAND schema_check ${PROJECT_SOURCE_DIR}/examples/ci/schemas/${schema}.json ${PROJECT_SOURCE_DIR}/examples/ci/${file}.yml)
+  set_tests_properties(Examples.CiConfigurationsFollowTheirSchemas_${file} PROPERTIES LABELS unit)
+endforeach()
