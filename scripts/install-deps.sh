@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev
   libvulkan-dev glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev mesa-vulkan-drivers vulkan-tools
   libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium libxml2-utils libvalijson-dev libyaml-cpp-dev
+  slurm-wlm munge
   clang-15 libfuzzer-15-dev llvm-15
 )
 

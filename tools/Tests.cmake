@@ -366,3 +366,9 @@ foreach(config github-actions:github-workflow gitlab-ci:gitlab-ci)
     COMMAND schema_check ${PROJECT_SOURCE_DIR}/examples/ci/schemas/${schema}.json ${PROJECT_SOURCE_DIR}/examples/ci/${file}.yml)
   set_tests_properties(Examples.CiConfigurationsFollowTheirSchemas_${file} PROPERTIES LABELS unit)
 endforeach()
+# The Slurm example for real: a one-node Slurm (slurm-wlm, munge) started and stopped by the test runs a gate's
+# shards as an array job and the merge as a dependent job; the merged JUnit report equals the unsharded one.
+add_test(NAME Examples.SlurmArrayRunsTheGateShardsAndMergesThem
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/testing/slurm_gate.sh $<TARGET_FILE:hpsf> ${PROJECT_SOURCE_DIR}
+    ${CMAKE_CURRENT_BINARY_DIR}/slurm_gate)
+set_tests_properties(Examples.SlurmArrayRunsTheGateShardsAndMergesThem PROPERTIES LABELS "slow;slurm" TIMEOUT 300)
