@@ -10,7 +10,7 @@ packages=(
   libvulkan-dev glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev mesa-vulkan-drivers vulkan-tools
   libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium libxml2-utils libvalijson-dev libyaml-cpp-dev
   slurm-wlm munge
-  clang-15 libfuzzer-15-dev llvm-15
+  clang-15 libfuzzer-15-dev llvm-15 clang-format-15
 )
 
 missing=()

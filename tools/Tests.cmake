@@ -372,3 +372,10 @@ add_test(NAME Examples.SlurmArrayRunsTheGateShardsAndMergesThem
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/testing/slurm_gate.sh $<TARGET_FILE:hpsf> ${PROJECT_SOURCE_DIR}
     ${CMAKE_CURRENT_BINARY_DIR}/slurm_gate)
 set_tests_properties(Examples.SlurmArrayRunsTheGateShardsAndMergesThem PROPERTIES LABELS "slow;slurm" TIMEOUT 300)
+
+# The sources as the pinned clang-format writes them.
+find_program(HPSF_CLANG_FORMAT clang-format-15 REQUIRED)
+add_test(NAME Style.ClangFormat15LeavesEverySourceUnchanged
+  COMMAND ${CMAKE_COMMAND} -DSOURCE=${PROJECT_SOURCE_DIR} -DCLANG_FORMAT=${HPSF_CLANG_FORMAT}
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/clang_format.cmake)
+set_tests_properties(Style.ClangFormat15LeavesEverySourceUnchanged PROPERTIES LABELS unit)

@@ -1,0 +1,22 @@
+# Every C++ source is as clang-format 15 (Debian's clang-format-15, pinned: another version formats otherwise)
+# writes it with .clang-format. Fix with: git ls-files '*.h' '*.cpp' | xargs clang-format-15 -i
+# -DSOURCE=<hpsf source tree> -DCLANG_FORMAT=<clang-format-15>
+execute_process(COMMAND git -C ${SOURCE} ls-files *.h *.cpp RESULT_VARIABLE code OUTPUT_VARIABLE listing)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "git ls-files failed in ${SOURCE}")
+endif()
+string(REPLACE "\n" ";" files "${listing}")
+list(FILTER files EXCLUDE REGEX "^$")
+list(LENGTH files count)
+set(unformatted "")
+foreach(file IN LISTS files)
+  execute_process(COMMAND ${CLANG_FORMAT} --dry-run -Werror ${file} WORKING_DIRECTORY ${SOURCE}
+    RESULT_VARIABLE code OUTPUT_QUIET ERROR_QUIET)
+  if(NOT code EQUAL 0)
+    string(APPEND unformatted "  ${file}\n")
+  endif()
+endforeach()
+if(unformatted)
+  message(FATAL_ERROR "not as clang-format-15 writes them:\n${unformatted}")
+endif()
+message(STATUS "${count} sources as clang-format-15 writes them")
