@@ -65,8 +65,7 @@ class Backend {
   // index: the frame's place in the sequence. 0: the table is empty (the first frame of a sequence); else the frame
   // adds to the table and keeps F. The frame runs the passes PlanFrameEffects(config, index) plans
   // (core/effect_plan.h).
-  virtual const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config,
-                                       std::uint32_t index) = 0;
+  virtual const Image& FilterFrameInto(const RecordBatch& batch, const FilterConfig& config, std::uint32_t index) = 0;
   virtual void ForgetTable() = 0;
 
  private:

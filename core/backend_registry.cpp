@@ -9,7 +9,8 @@ namespace {
 
 constexpr std::array<BackendInfo, 3> kBackends = {{
     {"reference", BackendKind::kReference, false, false, false, "the exact map of cells: the oracle"},
-    {"emulated", BackendKind::kEmulated, true, false, false, "the hash table on the emulated GPU, deterministic by seed"},
+    {"emulated", BackendKind::kEmulated, true, false, false,
+     "the hash table on the emulated GPU, deterministic by seed"},
     {"vulkan", BackendKind::kVulkan, true, true, true, "the hash table in Vulkan compute shaders on a device"},
 }};
 

@@ -8,10 +8,14 @@ namespace hpsf {
 
 std::string Eviction::ToString() const {
   switch (policy) {
-    case EvictionPolicy::kNone: return "none";
-    case EvictionPolicy::kStrict: return "strict";
-    case EvictionPolicy::kStale: return "stale:" + std::to_string(unseen_frames);
-    case EvictionPolicy::kPriority: return "priority";
+    case EvictionPolicy::kNone:
+      return "none";
+    case EvictionPolicy::kStrict:
+      return "strict";
+    case EvictionPolicy::kStale:
+      return "stale:" + std::to_string(unseen_frames);
+    case EvictionPolicy::kPriority:
+      return "priority";
   }
   return "?";
 }

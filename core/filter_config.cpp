@@ -18,9 +18,12 @@ bool IsPositiveNormalFloat(float x) { return std::isnormal(x) && x > 0.0f; }
 
 std::string NormalKey::ToString() const {
   switch (mode) {
-    case NormalMode::kNone: return "none";
-    case NormalMode::kSign: return "sign";
-    case NormalMode::kOctahedral: return "octahedral:" + std::to_string(octahedral_bits);
+    case NormalMode::kNone:
+      return "none";
+    case NormalMode::kSign:
+      return "sign";
+    case NormalMode::kOctahedral:
+      return "octahedral:" + std::to_string(octahedral_bits);
   }
   return "?";
 }
@@ -54,16 +57,19 @@ std::string ToString(Accumulation accumulation) {
 
 void FilterConfig::Validate() const {
   if (!(std::isfinite(filter_width_px) && filter_width_px > 0.0f)) {
-    throw ConfigError("--filter-width", "must be a positive finite number of pixels; got " + FormatFloat(filter_width_px));
+    throw ConfigError("--filter-width",
+                      "must be a positive finite number of pixels; got " + FormatFloat(filter_width_px));
   }
   if (!(std::isfinite(jitter_scale) && jitter_scale >= 0.0f)) {
     throw ConfigError("--jitter", "must be finite and >= 0; got " + FormatFloat(jitter_scale));
   }
   if (normal.mode == NormalMode::kOctahedral && (normal.octahedral_bits < 1 || normal.octahedral_bits > 16)) {
-    throw ConfigError("--normal", "octahedral needs 1..16 bits per axis; got " + std::to_string(normal.octahedral_bits));
+    throw ConfigError("--normal",
+                      "octahedral needs 1..16 bits per axis; got " + std::to_string(normal.octahedral_bits));
   }
   if (!IsPositiveNormalFloat(cell_size)) {
-    throw ConfigError("--cell-size", "must be a positive normal float (its inverse must be finite); got " + FormatFloat(cell_size));
+    throw ConfigError("--cell-size",
+                      "must be a positive normal float (its inverse must be finite); got " + FormatFloat(cell_size));
   }
   if (!IsPositiveNormalFloat(1.0f / cell_size)) {
     throw ConfigError("--cell-size", "its inverse is not a normal float; got " + FormatFloat(cell_size));
@@ -75,13 +81,15 @@ void FilterConfig::Validate() const {
     throw ConfigError("--level-max", "must lie in [-126, 126]; got " + std::to_string(level_max));
   }
   if (level_min > level_max) {
-    throw ConfigError("--level-min", "must not exceed --level-max (" + std::to_string(level_max) + "); got " + std::to_string(level_min));
+    throw ConfigError("--level-min", "must not exceed --level-max (" + std::to_string(level_max) + "); got " +
+                                         std::to_string(level_min));
   }
   if (capacity == 0 || !std::has_single_bit(capacity) || capacity > (1u << 31)) {
     throw ConfigError("--capacity", "must be a power of two in [1, 2^31]; got " + std::to_string(capacity));
   }
   if (probe_limit == 0 || probe_limit > capacity) {
-    throw ConfigError("--probe-limit", "must lie in [1, capacity = " + std::to_string(capacity) + "]; got " + std::to_string(probe_limit));
+    throw ConfigError("--probe-limit", "must lie in [1, capacity = " + std::to_string(capacity) + "]; got " +
+                                           std::to_string(probe_limit));
   }
   if (fingerprint_bits < 8 || fingerprint_bits > 32) {
     throw ConfigError("--fingerprint-bits", "must lie in [8, 32]; got " + std::to_string(fingerprint_bits));
@@ -100,8 +108,10 @@ void FilterConfig::Validate() const {
                                         std::to_string(eviction.unseen_frames) + " frames unseen");
   }
   if (eviction.by_priority() && fingerprint_bits > 31) {
-    throw ConfigError("--eviction", "priority reserves the tag 0xFFFFFFFF for its tombstones, so it needs "
-                                    "--fingerprint-bits 31 or fewer; got " + std::to_string(fingerprint_bits));
+    throw ConfigError("--eviction",
+                      "priority reserves the tag 0xFFFFFFFF for its tombstones, so it needs "
+                      "--fingerprint-bits 31 or fewer; got " +
+                          std::to_string(fingerprint_bits));
   }
   if (ParseLevelSeed(level_seed.ToString()) != level_seed) {
     throw ConfigError("--level-change", "is not a mode: " + level_seed.ToString());
@@ -145,7 +155,8 @@ std::string FilterConfig::ToString() const {
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count) {
   config.Validate();
   if (!(std::isfinite(footprint_scale) && footprint_scale >= 0.0f)) {
-    throw ConfigError("--filter-width", "gives a footprint scale that is not finite and >= 0: " + FormatFloat(footprint_scale));
+    throw ConfigError("--filter-width",
+                      "gives a footprint scale that is not finite and >= 0: " + FormatFloat(footprint_scale));
   }
   shared::KeyParams p{};
   p.footprint_scale = footprint_scale;

@@ -9,8 +9,8 @@
 #include "core/effect_plan.h"
 #include "core/eviction.h"
 #include "core/level_seed.h"
-#include "core/temporal.h"
 #include "core/shared/key_params.h"
+#include "core/temporal.h"
 
 namespace hpsf {
 
@@ -31,13 +31,13 @@ std::string ToString(Accumulation accumulation);
 inline constexpr std::uint32_t kMaxFrames = 1u << 20;  // --frames
 
 struct FilterConfig {
-  float filter_width_px = 4.0f;     // --filter-width: a cell spans this many pixels at a primary hit
-  float jitter_scale = 1.0f;        // --jitter: amplitude in units of the cell size; 0 turns jitter off
-  NormalKey normal;                 // --normal
-  bool normal_in_index = true;      // --normal-in-index: false keeps the bucket in the fingerprint only
-  bool lod = true;                  // --lod on|off
-  float cell_size = 1.0f;           // --cell-size: the cell edge when level of detail is off
-  int level_min = -126;             // --level-min, --level-max: clamp of the level, inside [-126, 126]
+  float filter_width_px = 4.0f;  // --filter-width: a cell spans this many pixels at a primary hit
+  float jitter_scale = 1.0f;     // --jitter: amplitude in units of the cell size; 0 turns jitter off
+  NormalKey normal;              // --normal
+  bool normal_in_index = true;   // --normal-in-index: false keeps the bucket in the fingerprint only
+  bool lod = true;               // --lod on|off
+  float cell_size = 1.0f;        // --cell-size: the cell edge when level of detail is off
+  int level_min = -126;          // --level-min, --level-max: clamp of the level, inside [-126, 126]
   int level_max = 126;
   Accumulation accumulation = Accumulation::kFixed64;  // --accum
   std::uint32_t capacity = 1u << 22;                   // --capacity: slots, a power of two

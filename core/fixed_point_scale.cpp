@@ -66,7 +66,8 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
       std::uint64_t x = 0, y = 0, z = 0;
       for (std::size_t i = begin; i < end; ++i) {
         const glm::vec3& c = contributions[i];
-        const double cx = std::ceil(double(c.x) * scale), cy = std::ceil(double(c.y) * scale), cz = std::ceil(double(c.z) * scale);
+        const double cx = std::ceil(double(c.x) * scale), cy = std::ceil(double(c.y) * scale),
+                     cz = std::ceil(double(c.z) * scale);
         if (cx >= 0x1p63 || cy >= 0x1p63 || cz >= 0x1p63) {
           overflow = true;
           return;

@@ -7,9 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "core/record.h"
 
@@ -17,7 +16,8 @@ namespace hpsf {
 
 // Runs work(begin, end) over disjoint ranges that cover [0, n), possibly on several threads at once. core has no
 // thread pool (it depends on glm alone), so a backend passes its own; empty runs one range on the caller.
-using RangeRunner = std::function<void(std::size_t n, const std::function<void(std::size_t begin, std::size_t end)>& work)>;
+using RangeRunner =
+    std::function<void(std::size_t n, const std::function<void(std::size_t begin, std::size_t end)>& work)>;
 
 int ChooseFixedPointBits(std::span<const Record> records, std::uint32_t frames = 1);
 // The same choice from the contributions of the records that enter the table; a backend that has already

@@ -1,10 +1,10 @@
 #include "core/shared/fixed_point.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/fixed_point_scale.h"
 #include "core/record.h"
@@ -44,9 +44,7 @@ TEST(FixedPoint, RoundTripIsExactWhenTheValueFitsTheGrid) {
   EXPECT_NEAR(FromFixedPoint(shared::ToFixedPoint(0.1f, Scale(12)), 12), 0.1, std::ldexp(0.5, -12));
 }
 
-TEST(FixedPointScale, EmptyBatchUsesTheLargestF) {
-  EXPECT_EQ(ChooseFixedPointBits({}), shared::kFixedPointBitsMax);
-}
+TEST(FixedPointScale, EmptyBatchUsesTheLargestF) { EXPECT_EQ(ChooseFixedPointBits({}), shared::kFixedPointBitsMax); }
 
 TEST(FixedPointScale, ChannelTotalsStayBelowTwoToThe63AndFIsMaximal) {
   std::vector<Record> records;

@@ -25,7 +25,9 @@ std::string FormatHex(unsigned int bits) {
   return buffer;
 }
 
-std::string FormatFloatBits(float x) { return FormatFloat(x) + " (" + FormatHex(std::bit_cast<std::uint32_t>(x)) + ")"; }
+std::string FormatFloatBits(float x) {
+  return FormatFloat(x) + " (" + FormatHex(std::bit_cast<std::uint32_t>(x)) + ")";
+}
 
 std::string FormatVec3(glm::vec3 v) {
   // Appended in place: GCC 12 at -O3 reports a false -Wrestrict on "literal" + std::string&& (GCC bug 105651).

@@ -4,9 +4,8 @@
 
 #include <cstdint>
 #include <cstring>
-#include <vector>
-
 #include <glm/vec3.hpp>
+#include <vector>
 
 namespace hpsf {
 

@@ -30,9 +30,12 @@ InputVerdict CheckRecordInputs(const Record& r) {
 
 const char* ToString(InputVerdict verdict) {
   switch (verdict) {
-    case InputVerdict::kAccepted: return "accepted";
-    case InputVerdict::kNonFinite: return "non-finite";
-    case InputVerdict::kNegative: return "negative";
+    case InputVerdict::kAccepted:
+      return "accepted";
+    case InputVerdict::kNonFinite:
+      return "non-finite";
+    case InputVerdict::kNegative:
+      return "negative";
   }
   return "?";
 }

@@ -1,9 +1,9 @@
 #include "core/shared/key.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 #include "core/filter_config.h"
 #include "core/key_batch.h"
@@ -133,8 +133,9 @@ TEST(ComputeKey, TheLevelIsRecomputedAfterTheJitter) {
     const shared::KeyParams params = MakeKeyParams(config, footprint, 1);
     const shared::KeyResult k = shared::ComputeKey(params, r);
     ASSERT_EQ(k.status, shared::kKeyed);
-    const int before = shared::LevelOfDetail(footprint, shared::PathLength(0.0f, glm::vec3(r.position), glm::vec3(r.previous)),
-                                             params.level_min, params.level_max);
+    const int before =
+        shared::LevelOfDetail(footprint, shared::PathLength(0.0f, glm::vec3(r.position), glm::vec3(r.previous)),
+                              params.level_min, params.level_max);
     EXPECT_EQ(before, -1);
     crossed += k.level != before;
   }

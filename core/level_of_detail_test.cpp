@@ -1,9 +1,9 @@
 #include "core/shared/level_of_detail.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 namespace hpsf::shared {
 namespace {
@@ -20,7 +20,8 @@ TEST(LevelOfDetail, ExactAtJustBelowAndJustAboveEveryPowerOfTwo) {
 }
 
 TEST(LevelOfDetail, ZeroAndDenormalsGiveTheMinimumLevel) {
-  for (float w : {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), std::nextafter(std::numeric_limits<float>::min(), 0.0f)}) {
+  for (float w : {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(),
+                  std::nextafter(std::numeric_limits<float>::min(), 0.0f)}) {
     EXPECT_EQ(LevelFromWidth(w, kMinLevel, kMaxLevel), kMinLevel) << w;
     EXPECT_EQ(LevelFromWidth(w, -5, 7), -5) << w;
   }

@@ -4,7 +4,6 @@
 #define HPSF_CORE_OCTAHEDRAL_H
 
 #include <cstdint>
-
 #include <glm/vec3.hpp>
 
 namespace hpsf {

@@ -5,6 +5,11 @@
 #ifndef HPSF_CORE_PARALLEL_FOR_H
 #define HPSF_CORE_PARALLEL_FOR_H
 
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -14,11 +19,6 @@
 #include <thread>
 #include <utility>
 #include <vector>
-
-#include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #if defined(__SANITIZE_THREAD__)
 #define HPSF_PLAIN_THREADS 1
@@ -79,9 +79,8 @@ template <typename T, typename Body, typename Join>
 T ParallelReduceOnPlainThreads(std::size_t n, std::size_t grain, T identity, const Body& body, const Join& join) {
   grain = std::max<std::size_t>(grain, 1);
   std::vector<std::optional<T>> partials((n + grain - 1) / grain);
-  ParallelForOnPlainThreads(n, grain, [&](std::size_t begin, std::size_t end) {
-    partials[begin / grain] = body(begin, end, identity);
-  });
+  ParallelForOnPlainThreads(
+      n, grain, [&](std::size_t begin, std::size_t end) { partials[begin / grain] = body(begin, end, identity); });
   for (std::optional<T>& partial : partials) identity = join(std::move(identity), *partial);
   return identity;
 }

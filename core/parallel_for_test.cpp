@@ -1,14 +1,14 @@
 // hpsf's parallel loops (core/parallel_for.h) on TBB and on the plain threads the TSan build uses instead: every
 // index is visited exactly once, a reduction adds up, and a chunk's exception reaches the caller. Both are tested
 // in every build, so the path only TSan runs cannot rot unseen.
+#include "core/parallel_for.h"
+
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
-
-#include <gtest/gtest.h>
-
-#include "core/parallel_for.h"
 
 namespace hpsf {
 namespace {
@@ -41,10 +41,13 @@ TEST(ParallelFor, EveryIndexExactlyOnceOnTbbAndOnPlainThreads) {
         for (int threads : {0, 1, 3}) {
           std::vector<std::atomic<int>> visits(n);
           std::atomic<bool> bad_chunk{false};
-          Loops{plain}.For(n, grain, [&](std::size_t begin, std::size_t end) {
-            if (begin >= end || end > n) bad_chunk = true;
-            for (std::size_t i = begin; i < end; ++i) ++visits[i];
-          }, threads);
+          Loops{plain}.For(
+              n, grain,
+              [&](std::size_t begin, std::size_t end) {
+                if (begin >= end || end > n) bad_chunk = true;
+                for (std::size_t i = begin; i < end; ++i) ++visits[i];
+              },
+              threads);
           ASSERT_FALSE(bad_chunk) << "plain " << plain << " n " << n << " grain " << grain;
           for (std::size_t i = 0; i < n; ++i) {
             ASSERT_EQ(visits[i].load(), 1) << "plain " << plain << " n " << n << " grain " << grain << " index " << i;
@@ -68,10 +71,15 @@ TEST(ParallelFor, AChunksExceptionReachesTheCallerOnTbbAndOnPlainThreads) {
   for (bool plain : {false, true}) {
     for (int threads : {1, 2}) {
       std::atomic<int> after_failure{0};
-      EXPECT_THROW(Loops{plain}.For(1 << 20, 16, [&](std::size_t begin, std::size_t end) {
-        if (begin <= 4096 && 4096 < end) throw std::runtime_error("index 4096");
-        after_failure += begin > 4096;
-      }, threads), std::runtime_error) << "plain " << plain << ", threads " << threads;
+      EXPECT_THROW(Loops{plain}.For(
+                       1 << 20, 16,
+                       [&](std::size_t begin, std::size_t end) {
+                         if (begin <= 4096 && 4096 < end) throw std::runtime_error("index 4096");
+                         after_failure += begin > 4096;
+                       },
+                       threads),
+                   std::runtime_error)
+          << "plain " << plain << ", threads " << threads;
       // One plain thread takes the chunks in order and stops at the failure. With two, how many chunks the other
       // runs while the exception unwinds is timing (an ASan run under load once ran almost all), so nothing is
       // claimed; nor of TBB, whose order and cancellation are its own.

@@ -35,7 +35,8 @@ std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t fram
       continue;
     }
     if (key.status == shared::kKeyed && key.slot0 >= t.capacity) {
-      fault(RecordPrefix(i) + "slot0 " + std::to_string(key.slot0) + " is not below the capacity " + std::to_string(t.capacity));
+      fault(RecordPrefix(i) + "slot0 " + std::to_string(key.slot0) + " is not below the capacity " +
+            std::to_string(t.capacity));
       continue;
     }
     const std::uint32_t slot = run.placements[i];

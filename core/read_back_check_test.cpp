@@ -44,23 +44,26 @@ TEST(ReadBackCheck, CleanRunHasNoFault) {
 TEST(ReadBackCheck, PlacementOutOfRangeIsNamed) {
   HashedRun run = CleanRun();
   run.placements[1] = 8;
-  EXPECT_EQ(Faults(run), "record 1: placement 8 is neither a slot below the capacity 8 nor probe failure (4294967294) "
-                         "nor not placed (4294967295)\n");
+  EXPECT_EQ(Faults(run),
+            "record 1: placement 8 is neither a slot below the capacity 8 nor probe failure (4294967294) "
+            "nor not placed (4294967295)\n");
 }
 
 TEST(ReadBackCheck, PlacementOutsideItsWindowIsNamed) {
   HashedRun run = CleanRun();
   run.placements[0] = 0;  // slot0 6, limit 2: slots 6 and 7 only
-  EXPECT_EQ(Faults(run), "record 0: placed in slot 0, outside its probe window (the 2 slots from slot0 6, wrapping at "
-                         "the capacity 8)\n");
+  EXPECT_EQ(Faults(run),
+            "record 0: placed in slot 0, outside its probe window (the 2 slots from slot0 6, wrapping at "
+            "the capacity 8)\n");
 }
 
 TEST(ReadBackCheck, KeyWordsUsedAsIndicesAreChecked) {
   HashedRun run = CleanRun();
   run.keys[2].slot0 = 8;
   run.keys[3].status = 3;
-  EXPECT_EQ(Faults(run), "record 2: slot0 8 is not below the capacity 8\n"
-                         "record 3: key status 3 is none of keyed (0), no vertex (1) and unkeyable (2)\n");
+  EXPECT_EQ(Faults(run),
+            "record 2: slot0 8 is not below the capacity 8\n"
+            "record 3: key status 3 is none of keyed (0), no vertex (1) and unkeyable (2)\n");
 }
 
 TEST(ReadBackCheck, LastSeenAfterThisFrameIsNamed) {
@@ -82,10 +85,11 @@ TEST(ReadBackCheck, StatsCountersAboveWhatTheRunCanProduceAreNamed) {
   run.count_wraps = 3;
   run.evicted = 9;
   run.seeded = 9;
-  EXPECT_EQ(Faults(run), "stats: fixed64 wraps 7 is more than the run can produce (6, one per channel of each placed record)\n"
-                         "stats: count wraps 3 is more than the run can produce (2, one per placed record)\n"
-                         "stats: evicted 9 is more than the run can produce (8, one per slot)\n"
-                         "stats: seeded 9 is more than the run can produce (8, one per slot)\n");
+  EXPECT_EQ(Faults(run),
+            "stats: fixed64 wraps 7 is more than the run can produce (6, one per channel of each placed record)\n"
+            "stats: count wraps 3 is more than the run can produce (2, one per placed record)\n"
+            "stats: evicted 9 is more than the run can produce (8, one per slot)\n"
+            "stats: seeded 9 is more than the run can produce (8, one per slot)\n");
 }
 
 TEST(ReadBackCheck, FinishReadBackThrowsNamingTheShaderAndKeepsTheKeys) {

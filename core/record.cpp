@@ -22,8 +22,9 @@ Record MakeVertexRecord(const VertexSample& vertex) {
   r.contribution = Pad(vertex.contribution);
   r.throughput = Pad(vertex.throughput);
   r.radiance_before = Pad(vertex.radiance_before);
-  r.path = glm::uvec4(vertex.pixel, vertex.sample, shared::kRecordHasVertex | (vertex.bounce << shared::kRecordBounceShift),
-                      PackOctahedral16(vertex.normal));
+  r.path =
+      glm::uvec4(vertex.pixel, vertex.sample, shared::kRecordHasVertex | (vertex.bounce << shared::kRecordBounceShift),
+                 PackOctahedral16(vertex.normal));
   return r;
 }
 
@@ -36,12 +37,14 @@ Record MakeRecordWithoutVertex(std::uint32_t pixel, std::uint32_t sample, glm::v
 
 std::string ToString(const Record& r) {
   std::string s = "[ Record pixel: " + std::to_string(r.path.x) + " sample: " + std::to_string(r.path.y);
-  if (!shared::RecordHasVertex(r)) return s + " no vertex radiance_before: " + FormatVec3(glm::vec3(r.radiance_before)) + " ]";
+  if (!shared::RecordHasVertex(r))
+    return s + " no vertex radiance_before: " + FormatVec3(glm::vec3(r.radiance_before)) + " ]";
   return s + " bounce: " + std::to_string(shared::RecordBounce(r)) + " x: " + FormatVec3(glm::vec3(r.position)) +
          " d_prefix: " + FormatFloat(r.position.w) + " n: " + FormatVec3(glm::vec3(r.normal)) +
          " T: " + FormatVec3(glm::vec3(r.tangent)) + " B: " + FormatVec3(glm::vec3(r.bitangent)) +
          " x_prev: " + FormatVec3(glm::vec3(r.previous)) + " octahedral: " + FormatHex(r.path.w) +
-         " contribution: " + FormatVec3(glm::vec3(r.contribution)) + " throughput: " + FormatVec3(glm::vec3(r.throughput)) +
+         " contribution: " + FormatVec3(glm::vec3(r.contribution)) +
+         " throughput: " + FormatVec3(glm::vec3(r.throughput)) +
          " radiance_before: " + FormatVec3(glm::vec3(r.radiance_before)) + " ]";
 }
 

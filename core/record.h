@@ -4,11 +4,10 @@
 #define HPSF_CORE_RECORD_H
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/shared/record_layout.h"
 
@@ -21,7 +20,7 @@ static_assert(sizeof(Record) == 144 && std::is_standard_layout_v<Record>, "Recor
 struct VertexSample {
   std::uint32_t pixel = 0;
   std::uint32_t sample = 0;
-  std::uint32_t bounce = 0;     // index of the filter vertex along the path, 0 for the primary hit
+  std::uint32_t bounce = 0;  // index of the filter vertex along the path, 0 for the primary hit
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};  // unit, facing the incoming ray
   glm::vec3 previous{0.0f};

@@ -4,9 +4,8 @@
 #ifndef HPSF_CORE_TANGENT_FRAME_H
 #define HPSF_CORE_TANGENT_FRAME_H
 
-#include <string>
-
 #include <glm/vec3.hpp>
+#include <string>
 
 namespace hpsf {
 

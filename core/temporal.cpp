@@ -11,10 +11,12 @@ namespace hpsf {
 
 std::string Temporal::ToString() const {
   switch (mode) {
-    case TemporalMode::kIntegrate: return "integrate";
+    case TemporalMode::kIntegrate:
+      return "integrate";
     case TemporalMode::kEma:
       return "ema:" + FormatDouble(alpha) + (max_count ? ":" + std::to_string(max_count) : std::string());
-    case TemporalMode::kAdaptive: return "adaptive";
+    case TemporalMode::kAdaptive:
+      return "adaptive";
   }
   return "?";
 }

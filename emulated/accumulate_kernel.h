@@ -19,13 +19,13 @@
 namespace hpsf {
 
 struct TableBuffers {
-  std::uint32_t tags;         // 32-bit
-  std::uint32_t sums;         // three channels per slot, interleaved (slot * 3 + channel), so one slot's sums
-                              // share a cache line: 64-bit (fixed64) or 32-bit float bits (float32)
-  std::uint32_t counts;       // 64-bit
-  std::uint32_t placements;   // 32-bit, one per record
-  std::uint32_t wraps;        // 64-bit, two words: fixed64 adds whose sum wrapped, adds whose count wrapped
-  std::uint32_t last_seen;    // 32-bit per slot, with eviction only: the last frame a record was added
+  std::uint32_t tags;        // 32-bit
+  std::uint32_t sums;        // three channels per slot, interleaved (slot * 3 + channel), so one slot's sums
+                             // share a cache line: 64-bit (fixed64) or 32-bit float bits (float32)
+  std::uint32_t counts;      // 64-bit
+  std::uint32_t placements;  // 32-bit, one per record
+  std::uint32_t wraps;       // 64-bit, two words: fixed64 adds whose sum wrapped, adds whose count wrapped
+  std::uint32_t last_seen;   // 32-bit per slot, with eviction only: the last frame a record was added
 };
 
 struct TemporalArgs;  // emulated/temporal_kernel.h
@@ -33,7 +33,7 @@ struct EvictionArgs;  // emulated/eviction_kernels.h
 
 struct AccumulateArgs {
   std::span<const Record> records;
-  std::span<const KeyResult> keys;        // from core, per record
+  std::span<const KeyResult> keys;         // from core, per record
   std::span<const std::uint8_t> accepted;  // CheckRecordInputs passed
   std::uint32_t capacity = 0;
   std::uint32_t probe_limit = 0;
@@ -42,7 +42,7 @@ struct AccumulateArgs {
   float fixed_point_scale = 1.0f;  // 2^F
   bool track_last_seen = false;    // with eviction: store `frame` into buffers.last_seen of every slot added to
   std::uint32_t frame = 0;
-  bool claim_tombstones = false;   // with priority eviction (core/shared/table_params.h)
+  bool claim_tombstones = false;  // with priority eviction (core/shared/table_params.h)
   TableBuffers buffers{};
   // With a blending --temporal and a table before the frame: the temporal pass's arguments. The correct kernel
   // never reads them (the blend is a pass of its own, after this one); D10's variant blends inside this pass.

@@ -45,7 +45,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
   bool placed = false;
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
     // D8: the probe index clamped to the last slot, or not wrapped at all, instead of wrapped.
-    const std::uint32_t slot = defect == Defect::kD8ClampedProbe    ? std::min(key.slot0 + probe, args.capacity - 1u)
+    const std::uint32_t slot = defect == Defect::kD8ClampedProbe     ? std::min(key.slot0 + probe, args.capacity - 1u)
                                : defect == Defect::kD8UnwrappedProbe ? key.slot0 + probe
                                                                      : (key.slot0 + probe) & (args.capacity - 1u);
     std::uint64_t tag = co_await ctx.Load(b.tags, slot);
@@ -63,15 +63,15 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
       const std::uint64_t index = std::uint64_t(slot) * 3 + c;
       if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
         const std::uint64_t old = co_await ctx.Load(b.sums, index);
-        const std::uint64_t sum = fixed ? old + shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale)
-                                        : std::bit_cast<std::uint32_t>(std::bit_cast<float>(std::uint32_t(old)) + r.contribution[c]);
+        const std::uint64_t sum =
+            fixed ? old + shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale)
+                  : std::bit_cast<std::uint32_t>(std::bit_cast<float>(std::uint32_t(old)) + r.contribution[c]);
         co_await ctx.Store(b.sums, index, sum);
       } else if (fixed) {
         // D11: truncated, not rounded half to even.
-        const std::uint64_t add =
-            defect == Defect::kD11TruncatedFixedPoint
-                ? std::uint64_t(r.contribution[c] * args.fixed_point_scale)
-                : shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+        const std::uint64_t add = defect == Defect::kD11TruncatedFixedPoint
+                                      ? std::uint64_t(r.contribution[c] * args.fixed_point_scale)
+                                      : shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
         const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, index, add);
         if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
       } else {
@@ -142,12 +142,20 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
 }
 
 simt::KernelTask D2(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD2AddsAgain); }
-simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD3ZeroFingerprint); }
+simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kD3ZeroFingerprint);
+}
 simt::KernelTask D8(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8ClampedProbe); }
-simt::KernelTask D8Unwrapped(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD8UnwrappedProbe); }
+simt::KernelTask D8Unwrapped(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kD8UnwrappedProbe);
+}
 simt::KernelTask D9(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD9NonAtomicAdd); }
-simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD13LoadThenStoreClaim); }
-simt::KernelTask D11(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD11TruncatedFixedPoint); }
+simt::KernelTask D13(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kD13LoadThenStoreClaim);
+}
+simt::KernelTask D11(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kD11TruncatedFixedPoint);
+}
 simt::KernelTask CountStoreClaimFirst(simt::ThreadContext& c, const AccumulateArgs& a) {
   return Mutant(c, a, Defect::kCountStoreClaimFirst);
 }
@@ -219,39 +227,62 @@ Defect ParseDefect(const std::string& text) {
   if (text == "last-seen-claimer-only") return Defect::kLastSeenClaimerOnly;
   throw ConfigError("--inject-defect",
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
-                    "count-store-join-first or last-seen-claimer-only; got '" + text + "'");
+                    "count-store-join-first or last-seen-claimer-only; got '" +
+                        text + "'");
 }
 
 std::string ToString(Defect defect) {
   switch (defect) {
-    case Defect::kNone: return "none";
-    case Defect::kD2AddsAgain: return "D2";
-    case Defect::kD3ZeroFingerprint: return "D3";
-    case Defect::kD8ClampedProbe: return "D8";
-    case Defect::kD8UnwrappedProbe: return "D8-unwrapped";
-    case Defect::kD9NonAtomicAdd: return "D9";
-    case Defect::kD13LoadThenStoreClaim: return "D13";
-    case Defect::kD11TruncatedFixedPoint: return "D11";
-    case Defect::kCountStoreClaimFirst: return "count-store-claim-first";
-    case Defect::kCountStoreJoinFirst: return "count-store-join-first";
-    case Defect::kLastSeenClaimerOnly: return "last-seen-claimer-only";
+    case Defect::kNone:
+      return "none";
+    case Defect::kD2AddsAgain:
+      return "D2";
+    case Defect::kD3ZeroFingerprint:
+      return "D3";
+    case Defect::kD8ClampedProbe:
+      return "D8";
+    case Defect::kD8UnwrappedProbe:
+      return "D8-unwrapped";
+    case Defect::kD9NonAtomicAdd:
+      return "D9";
+    case Defect::kD13LoadThenStoreClaim:
+      return "D13";
+    case Defect::kD11TruncatedFixedPoint:
+      return "D11";
+    case Defect::kCountStoreClaimFirst:
+      return "count-store-claim-first";
+    case Defect::kCountStoreJoinFirst:
+      return "count-store-join-first";
+    case Defect::kLastSeenClaimerOnly:
+      return "last-seen-claimer-only";
   }
   return "?";
 }
 
 AccumulateKernelFn KernelWithDefect(Defect defect) {
   switch (defect) {
-    case Defect::kNone: return AccumulateKernel;
-    case Defect::kD2AddsAgain: return D2;
-    case Defect::kD3ZeroFingerprint: return D3;
-    case Defect::kD8ClampedProbe: return D8;
-    case Defect::kD8UnwrappedProbe: return D8Unwrapped;
-    case Defect::kD9NonAtomicAdd: return D9;
-    case Defect::kD13LoadThenStoreClaim: return D13;
-    case Defect::kD11TruncatedFixedPoint: return D11;
-    case Defect::kCountStoreClaimFirst: return CountStoreClaimFirst;
-    case Defect::kCountStoreJoinFirst: return CountStoreJoinFirst;
-    case Defect::kLastSeenClaimerOnly: return LastSeenClaimerOnly;
+    case Defect::kNone:
+      return AccumulateKernel;
+    case Defect::kD2AddsAgain:
+      return D2;
+    case Defect::kD3ZeroFingerprint:
+      return D3;
+    case Defect::kD8ClampedProbe:
+      return D8;
+    case Defect::kD8UnwrappedProbe:
+      return D8Unwrapped;
+    case Defect::kD9NonAtomicAdd:
+      return D9;
+    case Defect::kD13LoadThenStoreClaim:
+      return D13;
+    case Defect::kD11TruncatedFixedPoint:
+      return D11;
+    case Defect::kCountStoreClaimFirst:
+      return CountStoreClaimFirst;
+    case Defect::kCountStoreJoinFirst:
+      return CountStoreJoinFirst;
+    case Defect::kLastSeenClaimerOnly:
+      return LastSeenClaimerOnly;
   }
   return AccumulateKernel;
 }

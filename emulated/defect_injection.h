@@ -1,5 +1,5 @@
-// Known defects (docs/design/defects.md) injected into the accumulate kernel, one at a time, so the harness can prove its
-// gate has teeth: `hpsf crosscheck --inject-defect D9` must fail. Each variant is the correct kernel
+// Known defects (docs/design/defects.md) injected into the accumulate kernel, one at a time, so the harness can prove
+// its gate has teeth: `hpsf crosscheck --inject-defect D9` must fail. Each variant is the correct kernel
 // (accumulate_kernel.cpp) with exactly one change.
 #ifndef HPSF_EMULATED_DEFECT_INJECTION_H
 #define HPSF_EMULATED_DEFECT_INJECTION_H
@@ -31,8 +31,8 @@ Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);
 
-// D7 (docs/design/defects.md), in the eviction pass (emulated/eviction_kernels.h): the reclaim empties every tombstone, so an
-// eviction leaves a hole that a live cell's key probed past; its next lookup claims the hole and splits the cell.
+// D7 (docs/design/defects.md), in the eviction pass (emulated/eviction_kernels.h): the reclaim empties every tombstone,
+// so an eviction leaves a hole that a live cell's key probed past; its next lookup claims the hole and splits the cell.
 // Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
 

@@ -43,7 +43,8 @@ class PhaseClock {
 }  // namespace
 
 void EmulatorOptions::Validate() const {
-  if (warp_size == 0 || warp_size > 1024) throw ConfigError("--warp-size", "must lie in [1, 1024]; got " + std::to_string(warp_size));
+  if (warp_size == 0 || warp_size > 1024)
+    throw ConfigError("--warp-size", "must lie in [1, 1024]; got " + std::to_string(warp_size));
   if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
   if (mode == simt::Mode::kFaithful) simt::MakeSchedule(schedule, 1, 1);  // parses, or names --schedule
 }
@@ -56,7 +57,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   config.Validate();
   options.Validate();
   const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
-  const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
+  const KeyParams params =
+      MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
 
   EmulatorWorkspace scratch;  // a run without a workspace: fresh arrays
   EmulatorWorkspace& kept = workspace ? *workspace : scratch;
@@ -167,13 +169,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   } else {
     const std::uint32_t warps = (n + options.warp_size - 1) / options.warp_size;
     std::unique_ptr<simt::Schedule> parsed;
-    if (!options.schedule_instance) parsed = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
+    if (!options.schedule_instance)
+      parsed = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
     simt::Schedule* schedule = options.schedule_instance ? options.schedule_instance : parsed.get();
     simt::OperationObserver observer;
     if (!fixed) {
       run.float_add_order.resize(std::size_t(config.capacity) * 3);
       observer = [&](std::uint32_t thread, const simt::MemoryOp& op) {
-        if (op.kind == simt::OpKind::kAtomicAddFloat && op.address.buffer == b.sums) run.float_add_order[op.address.index].push_back(thread);
+        if (op.kind == simt::OpKind::kAtomicAddFloat && op.address.buffer == b.sums)
+          run.float_add_order[op.address.index].push_back(thread);
       };
     }
     run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule, observer);
@@ -203,8 +207,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     (fixed ? empty_table.fixed_sums.resize(config.capacity) : empty_table.float_sums.resize(config.capacity));
   }
   if (seeding) {
-    LevelSeedArgs seed{run.keys,           config.capacity, fixed, config.normal_in_index, config.level_seed,
-                       previous ? previous : &empty_table, b,   0,     0};
+    LevelSeedArgs seed{run.keys,
+                       config.capacity,
+                       fixed,
+                       config.normal_in_index,
+                       config.level_seed,
+                       previous ? previous : &empty_table,
+                       b,
+                       0,
+                       0};
     seed.seeded = memory.Allocate32("seeded", config.capacity);
     seed.seeded_count = memory.Allocate64("seeded_count", 1);
     launch(n, [&](simt::ThreadContext& ctx) { return LevelSeedKernel(ctx, seed); });
@@ -297,7 +308,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
             if (slot < config.capacity) {
               ++tally.probe_lengths[(slot - run.keys[i].slot0) & (config.capacity - 1u)];
               for (int c = 0; c < 3; ++c) {
-                const double channel_sum = fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);
+                const double channel_sum =
+                    fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);
                 average[c] = channel_sum / double(table.counts[slot]);
               }
             }

@@ -29,7 +29,7 @@ struct EmulatorOptions {
   // Faithful mode: a schedule object to use instead of parsing `schedule`, kept by the caller across runs;
   // exhaustive search advances one ExhaustiveSchedule from run to run.
   simt::Schedule* schedule_instance = nullptr;
-  void Validate() const;                 // ConfigError naming the option
+  void Validate() const;  // ConfigError naming the option
 };
 
 // Wall time of each phase of a run in milliseconds, as VulkanTimings has its passes', for benchmarks and reports;

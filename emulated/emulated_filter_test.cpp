@@ -1,13 +1,14 @@
 // Probe failures (a tiny table) and fingerprint aliases (8-bit fingerprints) happen, are counted, pass the
 // table checker, and lose no light in the furnace.
+#include "emulated/emulated_filter.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <set>
 
-#include <gtest/gtest.h>
-
-#include "emulated/emulated_filter.h"
 #include "reference/float_replay.h"
 #include "reference/reference_filter.h"
 #include "tracer/path_tracer.h"
@@ -79,7 +80,8 @@ TEST(EmulatedFilter, WithNothingFailedOrAliasedFixed64EqualsTheReferenceInBothMo
       options.schedule = "pct:9:3";
       const EmulatedRun run = EmulatedFilter(batch, config, options);
       ASSERT_EQ(run.probe_failures, 0u);
-      for (std::size_t i = 0; i < reference.pixels.size(); ++i) ASSERT_EQ(run.image.pixels[i], reference.pixels[i]) << i;
+      for (std::size_t i = 0; i < reference.pixels.size(); ++i)
+        ASSERT_EQ(run.image.pixels[i], reference.pixels[i]) << i;
     }
   }
 }

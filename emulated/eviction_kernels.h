@@ -14,7 +14,8 @@
 // window of each record that found no slot, marks the untouched live slot of lowest priority
 // (core/shared/eviction_priority.h). The table is only read there, so the victims are a function of the state
 // after the accumulate, whatever the order of the threads, and two failed records with one slot0 mark the same
-// victim (overlapping windows may mark two). Evict then evicts the marked slots and tags them kTombstoneTag, which an insertion may claim.
+// victim (overlapping windows may mark two). Evict then evicts the marked slots and tags them kTombstoneTag, which an
+// insertion may claim.
 #ifndef HPSF_EMULATED_EVICTION_KERNELS_H
 #define HPSF_EMULATED_EVICTION_KERNELS_H
 

@@ -18,7 +18,7 @@ struct TemporalArgs {
   std::uint32_t capacity = 0;
   bool fixed = true;  // fixed64 sums, else float32
   shared::TemporalParams params{};
-  TableBuffers buffers{};            // the current table: sums and counts
+  TableBuffers buffers{};             // the current table: sums and counts
   std::uint32_t previous_sums = 0;    // the table before the frame, laid out as buffers.sums
   std::uint32_t previous_counts = 0;  // and buffers.counts
 };

@@ -1,14 +1,14 @@
 // The gate has teeth: the broken variants of the accumulate kernel (emulated/defect_injection), one per known
-// defect of docs/design/defects.md (D2, D3, D8, D9, D13), run on inputs constructed to reach the defect. For each, the table
-// checker or the cross-check contract must fail. D9 and D13 need a particular interleaving: the tests report
+// defect of docs/design/defects.md (D2, D3, D8, D9, D13), run on inputs constructed to reach the defect. For each, the
+// table checker or the cross-check contract must fail. D9 and D13 need a particular interleaving: the tests report
 // which schedule policies found them and after how many schedules.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <cstdio>
 #include <functional>
 #include <optional>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "core/hash_table.h"
 #include "core/input_check.h"
@@ -41,7 +41,8 @@ EmulatedRun RunFaithful(const RecordBatch& batch, const FilterConfig& config, Ac
 
 TEST(BrokenKernels, CorrectKernelPassesOnEveryConstructedInput) {
   const FilterConfig config = ConstructedConfig(64, 4, 8);
-  const glm::ivec3 zero = FindCell(config, [](const KeyResult& k) { return (shared::FullFingerprint(k.words) >> 24) == 0u; });
+  const glm::ivec3 zero =
+      FindCell(config, [](const KeyResult& k) { return (shared::FullFingerprint(k.words) >> 24) == 0u; });
   const glm::ivec3 last = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
   const RecordBatch batch = BatchOfCells({zero, zero, last, last, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}});
   EXPECT_TRUE(CheckRun(batch, RunFaithful(batch, config, AccumulateKernel)).empty());
@@ -57,12 +58,13 @@ TEST(BrokenKernels, EachMutantPassesAnInputThatDoesNotReachItsDefect) {
     config.accumulation = accumulation;
     const glm::ivec3 cell = FindCell(config, [](const KeyResult& k) { return k.slot0 == 10u && k.fingerprint > 1u; });
     const RecordBatch batch = BatchOfCells({cell});
-    for (const Defect defect : {Defect::kD2AddsAgain, Defect::kD3ZeroFingerprint, Defect::kD8ClampedProbe, Defect::kD8UnwrappedProbe,
-                                Defect::kD9NonAtomicAdd, Defect::kD13LoadThenStoreClaim, Defect::kD11TruncatedFixedPoint,
-                                Defect::kCountStoreClaimFirst, Defect::kCountStoreJoinFirst,
-                                Defect::kLastSeenClaimerOnly}) {
+    for (const Defect defect :
+         {Defect::kD2AddsAgain, Defect::kD3ZeroFingerprint, Defect::kD8ClampedProbe, Defect::kD8UnwrappedProbe,
+          Defect::kD9NonAtomicAdd, Defect::kD13LoadThenStoreClaim, Defect::kD11TruncatedFixedPoint,
+          Defect::kCountStoreClaimFirst, Defect::kCountStoreJoinFirst, Defect::kLastSeenClaimerOnly}) {
       const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(defect)));
-      EXPECT_TRUE(violations.empty()) << ToString(defect) << " in " << ToString(accumulation) << ": " << violations.front().ToString();
+      EXPECT_TRUE(violations.empty()) << ToString(defect) << " in " << ToString(accumulation) << ": "
+                                      << violations.front().ToString();
     }
   }
 }
@@ -78,7 +80,8 @@ TEST(BrokenKernels, D2AddingAgainAfterAMatchIsCaught) {
 TEST(BrokenKernels, D3AZeroFingerprintIsCaught) {
   // A key whose 8-bit fingerprint reduces to 0: the mutant "claims" its slot with the empty tag.
   const FilterConfig config = ConstructedConfig(64, 4, 8);
-  const glm::ivec3 zero = FindCell(config, [](const KeyResult& k) { return (shared::FullFingerprint(k.words) >> 24) == 0u; });
+  const glm::ivec3 zero =
+      FindCell(config, [](const KeyResult& k) { return (shared::FullFingerprint(k.words) >> 24) == 0u; });
   const RecordBatch batch = BatchOfCells({zero, zero});
   const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD3ZeroFingerprint)));
   ASSERT_FALSE(violations.empty());
@@ -89,7 +92,8 @@ TEST(BrokenKernels, D8AClampedProbeIsCaught) {
   // Keys whose window wraps past capacity - 1: two keys at slot0 = 63 make the second probe.
   const FilterConfig config = ConstructedConfig(64, 4);
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
-  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
+  const glm::ivec3 b = FindCell(
+      config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
   const RecordBatch batch = BatchOfCells({a, b});
   const auto violations = CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD8ClampedProbe)));
   ASSERT_FALSE(violations.empty());
@@ -100,7 +104,8 @@ TEST(BrokenKernels, D8AnUnwrappedProbeFaultsOutOfBoundsInBothModes) {
   // The second key at slot0 = 63 probes slot 64 of a 64-slot table: the emulator stops the kernel there.
   const FilterConfig config = ConstructedConfig(64, 4);
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
-  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
+  const glm::ivec3 b = FindCell(
+      config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
   const RecordBatch batch = BatchOfCells({a, b});
   const AccumulateKernelFn kernel = KernelWithDefect(Defect::kD8UnwrappedProbe);
   EmulatorOptions fast;
@@ -124,15 +129,18 @@ struct Hunt {
   int schedules_until_caught = -1;  // -1: not caught within the budget
 };
 
-std::vector<Hunt> HuntDefect(const RecordBatch& batch, const FilterConfig& config, AccumulateKernelFn kernel, std::uint32_t warp_size) {
+std::vector<Hunt> HuntDefect(const RecordBatch& batch, const FilterConfig& config, AccumulateKernelFn kernel,
+                             std::uint32_t warp_size) {
   std::vector<Hunt> hunts;
-  auto caught = [&](const std::string& schedule) { return !CheckRun(batch, RunFaithful(batch, config, kernel, schedule, warp_size)).empty(); };
+  auto caught = [&](const std::string& schedule) {
+    return !CheckRun(batch, RunFaithful(batch, config, kernel, schedule, warp_size)).empty();
+  };
   hunts.push_back({"round-robin", caught("round-robin") ? 1 : -1});
   for (const std::string family : {"random", "pct:2", "pct:3"}) {
     Hunt hunt{family, -1};
     for (int seed = 0; seed < 200 && hunt.schedules_until_caught < 0; ++seed) {
-      const std::string schedule = family == "random" ? "random:" + std::to_string(seed)
-                                                      : "pct:" + std::to_string(seed) + family.substr(3);
+      const std::string schedule =
+          family == "random" ? "random:" + std::to_string(seed) : "pct:" + std::to_string(seed) + family.substr(3);
       if (caught(schedule)) hunt.schedules_until_caught = seed + 1;
     }
     hunts.push_back(hunt);
@@ -146,12 +154,13 @@ std::vector<Hunt> HuntDefect(const RecordBatch& batch, const FilterConfig& confi
 struct ExhaustiveHunt {
   std::uint64_t caught_at = 0;  // 0: never
   std::uint64_t schedules = 0;
-  bool complete = false;        // every schedule of the launch explored
+  bool complete = false;  // every schedule of the launch explored
 };
 
 enum class Stop { kAtFirstCatch, kNever };
 
-ExhaustiveHunt HuntExhaustively(const RecordBatch& batch, const FilterConfig& config, AccumulateKernelFn kernel, Stop stop) {
+ExhaustiveHunt HuntExhaustively(const RecordBatch& batch, const FilterConfig& config, AccumulateKernelFn kernel,
+                                Stop stop) {
   simt::ExhaustiveSchedule schedule;
   EmulatorOptions options;
   options.mode = simt::Mode::kFaithful;
@@ -179,7 +188,9 @@ void Report(const char* defect, const std::vector<Hunt>& hunts) {
   bool any = false;
   for (const Hunt& h : hunts) {
     std::printf("%s with %-11s: %s\n", defect, h.policy.c_str(),
-                h.schedules_until_caught < 0 ? "not caught in 200 schedules" : ("caught after " + std::to_string(h.schedules_until_caught) + " schedule(s)").c_str());
+                h.schedules_until_caught < 0
+                    ? "not caught in 200 schedules"
+                    : ("caught after " + std::to_string(h.schedules_until_caught) + " schedule(s)").c_str());
     any = any || h.schedules_until_caught > 0;
   }
   EXPECT_TRUE(any) << defect << " escaped every policy";
@@ -196,22 +207,27 @@ TEST(BrokenKernels, D9LostUpdatesAreCaughtAndReportedPerPolicy) {
   // The correct kernel passes every one of its schedules on the same launch.
   const ExhaustiveHunt correct = HuntExhaustively(two, config, AccumulateKernel, Stop::kNever);
   EXPECT_EQ(correct.caught_at, 0u);
-  std::printf("correct kernel, one cell, exhaustive (2 threads): %llu schedules, all pass\n", (unsigned long long)correct.schedules);
+  std::printf("correct kernel, one cell, exhaustive (2 threads): %llu schedules, all pass\n",
+              (unsigned long long)correct.schedules);
   // Within one warp the lanes load together and store in turn: every schedule loses updates.
-  EXPECT_FALSE(CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD9NonAtomicAdd), "round-robin", 8)).empty());
+  EXPECT_FALSE(
+      CheckRun(batch, RunFaithful(batch, config, KernelWithDefect(Defect::kD9NonAtomicAdd), "round-robin", 8)).empty());
 }
 
 TEST(BrokenKernels, D13TwoKeysRacingForOneEmptySlotAreCaughtAndReportedPerPolicy) {
   const FilterConfig config = ConstructedConfig(64, 4);
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; });
-  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; }, a.x + 1);
+  const glm::ivec3 b = FindCell(
+      config, [](const KeyResult& k) { return k.slot0 == 17u; }, a.x + 1);
   const RecordBatch batch = BatchOfCells({a, b, a, b});
   Report("D13", HuntDefect(batch, config, KernelWithDefect(Defect::kD13LoadThenStoreClaim), 1));
   const RecordBatch two = BatchOfCells({a, b});
-  ReportExhaustive("D13", HuntExhaustively(two, config, KernelWithDefect(Defect::kD13LoadThenStoreClaim), Stop::kNever));
+  ReportExhaustive("D13",
+                   HuntExhaustively(two, config, KernelWithDefect(Defect::kD13LoadThenStoreClaim), Stop::kNever));
   const ExhaustiveHunt correct = HuntExhaustively(two, config, AccumulateKernel, Stop::kNever);
   EXPECT_EQ(correct.caught_at, 0u);
-  std::printf("correct kernel, two keys racing, exhaustive (2 threads): %llu schedules, all pass\n", (unsigned long long)correct.schedules);
+  std::printf("correct kernel, two keys racing, exhaustive (2 threads): %llu schedules, all pass\n",
+              (unsigned long long)correct.schedules);
 }
 
 }  // namespace

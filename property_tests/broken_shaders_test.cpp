@@ -4,11 +4,11 @@
 // random numbers or the key path become: no test here depends on a scene whose keys happen to collide. On
 // lavapipe a subgroup's lanes run in lockstep, so D9 and D13 race on every run; each input is also run through
 // the correct shader, which must pass.
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/filter_config.h"
 #include "property_tests/constructed_cells.h"
@@ -27,7 +27,8 @@ std::string VariantPath(const std::string& variant) {
   return std::string(HPSF_SHADER_VARIANT_DIR).append("/accumulate_").append(variant).append(".spv");
 }
 
-std::vector<TableViolation> RunVariant(const std::string& variant, const RecordBatch& batch, const FilterConfig& config) {
+std::vector<TableViolation> RunVariant(const std::string& variant, const RecordBatch& batch,
+                                       const FilterConfig& config) {
   VulkanFilter filter(testing::TestDevice(StagingPolicy::kNever), VariantPath(variant));
   const VulkanRun run = filter.Run(batch, config);
   return CheckTable({run.table, batch.records, run.keys, run.placements});
@@ -59,7 +60,8 @@ TEST(BrokenShaders, D8AClampedProbeIsCaught) {
   // Two keys at slot0 = capacity - 1: the second must wrap to slot 0; D8 stays at the last slot.
   const FilterConfig config = ConstructedConfig(64, 4);
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; });
-  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
+  const glm::ivec3 b = FindCell(
+      config, [](const KeyResult& k) { return k.slot0 == 63u; }, a.x + 1);
   ExpectCaught("D8", BatchOfCells({a, b}), config);
 }
 
@@ -73,7 +75,8 @@ TEST(BrokenShaders, D13TwoKeysRacingForOneEmptySlotAreCaught) {
   // Two keys with one slot0 in neighbouring lanes: both see the slot empty and both store their tag.
   const FilterConfig config = ConstructedConfig(64, 4);
   const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; });
-  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 17u; }, a.x + 1);
+  const glm::ivec3 b = FindCell(
+      config, [](const KeyResult& k) { return k.slot0 == 17u; }, a.x + 1);
   ExpectCaught("D13", BatchOfCells({a, b, a, b}), config);
 }
 

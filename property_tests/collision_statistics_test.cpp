@@ -10,13 +10,13 @@
 // Alternatives it must reject, shown below with the same statistic: an index hash that clusters (the sum of
 // the cell coordinates) and one that drops words (the x coordinate alone), both rejected at every load from 0.5
 // (in tables of 2^13 slots); kResolution below states the power against any other shift of the mean.
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <functional>
 #include <vector>
-
-#include <boost/math/distributions/students_t.hpp>
-#include <gtest/gtest.h>
 
 #include "core/footprint.h"
 #include "core/key_batch.h"
@@ -93,12 +93,14 @@ std::vector<LoadVerdict> TestLoad(double load, const TableKeys& table_keys, std:
   std::vector<std::vector<double>> figures(std::size(kStatistics));
   for (int table = 0; table < kTables; ++table) {
     const std::vector<std::uint32_t> slot0s = table_keys(table, keys);
-    for (std::size_t s = 0; s < std::size(kStatistics); ++s) figures[s].push_back(kStatistics[s].Measure(slot0s, slots));
+    for (std::size_t s = 0; s < std::size(kStatistics); ++s)
+      figures[s].push_back(kStatistics[s].Measure(slot0s, slots));
   }
   std::vector<LoadVerdict> verdicts;
   for (std::size_t s = 0; s < std::size(kStatistics); ++s) {
     verdicts.push_back(TTest(figures[s], kStatistics[s].Theory(slots, keys)));
-    if (kStatistics[s].window != 0) verdicts.back().tested = verdicts.back().theory * slots * kTables >= kFewestExpectedEvents;
+    if (kStatistics[s].window != 0)
+      verdicts.back().tested = verdicts.back().theory * slots * kTables >= kFewestExpectedEvents;
   }
   return verdicts;
 }
@@ -167,8 +169,10 @@ TEST(CollisionStatistics, KnuthsExpectationEqualsEnumerationOfSmallTables) {
           }
         }
       }
-      EXPECT_NEAR(hits / double(sequences), ExpectedProbesOnHit(slots, keys), 1e-12) << keys << " keys in " << slots << " slots";
-      EXPECT_NEAR(misses / double(sequences), ExpectedProbesOnMiss(slots, keys), 1e-12) << keys << " keys in " << slots << " slots";
+      EXPECT_NEAR(hits / double(sequences), ExpectedProbesOnHit(slots, keys), 1e-12)
+          << keys << " keys in " << slots << " slots";
+      EXPECT_NEAR(misses / double(sequences), ExpectedProbesOnMiss(slots, keys), 1e-12)
+          << keys << " keys in " << slots << " slots";
       for (std::uint32_t w = 1; w < slots; ++w) {
         EXPECT_NEAR(full_windows[w] / double(sequences), ProbabilityWindowFull(slots, keys, w), 1e-12)
             << "window " << w << ", " << keys << " keys in " << slots << " slots";
@@ -185,8 +189,8 @@ TEST(CollisionStatistics, TheIndexHashProbesAsUniformHashingDoesAtEveryLoad) {
       const LoadVerdict& v = verdicts[s];
       Report("generated", load, kStatistics[s], v);
       if (!v.tested) continue;
-      EXPECT_GT(v.p_value, kAlpha) << "load " << load << ", " << kStatistics[s].Name() << ": " << v.mean
-                                   << ", theory " << v.theory;
+      EXPECT_GT(v.p_value, kAlpha) << "load " << load << ", " << kStatistics[s].Name() << ": " << v.mean << ", theory "
+                                   << v.theory;
     }
     EXPECT_LT(verdicts[0].half_width, kResolution[l] * verdicts[0].theory) << "load " << load << ": too little power";
   }

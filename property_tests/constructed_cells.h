@@ -5,12 +5,12 @@
 #ifndef HPSF_PROPERTY_TESTS_CONSTRUCTED_CELLS_H
 #define HPSF_PROPERTY_TESTS_CONSTRUCTED_CELLS_H
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <functional>
-#include <vector>
-
 #include <glm/vec3.hpp>
-#include <gtest/gtest.h>
+#include <vector>
 
 #include "core/filter_config.h"
 #include "core/key_batch.h"
@@ -19,7 +19,8 @@
 
 namespace hpsf::testing {
 
-inline FilterConfig ConstructedConfig(std::uint32_t capacity, std::uint32_t probe_limit, std::uint32_t fingerprint_bits = 32) {
+inline FilterConfig ConstructedConfig(std::uint32_t capacity, std::uint32_t probe_limit,
+                                      std::uint32_t fingerprint_bits = 32) {
   FilterConfig c;
   c.lod = false;
   c.cell_size = 1.0f;
@@ -58,7 +59,8 @@ inline RecordBatch BatchOfCells(const std::vector<glm::ivec3>& cells) {
 }
 
 // The first cell along x (from `start`) whose key satisfies `wanted`.
-inline glm::ivec3 FindCell(const FilterConfig& config, const std::function<bool(const KeyResult&)>& wanted, int start = 0) {
+inline glm::ivec3 FindCell(const FilterConfig& config, const std::function<bool(const KeyResult&)>& wanted,
+                           int start = 0) {
   for (int x = start; x < start + 2000000; ++x) {
     if (wanted(KeyOfCell(config, {x, 3, -7}))) return {x, 3, -7};
   }

@@ -31,13 +31,14 @@ TEST(ContendedAtomics, FastModeCountsAndFixedSumsAreExactOnEveryRun) {
     ASSERT_GT(reference.stats.records_with_vertex, 50000u);
     for (int run = 0; run < kRuns; ++run) {
       const EmulatedRun emulated = EmulatedFilter(batch, config, EmulatorOptions{});
-      const std::vector<TableViolation> violations = CheckTable({emulated.table, batch.records, emulated.keys, emulated.placements});
-      ASSERT_TRUE(violations.empty()) << (accumulation == Accumulation::kFixed64 ? "fixed64" : "float32") << ", run " << run + 1
-                                      << ": " << violations.front().ToString();
+      const std::vector<TableViolation> violations =
+          CheckTable({emulated.table, batch.records, emulated.keys, emulated.placements});
+      ASSERT_TRUE(violations.empty()) << (accumulation == Accumulation::kFixed64 ? "fixed64" : "float32") << ", run "
+                                      << run + 1 << ": " << violations.front().ToString();
       std::uint64_t counted = 0;
       for (const std::uint64_t count : emulated.table.counts) counted += count;
-      ASSERT_EQ(counted, reference.stats.records_with_vertex - reference.stats.unkeyable - reference.stats.rejected_non_finite -
-                             reference.stats.rejected_negative);
+      ASSERT_EQ(counted, reference.stats.records_with_vertex - reference.stats.unkeyable -
+                             reference.stats.rejected_non_finite - reference.stats.rejected_negative);
     }
   }
 }

@@ -21,9 +21,9 @@
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
+#include "tracer/scene_file.h"
 #include "verifier/contract/contract_levels.h"
 #include "verifier/contract/crosscheck.h"
-#include "tracer/scene_file.h"
 #include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {
@@ -44,8 +44,8 @@ const QualityFigures& QualityOf(const CrosscheckReport& report, const std::strin
 
 // Four frames of the animated Cornell box (camera, light and cube move) pass the contract with every policy (priority
 // with 24-bit fingerprints; this table has room, so it evicts nothing: priority_eviction_tests puts it under
-// pressure) and mode on every backend, and each level judged something in every frame: records compared with the reference, and
-// evictions where the policy evicts.
+// pressure) and mode on every backend, and each level judged something in every frame: records compared with the
+// reference, and evictions where the policy evicts.
 TEST(CrosscheckFrames, EveryPolicyAndTemporalModePassesOnAllThreeBackends) {
   constexpr std::uint32_t kFrames = 4;
   const std::vector<RecordBatch> frames =

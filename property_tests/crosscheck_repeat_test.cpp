@@ -13,16 +13,20 @@ namespace {
 constexpr int kRepeats = 20;
 
 TEST(CrosscheckRepeat, EveryBuiltInScenePassesTwentyTimesWithAllBackendsInBothAccumulations) {
-  for (const std::string scene : {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
-    const RecordBatch batch = TracedBatch(scene, 64, 2);  // as `hpsf crosscheck SCENE --size 64x64 --spp 2 --capacity 32768`
+  for (const std::string scene :
+       {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
+    const RecordBatch batch =
+        TracedBatch(scene, 64, 2);  // as `hpsf crosscheck SCENE --size 64x64 --spp 2 --capacity 32768`
     for (const Accumulation accumulation : {Accumulation::kFloat32, Accumulation::kFixed64}) {
       FilterConfig config;
-      config.capacity = 1u << 15;  // load at most 1/4: the promises of runs with nothing failed or aliased are exercised
+      config.capacity =
+          1u << 15;  // load at most 1/4: the promises of runs with nothing failed or aliased are exercised
       config.accumulation = accumulation;
       for (int run = 0; run < kRepeats; ++run) {
-        const CrosscheckReport report = Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{});
-        ASSERT_TRUE(report.Passed()) << scene << (accumulation == Accumulation::kFloat32 ? " float32" : " fixed64") << ", run "
-                                     << run + 1 << " of " << kRepeats << ": " << report.FirstFailure();
+        const CrosscheckReport report =
+            Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{});
+        ASSERT_TRUE(report.Passed()) << scene << (accumulation == Accumulation::kFloat32 ? " float32" : " fixed64")
+                                     << ", run " << run + 1 << " of " << kRepeats << ": " << report.FirstFailure();
       }
     }
   }

@@ -8,7 +8,6 @@
 // level-seed where --level-min = --level-max (no cell has a parent or child). Each runs on a backend that filtered
 // another sequence before (Reset between), so a forced pass that read a previous sequence's leftovers would show.
 
-#include "core/backend_registry.h"
 #include "core/effect_plan.h"
 
 #include <gtest/gtest.h>
@@ -21,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/backend_registry.h"
 #include "core/error.h"
 #include "emulated/emulated_backend.h"
 #include "property_tests/hashed_backends.h"
@@ -129,7 +129,9 @@ const std::vector<SkipCase>& SkipCases() {
 double PhaseSeconds(const Backend& backend, Effect effect) {
   if (!backend.LastHashedRun()) return -1.0;
   const FrameTimings t = backend.LastFrameTimings();
-  return 1e-3 * (effect == Effect::kTemporal ? t.temporal_ms : effect == Effect::kLevelSeed ? t.level_seed_ms : t.eviction_ms);
+  return 1e-3 * (effect == Effect::kTemporal    ? t.temporal_ms
+                 : effect == Effect::kLevelSeed ? t.level_seed_ms
+                                                : t.eviction_ms);
 }
 
 // Every bit of the backend's last image and table. Where the slots and the float adds' order depend on timing (the

@@ -4,6 +4,10 @@
 // reachable, and the reclaim that empties every tombstone (D7, in the emulator and as a shader) is caught by the
 // checker and the contract; the furnace keeps its light with every policy.
 
+#include "core/eviction.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,11 +18,8 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "core/backend.h"
 #include "core/error.h"
-#include "core/eviction.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
 #include "emulated/simt/schedule.h"
@@ -28,10 +29,10 @@
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
-#include "verifier/contract/contract_levels.h"
-#include "verifier/checker/table_checker.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
+#include "verifier/checker/table_checker.h"
+#include "verifier/contract/contract_levels.h"
 #include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {
@@ -310,17 +311,17 @@ TEST(Eviction, EveryInterleavingOfAnEvictionWithAnInsertionIntoItsSlotIsExplored
     do {
       ++e.schedules;  // every schedule runs: the search learns the next one from this run's decisions
       const EmulatedRun run = EmulatedFilter(frame1, config, options, kernel, &first.table);
-      e.caught += !CheckTable({run.table, frame1.records, run.keys, run.placements, &first.table, config.eviction, 1})
-                       .empty();
+      e.caught +=
+          !CheckTable({run.table, frame1.records, run.keys, run.placements, &first.table, config.eviction, 1}).empty();
     } while (schedule.Advance());
     return e;
   };
   const Exploration correct = explore(AccumulateKernel);
   const Exploration racing = explore(EvictDuringAccumulate);
-  std::printf("one eviction and one insertion, exhaustive: correct kernel %llu schedules, all pass; racing variant "
-              "caught under %llu of %llu\n",
-              (unsigned long long)correct.schedules, (unsigned long long)racing.caught,
-              (unsigned long long)racing.schedules);
+  std::printf(
+      "one eviction and one insertion, exhaustive: correct kernel %llu schedules, all pass; racing variant "
+      "caught under %llu of %llu\n",
+      (unsigned long long)correct.schedules, (unsigned long long)racing.caught, (unsigned long long)racing.schedules);
   EXPECT_EQ(correct.caught, 0u);
   EXPECT_GT(racing.caught, 0u);
   EXPECT_LT(racing.caught, racing.schedules) << "every order lost A: the exploration saw no order that keeps it";
@@ -333,10 +334,11 @@ double MeanRadiance(const Image& image) {
 }
 
 // The furnace's radiance is the same everywhere: with a moving camera over 16 frames, every policy and temporal
-// mode keeps the light on every backend (priority in a table of 256 slots, under pressure), frame by frame: each frame's filtered mean stays within 1% of the same
-// records' unfiltered mean (plain path tracing), and no pixel is poisoned. Measured: at most 0.52% on every
-// backend, policy and mode, none and integrate included (the filter's own noise at 24 x 24 x 2 spp). A frame that
-// read evicted cells (0 / 0) would be NaN; one whose table forgot the light would fall by its share of the records.
+// mode keeps the light on every backend (priority in a table of 256 slots, under pressure), frame by frame: each
+// frame's filtered mean stays within 1% of the same records' unfiltered mean (plain path tracing), and no pixel is
+// poisoned. Measured: at most 0.52% on every backend, policy and mode, none and integrate included (the filter's own
+// noise at 24 x 24 x 2 spp). A frame that read evicted cells (0 / 0) would be NaN; one whose table forgot the light
+// would fall by its share of the records.
 TEST(Eviction, TheFurnaceKeepsItsLightOver16FramesOfAMovingCamera) {
   constexpr std::uint32_t kFrames = 16;
   Scene furnace = LoadScene("furnace");
@@ -346,10 +348,9 @@ TEST(Eviction, TheFurnaceKeepsItsLightOver16FramesOfAMovingCamera) {
     const char* policy;
     const char* temporal;
   };
-  for (const auto& [policy, temporal] : {Case{"none", "integrate"}, Case{"strict", "integrate"},
-                                         Case{"stale:4", "integrate"}, Case{"none", "ema:0.8"},
-                                         Case{"strict", "ema:1:8"}, Case{"stale:4", "adaptive"},
-                                         Case{"priority", "integrate"}}) {
+  for (const auto& [policy, temporal] :
+       {Case{"none", "integrate"}, Case{"strict", "integrate"}, Case{"stale:4", "integrate"}, Case{"none", "ema:0.8"},
+        Case{"strict", "ema:1:8"}, Case{"stale:4", "adaptive"}, Case{"priority", "integrate"}}) {
     FilterConfig config;
     config.capacity = 1u << 12;
     if (std::string(policy) == "priority") {  // a table under pressure, so priority evicts

@@ -8,14 +8,14 @@
 // Alternatives it must reject, shown below with the same statistic and keys: fingerprints that keep the low
 // bits of the index hash (the bits that chose the slot, so keys crowding a window share them) and fingerprints
 // two bits short of their width (four times the aliases), both at every width. kResolution states the power.
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <boost/math/distributions/binomial.hpp>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <vector>
-
-#include <boost/math/distributions/binomial.hpp>
-#include <gtest/gtest.h>
 
 #include "core/key_batch.h"
 #include "emulated/emulated_filter.h"
@@ -85,12 +85,13 @@ TEST(FingerprintAliases, TheRateAtEveryWidthIsTheOnePredictedFromTheWindows) {
   for (std::size_t b = 0; b < std::size(kBits); ++b) {
     const AliasTally t = TallyTables(kBits[b], TheFingerprint);
     const Interval interval = ClopperPearson(t, kAlpha);
-    std::printf("%2u bits: %llu of %llu keys aliased (rate %.4g, interval [%.4g, %.4g]), predicted %.4g, "
-                "%.3f tags compared per key, %llu probe failures\n",
-                kBits[b], (unsigned long long)t.aliased, (unsigned long long)t.keys, t.Rate(), interval.low,
-                interval.high, t.PredictedRate(), t.compared / double(t.keys), (unsigned long long)t.failed);
-    EXPECT_TRUE(interval.Holds(t.PredictedRate())) << kBits[b] << " bits: rate " << t.Rate() << ", predicted "
-                                                   << t.PredictedRate();
+    std::printf(
+        "%2u bits: %llu of %llu keys aliased (rate %.4g, interval [%.4g, %.4g]), predicted %.4g, "
+        "%.3f tags compared per key, %llu probe failures\n",
+        kBits[b], (unsigned long long)t.aliased, (unsigned long long)t.keys, t.Rate(), interval.low, interval.high,
+        t.PredictedRate(), t.compared / double(t.keys), (unsigned long long)t.failed);
+    EXPECT_TRUE(interval.Holds(t.PredictedRate()))
+        << kBits[b] << " bits: rate " << t.Rate() << ", predicted " << t.PredictedRate();
     EXPECT_LT(interval.high, kResolution[b] * t.PredictedRate()) << kBits[b] << " bits: too little power";
     aliased += double(t.aliased);
     predicted += t.predicted;

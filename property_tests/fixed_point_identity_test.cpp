@@ -1,12 +1,12 @@
 // fixed64 conversion on the device equals the C++ conversion bit for bit: round half to even at ties, exact
 // above 2^24, zero for values whose scaled form is below the normal range.
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
 
 #include "core/shared/fixed_point.h"
 #include "property_tests/vulkan_test_devices.h"
@@ -21,7 +21,8 @@ void ExpectIdentical(const std::vector<float>& values, int fraction_bits) {
     ASSERT_EQ(device.size(), values.size());
     for (std::size_t i = 0; i < values.size(); ++i) {
       const std::uint64_t host = shared::ToFixedPoint(values[i], shared::PowerOfTwo(fraction_bits));
-      ASSERT_EQ(device[i], host) << "value " << values[i] << " F " << fraction_bits << ", --vk-staging " << ToString(staging);
+      ASSERT_EQ(device[i], host) << "value " << values[i] << " F " << fraction_bits << ", --vk-staging "
+                                 << ToString(staging);
     }
   }
 }
@@ -41,7 +42,8 @@ RC_GTEST_PROP(FixedPointIdentity, AnyNonNegativeFloatAtAnyF, ()) {
   for (std::uint32_t b : bits) {
     float v = std::bit_cast<float>(b & 0x7FFFFFFFu);  // non-negative
     // Keep the scaled value below 2^63, the range fixed64 guarantees, and finite.
-    if (!std::isfinite(v) || std::ldexp(double(v), fraction_bits) >= 0x1p63) v = std::ldexp(1.5f, std::min(30 - fraction_bits, 127));
+    if (!std::isfinite(v) || std::ldexp(double(v), fraction_bits) >= 0x1p63)
+      v = std::ldexp(1.5f, std::min(30 - fraction_bits, 127));
     values.push_back(v);
   }
   for (const StagingPolicy staging : testing::kStagingPolicies) {

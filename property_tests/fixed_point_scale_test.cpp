@@ -1,15 +1,16 @@
 // The per-batch choice of F never lets a channel's total reach 2^63, and is the largest F that does not; for a
 // table that integrates K frames, K such totals stay below 2^63.
+#include "core/fixed_point_scale.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <functional>
 #include <vector>
 
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
-#include "core/fixed_point_scale.h"
 #include "core/shared/fixed_point.h"
 
 namespace hpsf {
@@ -24,7 +25,9 @@ RC_GTEST_PROP(FixedPointScale, KFramesOfTotalsStayBelowTwoToThe63AndFIsMaximal, 
     VertexSample v;
     for (int c = 0; c < 3; ++c) {
       const float mantissa = 1.0f + float(*rc::gen::inRange(0, 1 << 23)) * 0x1p-23f;
-      v.contribution[c] = *rc::gen::inRange(0, 8) == 0 ? 0.0f : std::ldexp(mantissa, *rc::gen::inRange(-exponent_spread, exponent_spread));
+      v.contribution[c] = *rc::gen::inRange(0, 8) == 0
+                              ? 0.0f
+                              : std::ldexp(mantissa, *rc::gen::inRange(-exponent_spread, exponent_spread));
     }
     records.push_back(MakeVertexRecord(v));
   }
@@ -37,7 +40,8 @@ RC_GTEST_PROP(FixedPointScale, KFramesOfTotalsStayBelowTwoToThe63AndFIsMaximal, 
     unsigned __int128 rounded = 0;
     for (const Record& r : records) rounded += shared::ToFixedPoint(r.contribution[channel], shared::PowerOfTwo(f));
     RC_ASSERT(rounded < limit);
-    if (f < shared::kFixedPointBitsMax) next_overflows = next_overflows || FixedPointCeilingSum(records, channel, f + 1) >= limit;
+    if (f < shared::kFixedPointBitsMax)
+      next_overflows = next_overflows || FixedPointCeilingSum(records, channel, f + 1) >= limit;
   }
   RC_ASSERT(next_overflows);
 }
@@ -52,7 +56,8 @@ RC_GTEST_PROP(FixedPointScale, FDoesNotDependOnHowTheRunnerSplitsTheWork, ()) {
     glm::vec3 c;
     for (int k = 0; k < 3; ++k) {
       const float mantissa = 1.0f + float(*rc::gen::inRange(0, 1 << 23)) * 0x1p-23f;
-      c[k] = *rc::gen::inRange(0, 8) == 0 ? 0.0f : std::ldexp(mantissa, *rc::gen::inRange(-exponent_spread, exponent_spread));
+      c[k] = *rc::gen::inRange(0, 8) == 0 ? 0.0f
+                                          : std::ldexp(mantissa, *rc::gen::inRange(-exponent_spread, exponent_spread));
     }
     contributions.push_back(c);
   }

@@ -1,9 +1,11 @@
-// The numerical hard cases (docs/design/tracer.md), through every backend: the reference, the emulator (fast, and faithful
-// inside the cross-check) and Vulkan (mapped and staged), in fixed64 and float32 where both mean something.
+// The numerical hard cases (docs/design/tracer.md), through every backend: the reference, the emulator (fast, and
+// faithful inside the cross-check) and Vulkan (mapped and staged), in fixed64 and float32 where both mean something.
 // Each case asserts that every image pixel is finite, that the cross-check contract holds at every level, and
 // that the records keyed, without a vertex, unkeyable and rejected are what the case was built to give; then
 // what the case itself is about (a level at its clamp, the F chosen, a firefly kept to its cells, ...). Each
 // prints one line of figures for docs/results.md's table ("hard case | ...").
+#include <gtest/gtest.h>
+
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -13,8 +15,6 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/input_check.h"
@@ -23,9 +23,9 @@
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_filter.h"
+#include "verifier/checker/table_checker.h"
 #include "verifier/contract/crosscheck.h"
 #include "verifier/contract/image_check.h"
-#include "verifier/checker/table_checker.h"
 
 namespace hpsf::testing {
 namespace {
@@ -91,8 +91,8 @@ float MaxAbsPixel(const Image& image) {
 void ExpectFinite(const Image& image, const std::string& who) {
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
-      ASSERT_TRUE(std::isfinite(image.pixels[i][c])) << who << ": pixel " << i << " channel " << c << " is "
-                                                     << image.pixels[i][c];
+      ASSERT_TRUE(std::isfinite(image.pixels[i][c]))
+          << who << ": pixel " << i << " channel " << c << " is " << image.pixels[i][c];
     }
   }
 }
@@ -100,8 +100,8 @@ void ExpectFinite(const Image& image, const std::string& who) {
 // Every backend's run of one batch and config, for the case's own assertions.
 struct CaseRuns {
   FilterResult reference;
-  EmulatedRun emulated;            // fast mode
-  std::vector<VulkanRun> vulkan;   // one per staging policy, in kStagingPolicies' order
+  EmulatedRun emulated;           // fast mode
+  std::vector<VulkanRun> vulkan;  // one per staging policy, in kStagingPolicies' order
   std::vector<const HashedRun*> Hashed() const {
     std::vector<const HashedRun*> runs = {&emulated};
     for (const VulkanRun& v : vulkan) runs.push_back(&v);
@@ -154,8 +154,8 @@ CaseRuns RunCase(const std::string& name, const RecordBatch& batch, const Filter
   for (const StagingPolicy staging : kStagingPolicies) {
     VulkanBackendOptions vulkan;
     vulkan.staging = staging;
-    const CrosscheckReport report = Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, faithful,
-                                               Defect::kNone, vulkan);
+    const CrosscheckReport report =
+        Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, faithful, Defect::kNone, vulkan);
     for (const LevelVerdict& v : report.levels) {
       EXPECT_TRUE(v.applicable) << "level " << v.level << " was not applied: " << v.note;
       EXPECT_TRUE(v.passed) << "--vk-staging " << ToString(staging) << ", level " << v.level << " (" << v.name
@@ -306,8 +306,11 @@ TEST(HardCases, DenormalAndHugeCellSizes) {
     for (const StagingPolicy staging : kStagingPolicies) {
       expect_refused([&] { TestFilter(staging).Run(batch, config); }, "vulkan");
     }
-    expect_refused([&] { Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{}); },
-                   "crosscheck");
+    expect_refused(
+        [&] {
+          Crosscheck(batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{});
+        },
+        "crosscheck");
     std::printf("hard case | cell size %g | refused | ConfigError --cell-size\n", double(refused));
   }
 
@@ -415,8 +418,8 @@ TEST(HardCases, NonFiniteAndNegativeRecordsInOneBatch) {
   batch.records[inf].position.x = INFINITY;
   batch.records[negative].throughput.z = -0.5f;
   batch.records[negative_zero].contribution.x = -0.0f;
-  batch.records[last] = MakeRecordWithoutVertex(batch.records[last].path.x, batch.records[last].path.y,
-                                                glm::vec3(-INFINITY, 0.0f, 0.0f));
+  batch.records[last] =
+      MakeRecordWithoutVertex(batch.records[last].path.x, batch.records[last].path.y, glm::vec3(-INFINITY, 0.0f, 0.0f));
   Counts expected = Expected(clean, 0);
   ASSERT_EQ(expected.rejected, 0u);
   expected.keyed -= 3;
@@ -478,8 +481,8 @@ TEST(HardCases, LargeTotalsForceASmallF) {
     large.push_back(NthVertexRecord(batch, n));
     batch.records[large.back()].contribution = glm::vec4(0x1p58f, 0x1p58f, 0x1p58f, 0.0f);
   }
-  const CaseRuns runs = RunCase("cornell + 4 records of 2^58", batch, SmallTable(Accumulation::kFixed64),
-                                Expected(batch, 0));
+  const CaseRuns runs =
+      RunCase("cornell + 4 records of 2^58", batch, SmallTable(Accumulation::kFixed64), Expected(batch, 0));
   const int f = runs.reference.stats.fixed_point_bits;
   EXPECT_EQ(f, 2);
   EXPECT_LT(f, 8);
@@ -505,8 +508,10 @@ TEST(HardCases, LargeTotalsForceASmallF) {
     }
   }
   EXPECT_LE(worst, std::ldexp(0.5, -f));
-  std::printf("hard case | cornell + 4 records of 2^58 | fixed64 | F %d | worst error of an ordinary cell's average"
-              " %.4g\n", f, worst);
+  std::printf(
+      "hard case | cornell + 4 records of 2^58 | fixed64 | F %d | worst error of an ordinary cell's average"
+      " %.4g\n",
+      f, worst);
 }
 
 // One float32 cell of 128 records whose contributions alternate 1e30 and 1e-30 (red), the other way round
@@ -545,9 +550,9 @@ TEST(HardCases, Float32CellMixing1eMinus30And1e30) {
       ASSERT_LT(slot, run->table.capacity);
       EXPECT_EQ(run->table.counts[slot], batch.records.size());
       for (int c = 0; c < 3; ++c) {
-        const double sum = a == Accumulation::kFloat32 ? double(run->table.float_sums[slot][c])
-                                                       : FromFixedPoint(run->table.fixed_sums[slot][c],
-                                                                        run->table.fixed_point_bits);
+        const double sum = a == Accumulation::kFloat32
+                               ? double(run->table.float_sums[slot][c])
+                               : FromFixedPoint(run->table.fixed_sums[slot][c], run->table.fixed_point_bits);
         const double bound = a == Accumulation::kFloat32
                                  ? k * u / (1.0 - k * u) * magnitude[c]
                                  : double(batch.records.size()) * std::ldexp(0.5, -run->table.fixed_point_bits);

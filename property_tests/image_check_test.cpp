@@ -1,16 +1,17 @@
 // Level 3's image judgement (verifier/contract/image_check): every correct emulated run's image, fast or faithful,
 // fixed64 or float32, crowded or not, is the resolve of its own table; an image one float ulp off in fixed64,
 // or resolved with a wrong count or without a record in float32, is caught.
-#include <bit>
-#include <optional>
+#include "verifier/contract/image_check.h"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <bit>
+#include <optional>
+
 #include "core/resolve.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/traced_batch.h"
-#include "verifier/contract/image_check.h"
 
 namespace hpsf::testing {
 namespace {

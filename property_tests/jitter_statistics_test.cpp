@@ -10,7 +10,13 @@
 //   level   the level not recomputed after the jitter (D5).
 // And, from core, the jittered offset stays in the tangent plane to the bound its float rounding allows; D4's
 // projection d - |n| d leaves it.
+#include "verifier/theory/jitter_statistics.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/non_central_chi_squared.hpp>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -18,14 +24,9 @@
 #include <utility>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
-#include <boost/math/distributions/non_central_chi_squared.hpp>
-#include <gtest/gtest.h>
-
 #include "core/shared/jitter.h"
 #include "core/shared/rng.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "verifier/theory/jitter_statistics.h"
 
 namespace hpsf::testing {
 namespace {
@@ -139,8 +140,8 @@ std::vector<Alternative> Alternatives(const JitterExperiment& level) {
     for (std::size_t i = 0; i < keys.size(); ++i) {
       const Record& r = level.records[i];
       const float d = shared::PathLength(r.position.w, glm::vec3(r.position), glm::vec3(r.previous));
-      keys[i].level = shared::LevelOfDetail(level.params.footprint_scale, d, level.params.level_min,
-                                            level.params.level_max);
+      keys[i].level =
+          shared::LevelOfDetail(level.params.footprint_scale, d, level.params.level_min, level.params.level_max);
     }
     return keys;
   };
@@ -233,8 +234,8 @@ TEST(JitterStatistics, TheOffsetStaysInTheTangentPlaneToItsRoundingBound) {
       const double rounding = 3.01 * u * amplitude * products + u * std::abs(double(jittered[c])) + 4.0 * tiny;
       bound += std::abs(double(n[c])) * rounding;
     }
-    ASSERT_LE(std::abs(deviation), bound) << "record " << i << ": normal " << normal.x << " " << normal.y << " "
-                                          << normal.z;
+    ASSERT_LE(std::abs(deviation), bound)
+        << "record " << i << ": normal " << normal.x << " " << normal.y << " " << normal.z;
     worst = std::max(worst, std::abs(deviation) / bound);
     // D4: a random direction d projected as d - |n| d (componentwise) instead of d - n (n.d).
     const glm::vec3 d = ea * t + eb * b + (2.0f * random(i, 10) - 1.0f) * n;
@@ -243,8 +244,8 @@ TEST(JitterStatistics, TheOffsetStaysInTheTangentPlaneToItsRoundingBound) {
     for (int c = 0; c < 3; ++c) d4_deviation += (double(d4[c]) - double(x[c])) * double(n[c]);
     d4_outside += std::abs(d4_deviation) > bound;
   }
-  std::printf("largest deviation %.3g of its bound; D4's projection outside the bound for %llu of %u records\n",
-              worst, (unsigned long long)d4_outside, kRecords);
+  std::printf("largest deviation %.3g of its bound; D4's projection outside the bound for %llu of %u records\n", worst,
+              (unsigned long long)d4_outside, kRecords);
   EXPECT_GT(d4_outside, kRecords / 2);
 }
 

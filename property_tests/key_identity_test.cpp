@@ -1,16 +1,16 @@
 // Level 1 of the cross-check, on lavapipe here and on a real GPU where there is one: every output word of
 // keys.comp equals the C++ result of the same shared code, bit for bit, with no exceptions, whether the host
 // maps the device's buffers or moves data through staging buffers.
-#include <fstream>
-#include <string>
-
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <fstream>
+#include <string>
+
 #include "core/input_check.h"
 #include "core/key_batch.h"
-#include "verifier/generators/record_generators.h"
 #include "property_tests/vulkan_test_devices.h"
+#include "verifier/generators/record_generators.h"
 
 namespace hpsf::testing {
 namespace {
@@ -20,8 +20,9 @@ std::string WriteRepro(const KeyCase& key_case, std::uint32_t seed, const Record
                        const KeyResult& gpu) {
   const std::string path = "key_identity_failure_" + std::to_string(seed) + ".txt";
   std::ofstream out(path);
-  out << "generator seed: " << seed << "\n" << key_case.ToString() << "\n" << ToString(record) << "\ncpu: " << ToString(cpu)
-      << "\ngpu: " << ToString(gpu) << "\n";
+  out << "generator seed: " << seed << "\n"
+      << key_case.ToString() << "\n"
+      << ToString(record) << "\ncpu: " << ToString(cpu) << "\ngpu: " << ToString(gpu) << "\n";
   return path;
 }
 
@@ -39,10 +40,10 @@ void CheckBatchIsBitIdentical(const KeyCase& key_case, std::uint32_t seed, const
       int word = 0;
       while (c[word] == g[word]) ++word;
       const std::string repro = WriteRepro(key_case, seed, records[i], cpu[i], gpu[i]);
-      RC_FAIL("record " + std::to_string(i) + ": " + KeyResultWordName(word) + " differs (cpu " + std::to_string(c[word]) +
-              ", gpu " + std::to_string(g[word]) + ", --vk-staging " + ToString(staging) + "); generator seed " + std::to_string(seed) +
-              "; written to " + repro + "\n" + ToString(records[i]) + "\ncpu " + ToString(cpu[i]) + "\ngpu " + ToString(gpu[i]) + "\n" +
-              key_case.ToString());
+      RC_FAIL("record " + std::to_string(i) + ": " + KeyResultWordName(word) + " differs (cpu " +
+              std::to_string(c[word]) + ", gpu " + std::to_string(g[word]) + ", --vk-staging " + ToString(staging) +
+              "); generator seed " + std::to_string(seed) + "; written to " + repro + "\n" + ToString(records[i]) +
+              "\ncpu " + ToString(cpu[i]) + "\ngpu " + ToString(gpu[i]) + "\n" + key_case.ToString());
     }
   }
 }
@@ -88,7 +89,8 @@ TEST(KeyIdentity, OneMillionMixedRecordsAcrossTwentyConfigs) {
       const std::vector<KeyResult> gpu = TestKeyPass(staging).Run(records, params);
       std::size_t differing = 0;
       for (std::size_t i = 0; i < records.size(); ++i) differing += KeyResultWords(cpu[i]) != KeyResultWords(gpu[i]);
-      EXPECT_EQ(differing, 0u) << "generator seed " << seed << ", --vk-staging " << ToString(staging) << " " << key_case.ToString();
+      EXPECT_EQ(differing, 0u) << "generator seed " << seed << ", --vk-staging " << ToString(staging) << " "
+                               << key_case.ToString();
     }
   }
 }

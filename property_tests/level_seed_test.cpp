@@ -20,9 +20,9 @@
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_backend.h"
-#include "verifier/contract/contract_levels.h"
-#include "verifier/checker/table_checker.h"
 #include "tracer/scene_file.h"
+#include "verifier/checker/table_checker.h"
+#include "verifier/contract/contract_levels.h"
 
 namespace hpsf::testing {
 namespace {

@@ -4,17 +4,18 @@
 // (the naive estimate) must fail where cells are shared, which is the oracle of the cell term. Seeds are fixed, so
 // each ratio is one number that never changes between runs and the test cannot flake; each band is stated with
 // the spread a correct estimate's ratio has over seeds, and what a wrong estimate gives.
+#include "verifier/metrics/pixel_variance.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
-#include "verifier/metrics/pixel_variance.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
@@ -67,8 +68,8 @@ struct Agreement {
     std::snprintf(text, sizeof text,
                   "per pixel (%.3f, %.3f, %.3f), weighted (%.3f, %.3f, %.3f), image mean (%.3f, "
                   "%.3f, %.3f), per tile (%.3f, %.3f, %.3f)",
-                  pixel.x, pixel.y, pixel.z, weighted.x, weighted.y, weighted.z, mean.x, mean.y, mean.z, tile.x,
-                  tile.y, tile.z);
+                  pixel.x, pixel.y, pixel.z, weighted.x, weighted.y, weighted.z, mean.x, mean.y, mean.z, tile.x, tile.y,
+                  tile.z);
     return text;
   }
 };

@@ -23,9 +23,9 @@
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "verifier/contract/contract_levels.h"
-#include "verifier/checker/table_checker.h"
 #include "tracer/scene_file.h"
+#include "verifier/checker/table_checker.h"
+#include "verifier/contract/contract_levels.h"
 #include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {
@@ -174,7 +174,8 @@ TEST(PriorityEviction, ACellIsLookedForOnlyUpToTheFirstEmptySlotWhenFingerprints
     const HashedRun& run = RunOf(*hashed.backend);
     EXPECT_EQ(run.placements[0], key_a.slot0) << hashed.name << ": A did not claim its empty slot0";
     EXPECT_EQ(run.table.counts[key_a.slot0], 1u) << hashed.name;
-    EXPECT_EQ(run.table.counts[(key_a.slot0 + 2u) & (config.capacity - 1u)], 1u) << hashed.name << ": B's cell was joined";
+    EXPECT_EQ(run.table.counts[(key_a.slot0 + 2u) & (config.capacity - 1u)], 1u)
+        << hashed.name << ": B's cell was joined";
   }
 }
 

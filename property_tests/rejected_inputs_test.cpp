@@ -2,20 +2,20 @@
 // field, and a negative value in each field the checks call a radiance or a length. Each is rejected on the host
 // and counted, never placed in a table, its pixel stays finite, and the cross-check holds with all backends,
 // the Vulkan host mapping its buffers or staging them.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/input_check.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_filter.h"
-#include "verifier/contract/crosscheck.h"
 #include "verifier/checker/table_checker.h"
+#include "verifier/contract/crosscheck.h"
 
 namespace hpsf::testing {
 namespace {
@@ -30,9 +30,10 @@ struct Poison {
 
 std::vector<Poison> Poisons() {
   const std::pair<glm::vec4 Record::*, const char*> fields[] = {
-      {&Record::position, "position"},       {&Record::normal, "normal"},     {&Record::tangent, "tangent"},
-      {&Record::bitangent, "bitangent"},     {&Record::previous, "previous"}, {&Record::contribution, "contribution"},
-      {&Record::throughput, "throughput"},   {&Record::radiance_before, "radiance_before"}};
+      {&Record::position, "position"},     {&Record::normal, "normal"},
+      {&Record::tangent, "tangent"},       {&Record::bitangent, "bitangent"},
+      {&Record::previous, "previous"},     {&Record::contribution, "contribution"},
+      {&Record::throughput, "throughput"}, {&Record::radiance_before, "radiance_before"}};
   std::vector<Poison> poisons;
   for (const auto& [field, name] : fields) {
     for (int c = 0; c < 4; ++c) {
@@ -81,7 +82,8 @@ void ExpectFinite(const Image& image, const std::string& backend) {
 }
 
 void ExpectRejected(const PoisonedBatch& p, const HashedRun& run, const std::string& backend) {
-  for (std::size_t i : p.poisoned) EXPECT_EQ(run.placements[i], kNotPlaced) << backend << ": record " << i << " was placed";
+  for (std::size_t i : p.poisoned)
+    EXPECT_EQ(run.placements[i], kNotPlaced) << backend << ": record " << i << " was placed";
   EXPECT_TRUE(CheckTable({run.table, p.batch.records, run.keys, run.placements}).empty()) << backend;
   ExpectFinite(run.image, backend);
 }
@@ -106,12 +108,15 @@ TEST(RejectedInputs, EveryPoisonedFieldIsRejectedCountedAndKeptOutOfEveryTable) 
     ExpectRejected(p, EmulatedFilter(p.batch, config, EmulatorOptions{}), "emulated fast");
     ExpectRejected(p, EmulatedFilter(p.batch, config, faithful), "emulated faithful");
     for (const StagingPolicy staging : kStagingPolicies) {
-      ExpectRejected(p, TestFilter(staging).Run(p.batch, config), std::string("vulkan, --vk-staging ") + ToString(staging));
+      ExpectRejected(p, TestFilter(staging).Run(p.batch, config),
+                     std::string("vulkan, --vk-staging ") + ToString(staging));
       VulkanBackendOptions vulkan;
       vulkan.staging = staging;
-      const CrosscheckReport report = Crosscheck(p.batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{}, Defect::kNone, vulkan);
+      const CrosscheckReport report =
+          Crosscheck(p.batch, config, {"reference", "emulated", "vulkan"}, EmulatorOptions{}, Defect::kNone, vulkan);
       for (const LevelVerdict& v : report.levels) {
-        EXPECT_TRUE(!v.applicable || v.passed) << "level " << v.level << ": " << (v.failures.empty() ? v.note : v.failures.front());
+        EXPECT_TRUE(!v.applicable || v.passed)
+            << "level " << v.level << ": " << (v.failures.empty() ? v.note : v.failures.front());
       }
     }
   }

@@ -8,12 +8,12 @@
 // with probability at most 0.002 per row. What it catches: the per-pixel z-test (every pair the issue tried at 4
 // spp), and Welch's test without the variance floor against a precise image (43% of pairs at 4 against 256 spp).
 // 64x64, 4 and 16 spp, each against the same spp and against 256; docs/results.md's table has 200 pairs at 2 to 64 spp.
-#include <cstdio>
+#include "tools/calibration/statistical_calibration.h"
 
-#include <boost/math/distributions/binomial.hpp>
 #include <gtest/gtest.h>
 
-#include "tools/calibration/statistical_calibration.h"
+#include <boost/math/distributions/binomial.hpp>
+#include <cstdio>
 
 namespace hpsf {
 namespace {

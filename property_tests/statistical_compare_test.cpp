@@ -1,13 +1,14 @@
 // The statistical comparison of two renders (verifier/metrics/statistical_compare) on constructed images: its
 // arithmetic against scipy's Welch test (p-values, degrees of freedom, the Sidak levels), no noise, NaN and the
 // refusals. Renders: statistical_renders_test.cpp; the false-alarm rates: statistical_calibration_test.cpp.
-#include <cmath>
-#include <limits>
+#include "verifier/metrics/statistical_compare.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "core/error.h"
-#include "verifier/metrics/statistical_compare.h"
 
 namespace hpsf::testing {
 namespace {
@@ -57,7 +58,8 @@ TEST(StatisticalCompare, ConstructedImagesHaveScipysWelchTestAndSidakLevels) {
   EXPECT_NEAR(passes.mean[0].p, 0.0146688981683718, 1e-9);
   EXPECT_TRUE(passes.consistent) << passes.ToString();
   // Red of pixel 0 at 6: the tile's p 5.26e-4 is below its level.
-  const StatisticalComparison far = CompareStatistically(TwoPixels({6.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.2, 4), b);
+  const StatisticalComparison far =
+      CompareStatistically(TwoPixels({6.0f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 0.5f, 0.2, 4), b);
   EXPECT_NEAR(far.worst.p, 0.0005257981003041197, 1e-9);
   EXPECT_EQ(far.tiles_rejected, 1u);
   EXPECT_FALSE(far.consistent);
@@ -117,9 +119,12 @@ TEST(StatisticalCompare, BadInputIsRefusedNamingTheImage) {
     CompareStatistically(a, sparse);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("sparse.exr: " + std::to_string(kMinimumStatisticalSpp - 1) + " samples per pixel"),
-              std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("--spp " + std::to_string(kMinimumStatisticalSpp)), std::string::npos) << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("sparse.exr: " + std::to_string(kMinimumStatisticalSpp - 1) + " samples per pixel"),
+        std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("--spp " + std::to_string(kMinimumStatisticalSpp)), std::string::npos)
+        << e.what();
   }
   // The calibration measures below the minimum on purpose.
   EXPECT_NO_THROW(CompareStatistically(a, sparse, 0.01, 1));

@@ -2,17 +2,17 @@
 // consistent with noise, 1% more green is seen by the image-mean test, one pixel ten times brighter by its tile's
 // test. The renders use fixed seeds, so each verdict is one fixed outcome; the power stated for the 1% bias is
 // computed from the renders.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "reference/reference_filter.h"
-#include "verifier/metrics/pixel_variance.h"
-#include "verifier/metrics/statistical_compare.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
+#include "verifier/metrics/pixel_variance.h"
+#include "verifier/metrics/statistical_compare.h"
 
 namespace hpsf::testing {
 namespace {

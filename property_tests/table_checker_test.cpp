@@ -3,6 +3,11 @@
 // bit for bit. And it rejects hand-corrupted tables: for every invariant at least one plant breaks that
 // invariant and nothing else, and the checker must report exactly that invariant, so no check hides behind
 // another that the same corruption also trips.
+#include "verifier/checker/table_checker.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -13,16 +18,12 @@
 #include <set>
 #include <string>
 
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/constructed_cells.h"
-#include "verifier/generators/record_generators.h"
 #include "reference/reference_filter.h"
-#include "verifier/checker/table_checker.h"
+#include "verifier/generators/record_generators.h"
 
 namespace hpsf::testing {
 namespace {
@@ -66,7 +67,8 @@ RC_GTEST_PROP(TableChecker, AcceptsEveryTableOfTheCorrectKernels, ()) {
   EmulatorOptions options;
   options.mode = *rc::gen::element(simt::Mode::kFast, simt::Mode::kFaithful);
   options.warp_size = *rc::gen::element(8u, 32u, 64u);
-  options.schedule = *rc::gen::element(std::string("round-robin"), "random:" + std::to_string(seed), "pct:" + std::to_string(seed) + ":3");
+  options.schedule = *rc::gen::element(std::string("round-robin"), "random:" + std::to_string(seed),
+                                       "pct:" + std::to_string(seed) + ":3");
   RC_TAG(options.mode == simt::Mode::kFast ? "fast" : "faithful");
 
   const EmulatedRun run = EmulatedFilter(batch, config, options);

@@ -8,6 +8,8 @@
 // accumulate (D10) by the checker and the contract. In float32, where each cell takes one add a frame, every
 // backend blends to the reference's bits, and each of the checker's float32 blend bounds rejects a planted value.
 
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -17,8 +19,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/backend.h"
 #include "core/error.h"
@@ -35,7 +35,7 @@ namespace hpsf::testing {
 namespace {
 
 constexpr std::uint32_t kCells = 64;
-constexpr std::uint32_t kPerCell = 4;  // records per cell per frame: n
+constexpr std::uint32_t kPerCell = 4;     // records per cell per frame: n
 constexpr std::uint32_t kMoveFrame = 12;  // ema:0.9 blends at 0.9 from frame 10 on (its history then exceeds 36)
 constexpr std::uint32_t kLightFrames = 26;
 constexpr float kLit = 1.0f;
@@ -314,9 +314,11 @@ TEST(Temporal, Float32BlendsAreTheReferencesBitsWhereEachCellTakesOneAdd) {
           const std::uint32_t slot = run.placements[i];
           ASSERT_LT(slot, config.capacity);
           const TableCell& cell = cells.cells[cells.placement[i]];
-          EXPECT_EQ(run.table.counts[slot], cell.count) << hashed.name << ", " << mode << ", frame " << k << ", cell " << i;
+          EXPECT_EQ(run.table.counts[slot], cell.count)
+              << hashed.name << ", " << mode << ", frame " << k << ", cell " << i;
           for (int c = 0; c < 3; ++c) {
-            EXPECT_EQ(std::bit_cast<std::uint32_t>(run.table.float_sums[slot][c]), std::bit_cast<std::uint32_t>(cell.float_sum[c]))
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(run.table.float_sums[slot][c]),
+                      std::bit_cast<std::uint32_t>(cell.float_sum[c]))
                 << hashed.name << ", " << mode << ", frame " << k << ", cell " << i << ", channel " << c << ": "
                 << run.table.float_sums[slot][c] << " against the reference's " << cell.float_sum[c];
           }
@@ -349,8 +351,8 @@ TEST(Temporal, TheCheckersFloat32BlendBoundsRejectAPlantedValueJustOutside) {
     const std::uint32_t slot = run.placements[kRecord];
     auto blend_violations = [&](const HashTableDump& table) {
       int found = 0;
-      for (const TableViolation& v : CheckTable({table, second.records, run.keys, run.placements, &before, {}, 1,
-                                                 config.temporal})) {
+      for (const TableViolation& v :
+           CheckTable({table, second.records, run.keys, run.placements, &before, {}, 1, config.temporal})) {
         found += v.invariant == TableInvariant::kTemporalBlend && v.slot == slot;
       }
       return found;
@@ -375,7 +377,7 @@ TEST(Temporal, TheCheckersFloat32BlendBoundsRejectAPlantedValueJustOutside) {
     }
     HashTableDump recounted = run.table;
     recounted.counts[slot] = config.temporal.mode == TemporalMode::kEma ? run.table.counts[slot] + 1
-                                                                       : before.counts[slot] + 1 + 1;  // most + 1
+                                                                        : before.counts[slot] + 1 + 1;  // most + 1
     EXPECT_EQ(blend_violations(recounted), 1) << mode << ": a count past its bound";
   }
 }
@@ -391,8 +393,14 @@ TEST(Temporal, TheCheckerCatchesABackendThatIgnoresTheTemporalMode) {
     const RecordBatch batch = LightFrame(k);
     emulated.FilterFrame(batch, config);
     const EmulatedRun& run = emulated.run();
-    for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements,
-                                               before ? &*before : nullptr, {}, k, ParseTemporal("ema:0.75")})) {
+    for (const TableViolation& v : CheckTable({run.table,
+                                               batch.records,
+                                               run.keys,
+                                               run.placements,
+                                               before ? &*before : nullptr,
+                                               {},
+                                               k,
+                                               ParseTemporal("ema:0.75")})) {
       ++violations[v.invariant];
     }
     before = run.table;
@@ -421,8 +429,14 @@ TEST(Temporal, D10ABlendDuringTheAccumulateIsCaughtByTheCheckerAndTheContract) {
       const RecordBatch batch = LightFrame(k);
       images_differ += d10.FilterFrame(batch, config).pixels != reference.FilterFrame(batch, config).pixels;
       const EmulatedRun& run = d10.run();
-      for (const TableViolation& v : CheckTable({run.table, batch.records, run.keys, run.placements,
-                                                 before ? &*before : nullptr, {}, k, config.temporal})) {
+      for (const TableViolation& v : CheckTable({run.table,
+                                                 batch.records,
+                                                 run.keys,
+                                                 run.placements,
+                                                 before ? &*before : nullptr,
+                                                 {},
+                                                 k,
+                                                 config.temporal})) {
         blend_violations += v.invariant == TableInvariant::kTemporalBlend;
       }
       before = run.table;

@@ -3,6 +3,8 @@
 // (each frame's own random numbers) it is the sum of each frame's table alone. The table checker judges each
 // frame from the table before it, and catches a backend that forgets the table between frames.
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdint>
 #include <map>
@@ -10,8 +12,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/backend.h"
 #include "core/error.h"

@@ -3,24 +3,24 @@
 // level 2 (the table checker) and level 3 (fixed64 cells and image bit-identical to the reference where
 // nothing failed or aliased) hold; generated batches with tiny tables and 8-bit fingerprints pass the checker.
 // Also reports how close the emulator (warp size 8, round-robin) comes to lavapipe's float32 bits.
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include "core/hash_table.h"
 #include "emulated/emulated_filter.h"
-#include "verifier/generators/record_generators.h"
-#include "verifier/contract/crosscheck.h"
-#include "verifier/checker/table_checker.h"
-#include "tracer/path_tracer.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
-#include "verifier/contract/rerun_check.h"
+#include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
+#include "verifier/checker/table_checker.h"
+#include "verifier/contract/crosscheck.h"
+#include "verifier/contract/rerun_check.h"
+#include "verifier/generators/record_generators.h"
 
 namespace hpsf::testing {
 namespace {
@@ -30,18 +30,21 @@ void ExpectContract(const RecordBatch& batch, const FilterConfig& config, const 
   for (const StagingPolicy staging : kStagingPolicies) {
     VulkanBackendOptions vulkan;
     vulkan.staging = staging;
-    const CrosscheckReport report = Crosscheck(batch, config, {"reference", "vulkan"}, EmulatorOptions{}, Defect::kNone, vulkan);
+    const CrosscheckReport report =
+        Crosscheck(batch, config, {"reference", "vulkan"}, EmulatorOptions{}, Defect::kNone, vulkan);
     ASSERT_EQ(report.levels.size(), 4u);
     EXPECT_TRUE(report.levels[0].applicable) << what;
     for (const LevelVerdict& v : report.levels) {
-      EXPECT_TRUE(!v.applicable || v.passed) << what << ", --vk-staging " << ToString(staging) << ": level " << v.level << " "
-                                             << v.name << " failed: " << (v.failures.empty() ? v.note : v.failures.front());
+      EXPECT_TRUE(!v.applicable || v.passed)
+          << what << ", --vk-staging " << ToString(staging) << ": level " << v.level << " " << v.name
+          << " failed: " << (v.failures.empty() ? v.note : v.failures.front());
     }
   }
 }
 
 TEST(VulkanBackend, EveryBuiltInSceneHoldsTheContractInBothModes) {
-  for (const std::string scene : {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
+  for (const std::string scene :
+       {"cornell", "furnace", "cornell-far-1e5", "cornell-far-1e7", "cornell-tiny", "cornell-zero-red"}) {
     const RecordBatch batch = TracedBatch(scene, 32, 2);
     for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
       FilterConfig config;
@@ -113,11 +116,13 @@ TEST(VulkanBackend, StagedAndMappedRunsGiveTheSameBits) {
     EXPECT_GT(staged.timings.upload_bytes, batch.records.size() * sizeof(Record));
     EXPECT_EQ(staged.timings.upload_bytes, mapped.timings.upload_bytes);
     EXPECT_EQ(staged.timings.read_back_bytes, mapped.timings.read_back_bytes);
-    EXPECT_EQ(mapped.timings.upload_copy_ms + mapped.timings.read_back_copy_ms, 0.0) << "a mapped run copies nothing on the device";
+    EXPECT_EQ(mapped.timings.upload_copy_ms + mapped.timings.read_back_copy_ms, 0.0)
+        << "a mapped run copies nothing on the device";
     const bool ordered = mapped_device.info().driver_name == "llvmpipe";
     const RerunPromise promise =
         RerunPromiseFor(ordered, accumulation, mapped.probe_failures + staged.probe_failures > 0);
-    for (const std::string& difference : CompareReruns(mapped, staged, promise)) ADD_FAILURE() << "staged against mapped: " << difference;
+    for (const std::string& difference : CompareReruns(mapped, staged, promise))
+      ADD_FAILURE() << "staged against mapped: " << difference;
     if (ordered) {
       EXPECT_EQ(mapped.keys.size(), staged.keys.size());
       for (std::size_t i = 0; i < mapped.keys.size(); ++i) {
@@ -142,7 +147,8 @@ struct Float32Agreement {
   std::int64_t worst_ulps = 0;
 };
 
-Float32Agreement CompareFloat32WithEmulator(const RecordBatch& batch, const FilterConfig& config, std::string& device_name) {
+Float32Agreement CompareFloat32WithEmulator(const RecordBatch& batch, const FilterConfig& config,
+                                            std::string& device_name) {
   VulkanDevice device;
   device_name = device.info().driver_name;
   VulkanFilter filter(device);
@@ -186,10 +192,12 @@ TEST(VulkanBackend, Float32BitsBesideTheEmulatorsSequentialOrder) {
     if (*threads) setenv("LP_NUM_THREADS", threads, 1);  // read when lavapipe creates its device
     std::string driver;
     const Float32Agreement a = CompareFloat32WithEmulator(batch, config, driver);
-    std::printf("%s%s float32 vs emulator (warp 8, round-robin): %llu of %llu multi-add slot sums bit-identical, worst %lld ulps; "
-                "%llu slots held other records\n",
-                driver.c_str(), *threads ? " with LP_NUM_THREADS=1" : "", (unsigned long long)a.equal, (unsigned long long)a.compared,
-                (long long)a.worst_ulps, (unsigned long long)a.unmatched);
+    std::printf(
+        "%s%s float32 vs emulator (warp 8, round-robin): %llu of %llu multi-add slot sums bit-identical, worst %lld "
+        "ulps; "
+        "%llu slots held other records\n",
+        driver.c_str(), *threads ? " with LP_NUM_THREADS=1" : "", (unsigned long long)a.equal,
+        (unsigned long long)a.compared, (long long)a.worst_ulps, (unsigned long long)a.unmatched);
     EXPECT_GT(a.compared, 0u);
     // One lavapipe thread applies the atomics in the emulator's order: the emulator reproduces its bits.
     if (*threads && driver == "llvmpipe") {

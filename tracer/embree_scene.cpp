@@ -25,7 +25,9 @@ RTCRay MakeRay(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far)
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
   device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  if (!device_)
+    throw std::runtime_error("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) +
+                             ")");
   scene_ = rtcNewScene(device_);
   // Robust traversal avoids missed hits on shared edges; high-quality builds are deterministic in Embree.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);

@@ -1,12 +1,12 @@
 #include "tracer/obj_mesh.h"
 
+#include <tiny_obj_loader.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <tiny_obj_loader.h>
 
 #include "core/error.h"
 
@@ -54,7 +54,8 @@ void CheckLines(const std::string& path, const std::vector<std::string>& lines) 
       char* end = nullptr;
       const double value = std::strtod(token.c_str(), &end);
       if (token.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) >= 3e38) {
-        throw InputError(place + ": vertex coordinate " + std::to_string(axis + 1) + " is not a finite number: '" + token + "'");
+        throw InputError(place + ": vertex coordinate " + std::to_string(axis + 1) + " is not a finite number: '" +
+                         token + "'");
       }
     }
   }
@@ -86,7 +87,8 @@ std::vector<ObjTriangle> LoadObjTriangles(const std::string& path) {
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   // No material library: hpsf takes only the triangles from a mesh (materials come from the scene file).
-  if (!reader.ParseFromString(TextWithoutSkinWeights(lines), "", config)) throw InputError(path + ": " + reader.Error());
+  if (!reader.ParseFromString(TextWithoutSkinWeights(lines), "", config))
+    throw InputError(path + ": " + reader.Error());
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   std::vector<ObjTriangle> triangles;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {

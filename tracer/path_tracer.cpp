@@ -1,8 +1,11 @@
 #include "tracer/path_tracer.h"
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <memory>
 #include <mutex>
 #include <numbers>
@@ -10,9 +13,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <glm/geometric.hpp>
-#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "core/parallel_for.h"
@@ -40,7 +40,8 @@ class EmitterSampler {
     for (std::uint32_t i = 0; i < scene.triangles.size(); ++i) {
       if (!scene.materials[scene.triangles[i].material].IsEmissive()) continue;
       const Triangle& t = scene.triangles[i];
-      const double area = 0.5 * glm::length(glm::cross(glm::dvec3(t.p1) - glm::dvec3(t.p0), glm::dvec3(t.p2) - glm::dvec3(t.p0)));
+      const double area =
+          0.5 * glm::length(glm::cross(glm::dvec3(t.p1) - glm::dvec3(t.p0), glm::dvec3(t.p2) - glm::dvec3(t.p0)));
       if (!(area > 0.0)) continue;
       total_area_ += area;
       triangles_.push_back(i);
@@ -93,8 +94,12 @@ namespace {
 class Tracer {
  public:
   Tracer(const PreparedScene::Built& built, const TraceOptions& options)
-      : scene_(built.scene), options_(options), embree_(built.embree), emitters_(built.emitters),
-        normals_(built.normals), extent_(built.extent) {
+      : scene_(built.scene),
+        options_(options),
+        embree_(built.embree),
+        emitters_(built.emitters),
+        normals_(built.normals),
+        extent_(built.extent) {
     const Camera& c = scene_.camera;
     forward_ = glm::normalize(c.look_at - c.position);
     right_ = glm::normalize(glm::cross(forward_, c.up));
@@ -201,8 +206,8 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   ++stats.camera_rays;
 
   // Before the filter vertex, `weight` is the camera-to-vertex throughput including albedos and `gathered` is
-  // radiance_before (emission found at the filter vertex included); after it, `weight` restarts at 1 without the filter vertex's albedo and `gathered` sums
-  // the contribution. Nothing is ever divided by an albedo.
+  // radiance_before (emission found at the filter vertex included); after it, `weight` restarts at 1 without the filter
+  // vertex's albedo and `gathered` sums the contribution. Nothing is ever divided by an albedo.
   glm::dvec3 weight(1.0), gathered(0.0);
   glm::dvec3 radiance_before(0.0), record_throughput(0.0);
   VertexSample vertex;
@@ -265,8 +270,8 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     const double r = std::sqrt(double(random(kBounceU)));
     const double phi = 2.0 * std::numbers::pi * random(kBounceV);
     const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
-    direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) + glm::dvec3(frame.bitangent) * (r * std::sin(phi)) +
-                               p.normal * z);
+    direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) +
+                               glm::dvec3(frame.bitangent) * (r * std::sin(phi)) + p.normal * z);
     origin = Offset(p);
     ++stats.bounce_rays;
   }
@@ -284,7 +289,8 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
 
 void TraceOptions::Validate() const {
   if (width == 0 || height == 0 || width > 16384 || height > 16384) {
-    throw ConfigError("--size", "width and height must lie in [1, 16384]; got " + std::to_string(width) + "x" + std::to_string(height));
+    throw ConfigError("--size", "width and height must lie in [1, 16384]; got " + std::to_string(width) + "x" +
+                                    std::to_string(height));
   }
   if (samples_per_pixel == 0 || samples_per_pixel > 65536) {
     throw ConfigError("--spp", "must lie in [1, 65536]; got " + std::to_string(samples_per_pixel));
@@ -292,7 +298,8 @@ void TraceOptions::Validate() const {
   if (std::uint64_t(width) * height * samples_per_pixel > (1ull << 31)) {
     throw ConfigError("--spp", "width x height x spp must stay below 2^31 records");
   }
-  if (max_depth < -1 || max_depth > 1024) throw ConfigError("--max-depth", "must be -1 (unbounded) or lie in [0, 1024]");
+  if (max_depth < -1 || max_depth > 1024)
+    throw ConfigError("--max-depth", "must be -1 (unbounded) or lie in [0, 1024]");
   if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
 }
 
@@ -334,26 +341,29 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
   std::atomic<std::uint32_t> tiles_done{0};
   std::mutex stats_mutex;
   // One tile per task; the tiles' order does not change a record (each is a function of its pixel and sample).
-  ParallelFor(std::size_t(tiles_x) * tiles_y, 1, [&](std::size_t begin, std::size_t end) {
-    TraceStats local;
-    for (std::size_t tile = begin; tile < end; ++tile) {
-      const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
-      for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
-        for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
-          const std::uint32_t pixel = y * options.width + x;
-          for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
-            batch.records[std::size_t(pixel) * options.samples_per_pixel + s] = tracer.TraceSample(pixel, s, local);
+  ParallelFor(
+      std::size_t(tiles_x) * tiles_y, 1,
+      [&](std::size_t begin, std::size_t end) {
+        TraceStats local;
+        for (std::size_t tile = begin; tile < end; ++tile) {
+          const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
+          for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
+            for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
+              const std::uint32_t pixel = y * options.width + x;
+              for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
+                batch.records[std::size_t(pixel) * options.samples_per_pixel + s] = tracer.TraceSample(pixel, s, local);
+              }
+            }
           }
+          ++tiles_done;
         }
-      }
-      ++tiles_done;
-    }
-    std::lock_guard lock(stats_mutex);
-    result.stats.camera_rays += local.camera_rays;
-    result.stats.bounce_rays += local.bounce_rays;
-    result.stats.shadow_rays += local.shadow_rays;
-    if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
-  }, threads);
+        std::lock_guard lock(stats_mutex);
+        result.stats.camera_rays += local.camera_rays;
+        result.stats.bounce_rays += local.bounce_rays;
+        result.stats.shadow_rays += local.shadow_rays;
+        if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
+      },
+      threads);
   return result;
 }
 

@@ -29,7 +29,7 @@ struct TraceOptions {
   // Russian roulette.
   int max_depth = 8;
   std::uint32_t filter_bounce = 0;  // which diffuse vertex becomes the filter vertex; 0 is the primary hit
-  int threads = 0;                // 0: all cores
+  int threads = 0;                  // 0: all cores
 
   void Validate() const;  // ConfigError naming the option
 };

@@ -1,11 +1,11 @@
 // The tracer's random streams: every (seed, frame) is a stream of its own. A tracer that folded the frame into the
 // seed would make frame f of seed s repeat frame 0 of seed s + f, and every backend, sharing the records, would
 // agree with it: only a statement about the streams themselves catches it.
+#include <gtest/gtest.h>
+
 #include <cstring>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/shared/rng.h"
 #include "tracer/path_tracer.h"
@@ -20,7 +20,8 @@ TEST(RandomStreams, EverySeedAndFrameIsAStreamOfItsOwn) {
   for (std::uint32_t seed = 0; seed < 16; ++seed) {
     for (std::uint32_t frame = 0; frame < 16; ++frame) {
       std::vector<std::uint32_t> words;
-      for (std::uint32_t pixel = 0; pixel < 64; ++pixel) words.push_back(shared::RandomBits({seed, frame, pixel, 0u, 0u}, 0u));
+      for (std::uint32_t pixel = 0; pixel < 64; ++pixel)
+        words.push_back(shared::RandomBits({seed, frame, pixel, 0u, 0u}, 0u));
       streams.push_back(std::move(words));
     }
   }

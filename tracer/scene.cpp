@@ -8,7 +8,9 @@
 namespace hpsf {
 namespace {
 
-glm::vec3 Apply(glm::vec3 p, double scale, glm::dvec3 translate) { return glm::vec3(glm::dvec3(p) * scale + translate); }
+glm::vec3 Apply(glm::vec3 p, double scale, glm::dvec3 translate) {
+  return glm::vec3(glm::dvec3(p) * scale + translate);
+}
 
 }  // namespace
 
@@ -40,7 +42,8 @@ Scene Scene::AtFrame(std::uint32_t frame) const {
     }
   }
   for (const ShapeAnimation& a : animation.shapes) {
-    const auto shape = std::find_if(shapes.begin(), shapes.end(), [&](const NamedShape& n) { return n.name == a.shape; });
+    const auto shape =
+        std::find_if(shapes.begin(), shapes.end(), [&](const NamedShape& n) { return n.name == a.shape; });
     if (shape == shapes.end()) throw InputError(name + ": keyframes for a shape not in the scene, '" + a.shape + "'");
     const ShapeKey k = ShapeAt(a.keys, frame);
     const auto begin = s.triangles.begin() + shape->first_triangle;

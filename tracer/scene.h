@@ -7,10 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "tracer/animation.h"
 

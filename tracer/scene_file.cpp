@@ -5,9 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/error.h"
 #include "tracer/builtin_scene_data.h"
@@ -19,11 +18,14 @@ namespace {
 using nlohmann::json;
 
 // Below float's largest value (3.4e38) with a margin, so a point converts to a finite float.
-bool WithinFloatRange(const glm::dvec3& p) { return std::abs(p.x) < 3e38 && std::abs(p.y) < 3e38 && std::abs(p.z) < 3e38; }
+bool WithinFloatRange(const glm::dvec3& p) {
+  return std::abs(p.x) < 3e38 && std::abs(p.y) < 3e38 && std::abs(p.z) < 3e38;
+}
 
 class SceneParser {
  public:
-  SceneParser(std::string source, std::string directory) : source_(std::move(source)), directory_(std::move(directory)) {}
+  SceneParser(std::string source, std::string directory)
+      : source_(std::move(source)), directory_(std::move(directory)) {}
 
   Scene Parse(const std::string& text) {
     json root;
@@ -46,11 +48,13 @@ class SceneParser {
     if (root.contains("sky")) scene.sky = Color(root["sky"], "/sky", 0.0f, INFINITY);
     const json& materials = Member(root, "", "materials");
     Expect(materials.is_array() && !materials.empty(), "/materials", "a non-empty array");
-    for (std::size_t i = 0; i < materials.size(); ++i) scene.materials.push_back(ParseMaterial(materials[i], "/materials/" + std::to_string(i)));
+    for (std::size_t i = 0; i < materials.size(); ++i)
+      scene.materials.push_back(ParseMaterial(materials[i], "/materials/" + std::to_string(i)));
     std::map<std::string, std::uint32_t> by_name;
     for (std::uint32_t i = 0; i < scene.materials.size(); ++i) {
       const std::string& name = scene.materials[i].name;
-      if (!by_name.emplace(name, i).second) Fail("/materials/" + std::to_string(i) + "/name", "duplicate material '" + name + "'");
+      if (!by_name.emplace(name, i).second)
+        Fail("/materials/" + std::to_string(i) + "/name", "duplicate material '" + name + "'");
     }
     const json& shapes = Member(root, "", "shapes");
     Expect(shapes.is_array() && !shapes.empty(), "/shapes", "a non-empty array");
@@ -100,7 +104,8 @@ class SceneParser {
     const glm::dvec3 c = Point(value, pointer);
     for (int i = 0; i < 3; ++i) {
       if (!(c[i] >= low && c[i] <= high)) {
-        Fail(pointer + "/" + std::to_string(i), "must lie in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+        Fail(pointer + "/" + std::to_string(i),
+             "must lie in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
       }
     }
     return glm::vec3(c);
@@ -120,13 +125,15 @@ class SceneParser {
   // A keyframe's frame: an integer in [0, 2^31).
   std::uint32_t Frame(const json& key, const std::string& pointer) const {
     const double f = Number(Member(key, pointer, "frame"), pointer + "/frame");
-    Expect(f >= 0.0 && f < 2147483648.0 && f == std::floor(f), pointer + "/frame", "a frame number, an integer in [0, 2^31)");
+    Expect(f >= 0.0 && f < 2147483648.0 && f == std::floor(f), pointer + "/frame",
+           "a frame number, an integer in [0, 2^31)");
     return std::uint32_t(f);
   }
   template <typename Key>
   void ExpectIncreasing(const std::vector<Key>& keys, const std::string& pointer) const {
     for (std::size_t i = 1; i < keys.size(); ++i) {
-      if (keys[i].frame <= keys[i - 1].frame) Fail(pointer + "/" + std::to_string(i) + "/frame", "frames must increase from key to key");
+      if (keys[i].frame <= keys[i - 1].frame)
+        Fail(pointer + "/" + std::to_string(i) + "/frame", "frames must increase from key to key");
     }
   }
   const json& Keys(const json& value, const std::string& pointer) const {
@@ -139,7 +146,8 @@ class SceneParser {
   Animation ParseAnimation(const json& j, const Scene& scene) const {
     Expect(j.is_object(), "/animation", "an object");
     for (const auto& [key, value] : j.items()) {
-      if (key != "camera" && key != "shapes") Fail("/animation/" + key, "not a member of an animation (camera, shapes)");
+      if (key != "camera" && key != "shapes")
+        Fail("/animation/" + key, "not a member of an animation (camera, shapes)");
     }
     Animation animation;
     if (j.contains("camera")) {
@@ -168,8 +176,8 @@ class SceneParser {
         for (const ShapeAnimation& other : animation.shapes) {
           if (other.shape == shape->name) Fail(pointer + "/shape", "'" + shape->name + "' is animated twice");
         }
-        const bool emits = shape->triangle_count > 0 &&
-                           scene.materials[scene.triangles[shape->first_triangle].material].IsEmissive();
+        const bool emits =
+            shape->triangle_count > 0 && scene.materials[scene.triangles[shape->first_triangle].material].IsEmissive();
         ShapeAnimation a{shape->name, {}};
         const json& keys = Keys(Member(shapes[s], pointer, "keys"), pointer + "/keys");
         for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -217,9 +225,12 @@ class SceneParser {
     const json& material = Member(j, pointer, "material");
     Expect(material.is_string(), pointer + "/material", "a material name");
     auto found = materials.find(material.get<std::string>());
-    if (found == materials.end()) Fail(pointer + "/material", "no material named '" + material.get<std::string>() + "'");
+    if (found == materials.end())
+      Fail(pointer + "/material", "no material named '" + material.get<std::string>() + "'");
     const std::uint32_t id = found->second;
-    auto add = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { scene.triangles.push_back({glm::vec3(a), glm::vec3(b), glm::vec3(c), id}); };
+    auto add = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+      scene.triangles.push_back({glm::vec3(a), glm::vec3(b), glm::vec3(c), id});
+    };
 
     if (j.contains("quad")) {
       const json& q = j["quad"];
@@ -243,12 +254,14 @@ class SceneParser {
       std::filesystem::path path = j["mesh"].get<std::string>();
       if (path.is_relative()) path = std::filesystem::path(directory_) / path;
       const double scale = j.contains("scale") ? Number(j["scale"], pointer + "/scale") : 1.0;
-      const glm::dvec3 translate = j.contains("translate") ? Point(j["translate"], pointer + "/translate") : glm::dvec3(0.0);
+      const glm::dvec3 translate =
+          j.contains("translate") ? Point(j["translate"], pointer + "/translate") : glm::dvec3(0.0);
       for (const ObjTriangle& t : LoadObjTriangles(path.string())) {
         glm::dvec3 p[3];
         for (int i = 0; i < 3; ++i) {
           p[i] = t.p[i] * scale + translate;
-          Expect(WithinFloatRange(p[i]), pointer + "/scale", "a scale and translation that keep the mesh within float range");
+          Expect(WithinFloatRange(p[i]), pointer + "/scale",
+                 "a scale and translation that keep the mesh within float range");
         }
         add(p[0], p[1], p[2]);
       }

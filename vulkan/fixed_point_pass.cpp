@@ -9,7 +9,8 @@
 
 namespace hpsf {
 
-std::vector<std::uint64_t> ToFixedPointOnDevice(VulkanDevice& device, std::span<const float> values, int fraction_bits) {
+std::vector<std::uint64_t> ToFixedPointOnDevice(VulkanDevice& device, std::span<const float> values,
+                                                int fraction_bits) {
   struct Push {
     float scale;
     std::uint32_t count;
@@ -17,7 +18,8 @@ std::vector<std::uint64_t> ToFixedPointOnDevice(VulkanDevice& device, std::span<
   using vulkan_internal::BindingKind;
   constexpr BindingKind kBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
   VulkanDevice::Impl& d = device.impl();
-  vulkan_internal::ComputeProgram program = vulkan_internal::CreateComputeProgram(d, fixed_point_spv, kBindings, sizeof(Push));
+  vulkan_internal::ComputeProgram program =
+      vulkan_internal::CreateComputeProgram(d, fixed_point_spv, kBindings, sizeof(Push));
   vulkan_internal::DeviceBuffer input = vulkan_internal::CreateDeviceBuffer(d, values.size_bytes());
   vulkan_internal::DeviceBuffer output = vulkan_internal::CreateDeviceBuffer(d, values.size() * sizeof(std::uint64_t));
   std::vector<vulkan_internal::StagingBuffer> staging;

@@ -12,7 +12,7 @@ using vulkan_internal::DeviceBuffer;
 
 namespace {
 
-constexpr std::uint32_t kRecordsPerWorkgroup = 128 * 16;  // keys.comp's local_size_x * kRecordsPerInvocation
+constexpr std::uint32_t kRecordsPerWorkgroup = 128 * 16;            // keys.comp's local_size_x * kRecordsPerInvocation
 constexpr vk::DeviceSize kPackedKeyBytes = 2 * sizeof(glm::uvec4);  // core/shared/packed_key.h
 
 }  // namespace
@@ -27,11 +27,15 @@ struct KeyPass::Impl {
 };
 
 constexpr vulkan_internal::BindingKind kKeyBindings[] = {vulkan_internal::BindingKind::kUniformTexelBuffer,
-                                                        vulkan_internal::BindingKind::kStorageBuffer};
+                                                         vulkan_internal::BindingKind::kStorageBuffer};
 
 KeyPass::KeyPass(VulkanDevice& device)
     : impl_(new Impl{device.impl(),
-                     vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, kKeyBindings, sizeof(KeyParams)), {}, {}, {}, 0}) {}
+                     vulkan_internal::CreateComputeProgram(device.impl(), keys_spv, kKeyBindings, sizeof(KeyParams)),
+                     {},
+                     {},
+                     {},
+                     0}) {}
 
 KeyPass::~KeyPass() = default;
 
@@ -39,7 +43,8 @@ void KeyPass::Upload(std::span<const Record> records) {
   Impl& p = *impl_;
   if (records.size() > UINT32_MAX) throw std::length_error("KeyPass: more than 2^32 - 1 records");
   const vk::DeviceSize record_bytes = records.size_bytes(), key_bytes = records.size() * kPackedKeyBytes;
-  if (p.records.size < record_bytes || !*p.records.buffer) p.records = vulkan_internal::CreateDeviceBuffer(p.device, record_bytes);
+  if (p.records.size < record_bytes || !*p.records.buffer)
+    p.records = vulkan_internal::CreateDeviceBuffer(p.device, record_bytes);
   if (p.keys.size < key_bytes || !*p.keys.buffer) p.keys = vulkan_internal::CreateDeviceBuffer(p.device, key_bytes);
   vulkan_internal::Transfer upload(p.device, p.staging);
   if (!records.empty()) std::memcpy(upload.Upload(p.records, record_bytes), records.data(), record_bytes);

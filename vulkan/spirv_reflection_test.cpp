@@ -31,9 +31,11 @@ TEST(SpirvReflection, TheAccumulateShadersDeclareTheirMode) {
 }
 
 TEST(SpirvReflection, OtherBindingsAndBytesAreRefused) {
-  EXPECT_EQ(Refusal(eviction_spv), "x.spv: binding 3 (sums) holds uint; the stable buffer interface takes uint64_t "
-                                   "(fixed64) or float (float32)");
-  EXPECT_EQ(Refusal(keys_spv), "x.spv: declares no storage buffer at binding 3 (the sums of the stable buffer interface)");
+  EXPECT_EQ(Refusal(eviction_spv),
+            "x.spv: binding 3 (sums) holds uint; the stable buffer interface takes uint64_t "
+            "(fixed64) or float (float32)");
+  EXPECT_EQ(Refusal(keys_spv),
+            "x.spv: declares no storage buffer at binding 3 (the sums of the stable buffer interface)");
   const std::uint32_t not_spirv[] = {0x07230203u, 1u, 2u};
   EXPECT_EQ(Refusal(not_spirv).rfind("x.spv: the SPIR-V does not reflect: ", 0), 0u) << Refusal(not_spirv);
 }

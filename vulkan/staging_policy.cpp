@@ -16,9 +16,12 @@ StagingPolicy ParseStagingPolicy(const std::string& text) {
 
 const char* ToString(StagingPolicy policy) {
   switch (policy) {
-    case StagingPolicy::kAuto: return "auto";
-    case StagingPolicy::kAlways: return "always";
-    case StagingPolicy::kNever: return "never";
+    case StagingPolicy::kAuto:
+      return "auto";
+    case StagingPolicy::kAlways:
+      return "always";
+    case StagingPolicy::kNever:
+      return "never";
   }
   return "?";
 }

@@ -31,21 +31,31 @@ bool HasExtension(const vk::raii::PhysicalDevice& physical, const char* name) {
 
 int TypeRank(vk::PhysicalDeviceType type) {  // a real GPU first, lavapipe (a CPU device) last
   switch (type) {
-    case vk::PhysicalDeviceType::eDiscreteGpu: return 0;
-    case vk::PhysicalDeviceType::eIntegratedGpu: return 1;
-    case vk::PhysicalDeviceType::eVirtualGpu: return 2;
-    case vk::PhysicalDeviceType::eOther: return 3;
-    default: return 4;
+    case vk::PhysicalDeviceType::eDiscreteGpu:
+      return 0;
+    case vk::PhysicalDeviceType::eIntegratedGpu:
+      return 1;
+    case vk::PhysicalDeviceType::eVirtualGpu:
+      return 2;
+    case vk::PhysicalDeviceType::eOther:
+      return 3;
+    default:
+      return 4;
   }
 }
 
 std::string TypeName(vk::PhysicalDeviceType type) {
   switch (type) {
-    case vk::PhysicalDeviceType::eDiscreteGpu: return "discrete";
-    case vk::PhysicalDeviceType::eIntegratedGpu: return "integrated";
-    case vk::PhysicalDeviceType::eVirtualGpu: return "virtual";
-    case vk::PhysicalDeviceType::eCpu: return "cpu";
-    default: return "other";
+    case vk::PhysicalDeviceType::eDiscreteGpu:
+      return "discrete";
+    case vk::PhysicalDeviceType::eIntegratedGpu:
+      return "integrated";
+    case vk::PhysicalDeviceType::eVirtualGpu:
+      return "virtual";
+    case vk::PhysicalDeviceType::eCpu:
+      return "cpu";
+    default:
+      return "other";
   }
 }
 
@@ -77,7 +87,8 @@ VulkanDeviceInfo Describe(const vk::raii::PhysicalDevice& physical) {
   f.buffer_int64_atomics = features.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics;
   if (HasExtension(physical, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) {
     auto atomics = physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT>();
-    f.buffer_float32_atomic_add = atomics.get<vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT>().shaderBufferFloat32AtomicAdd;
+    f.buffer_float32_atomic_add =
+        atomics.get<vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT>().shaderBufferFloat32AtomicAdd;
   }
   return info;
 }
@@ -107,22 +118,32 @@ std::optional<std::uint32_t> PickMemoryType(const vk::PhysicalDeviceMemoryProper
   return std::nullopt;
 }
 
-std::optional<std::uint32_t> KernelMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t allowed, bool staged) {
-  if (staged) return PickMemoryType(memory, allowed, {{MemoryFlags::eDeviceLocal, MemoryFlags::eHostVisible}, {MemoryFlags::eDeviceLocal, {}}});
+std::optional<std::uint32_t> KernelMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t allowed,
+                                              bool staged) {
+  if (staged)
+    return PickMemoryType(memory, allowed,
+                          {{MemoryFlags::eDeviceLocal, MemoryFlags::eHostVisible}, {MemoryFlags::eDeviceLocal, {}}});
   const vk::MemoryPropertyFlags mapped = MemoryFlags::eHostVisible | MemoryFlags::eHostCoherent;
   return PickMemoryType(memory, allowed,
-                        {{mapped | MemoryFlags::eDeviceLocal | MemoryFlags::eHostCached, {}}, {mapped | MemoryFlags::eDeviceLocal, {}}, {mapped, {}}});
+                        {{mapped | MemoryFlags::eDeviceLocal | MemoryFlags::eHostCached, {}},
+                         {mapped | MemoryFlags::eDeviceLocal, {}},
+                         {mapped, {}}});
 }
 
-std::optional<std::uint32_t> StagingMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t allowed) {
+std::optional<std::uint32_t> StagingMemoryType(const vk::PhysicalDeviceMemoryProperties& memory,
+                                               std::uint32_t allowed) {
   const vk::MemoryPropertyFlags mapped = MemoryFlags::eHostVisible | MemoryFlags::eHostCoherent;
   return PickMemoryType(memory, allowed,
-                        {{mapped | MemoryFlags::eHostCached, MemoryFlags::eDeviceLocal}, {mapped | MemoryFlags::eHostCached, {}}, {mapped, {}}});
+                        {{mapped | MemoryFlags::eHostCached, MemoryFlags::eDeviceLocal},
+                         {mapped | MemoryFlags::eHostCached, {}},
+                         {mapped, {}}});
 }
 
 // A memory type that kernels reach at full speed and the host reads through its caches: no staging needed.
 bool HasUnifiedMemory(const vk::PhysicalDeviceMemoryProperties& memory) {
-  return PickMemoryType(memory, ~0u, {{MemoryFlags::eDeviceLocal | MemoryFlags::eHostVisible | MemoryFlags::eHostCached, {}}}).has_value();
+  return PickMemoryType(memory, ~0u,
+                        {{MemoryFlags::eDeviceLocal | MemoryFlags::eHostVisible | MemoryFlags::eHostCached, {}}})
+      .has_value();
 }
 
 std::string DescribeMemoryType(const vk::PhysicalDeviceMemoryProperties& memory, std::uint32_t type) {
@@ -135,8 +156,7 @@ std::string DescribeMemoryType(const vk::PhysicalDeviceMemoryProperties& memory,
 
 std::string VulkanDeviceInfo::ToString() const {
   return "[ VulkanDevice name: '" + name + "' type: " + type + " driver: '" + driver_name + "' '" + driver_info +
-         "' api: " + api_version + " subgroup_size: " + std::to_string(subgroup_size) +
-         " memory: " + memory + " ]";
+         "' api: " + api_version + " subgroup_size: " + std::to_string(subgroup_size) + " memory: " + memory + " ]";
 }
 
 VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging) {
@@ -162,10 +182,12 @@ VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging
       if (name_filter.empty() || Lower(name).find(Lower(name_filter)) != std::string::npos) order.push_back(i);
     }
     if (physicals.empty()) {
-      throw VulkanUnavailable("no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or check VK_ICD_FILENAMES)");
+      throw VulkanUnavailable(
+          "no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or check VK_ICD_FILENAMES)");
     }
     if (order.empty()) {
-      throw VulkanUnavailable("--vk-device '" + name_filter + "' matches no Vulkan device; available: " + Join(seen, ", "));
+      throw VulkanUnavailable("--vk-device '" + name_filter +
+                              "' matches no Vulkan device; available: " + Join(seen, ", "));
     }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
       return TypeRank(physicals[a].getProperties().deviceType) < TypeRank(physicals[b].getProperties().deviceType);
@@ -184,8 +206,9 @@ VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging
     if (!*d.physical) throw VulkanUnavailable(Join(rejections, "; "));
 
     const auto families = d.physical.getQueueFamilyProperties();
-    auto compute = std::find_if(families.begin(), families.end(),
-                                [](const vk::QueueFamilyProperties& q) { return bool(q.queueFlags & vk::QueueFlagBits::eCompute); });
+    auto compute = std::find_if(families.begin(), families.end(), [](const vk::QueueFamilyProperties& q) {
+      return bool(q.queueFlags & vk::QueueFlagBits::eCompute);
+    });
     if (compute == families.end()) throw VulkanUnavailable("Vulkan device '" + d.info.name + "' has no compute queue");
     d.queue_family = static_cast<std::uint32_t>(compute - families.begin());
     if (compute->timestampValidBits == 0) {
@@ -212,17 +235,19 @@ VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging
 
     const vk::PhysicalDeviceMemoryProperties memory = d.physical.getMemoryProperties();
     d.info.staged = staging == StagingPolicy::kAlways || (staging == StagingPolicy::kAuto && !HasUnifiedMemory(memory));
-    const std::optional<std::uint32_t> kernel = KernelMemoryType(memory, ~0u, d.info.staged), host = StagingMemoryType(memory, ~0u);
+    const std::optional<std::uint32_t> kernel = KernelMemoryType(memory, ~0u, d.info.staged),
+                                       host = StagingMemoryType(memory, ~0u);
     if (!kernel || (d.info.staged && !host)) {
       throw VulkanUnavailable("Vulkan device '" + d.info.name + "' has no memory type for " +
-                              (!kernel ? "the kernels' buffers" : "staging (host-visible, coherent)") + " with --vk-staging " +
-                              ToString(staging));
+                              (!kernel ? "the kernels' buffers" : "staging (host-visible, coherent)") +
+                              " with --vk-staging " + ToString(staging));
     }
     d.kernel_memory_type = *kernel;
     d.staging_memory_type = host.value_or(*kernel);
-    d.info.memory = d.info.staged ? "staged: kernels in " + DescribeMemoryType(memory, d.kernel_memory_type) + ", staging in " +
-                                        DescribeMemoryType(memory, d.staging_memory_type)
-                                  : "mapped: kernels and host share " + DescribeMemoryType(memory, d.kernel_memory_type);
+    d.info.memory = d.info.staged
+                        ? "staged: kernels in " + DescribeMemoryType(memory, d.kernel_memory_type) + ", staging in " +
+                              DescribeMemoryType(memory, d.staging_memory_type)
+                        : "mapped: kernels and host share " + DescribeMemoryType(memory, d.kernel_memory_type);
   } catch (const VulkanUnavailable&) {
     throw;
   } catch (const std::exception& e) {
@@ -238,7 +263,8 @@ namespace vulkan_internal {
 namespace {
 
 vk::DescriptorType DescriptorType(BindingKind kind) {
-  return kind == BindingKind::kStorageBuffer ? vk::DescriptorType::eStorageBuffer : vk::DescriptorType::eUniformTexelBuffer;
+  return kind == BindingKind::kStorageBuffer ? vk::DescriptorType::eStorageBuffer
+                                             : vk::DescriptorType::eUniformTexelBuffer;
 }
 
 }  // namespace
@@ -256,9 +282,12 @@ void Allocate(VulkanDevice::Impl& d, Buffer& b, vk::BufferUsageFlags usage, bool
     type = preferred;
   } else {
     const vk::PhysicalDeviceMemoryProperties memory = d.physical.getMemoryProperties();
-    type = staging ? StagingMemoryType(memory, requirements.memoryTypeBits) : KernelMemoryType(memory, requirements.memoryTypeBits, d.info.staged);
+    type = staging ? StagingMemoryType(memory, requirements.memoryTypeBits)
+                   : KernelMemoryType(memory, requirements.memoryTypeBits, d.info.staged);
   }
-  if (!type) throw VulkanUnavailable("Vulkan device '" + d.info.name + "' offers no suitable memory type for a buffer of " + std::to_string(b.size) + " bytes");
+  if (!type)
+    throw VulkanUnavailable("Vulkan device '" + d.info.name + "' offers no suitable memory type for a buffer of " +
+                            std::to_string(b.size) + " bytes");
   b.memory = vk::raii::DeviceMemory(d.device, vk::MemoryAllocateInfo(requirements.size, *type));
   b.buffer.bindMemory(*b.memory, 0);
 }
@@ -269,12 +298,13 @@ DeviceBuffer CreateDeviceBuffer(VulkanDevice::Impl& d, vk::DeviceSize size) {
   DeviceBuffer b;
   b.size = std::max<vk::DeviceSize>(size, 16);
   Allocate(d, b,
-           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eTransferSrc |
-               vk::BufferUsageFlagBits::eTransferDst,
+           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer |
+               vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
            false);
   if (!d.info.staged) b.mapped = b.memory.mapMemory(0, b.size);
   if (b.size % 16 == 0 && b.size / 16 <= d.physical.getProperties().limits.maxTexelBufferElements) {
-    b.texels = vk::raii::BufferView(d.device, vk::BufferViewCreateInfo({}, *b.buffer, vk::Format::eR32G32B32A32Uint, 0, b.size));
+    b.texels = vk::raii::BufferView(d.device,
+                                    vk::BufferViewCreateInfo({}, *b.buffer, vk::Format::eR32G32B32A32Uint, 0, b.size));
   }
   return b;
 }
@@ -353,15 +383,16 @@ void BindBuffers(VulkanDevice::Impl& d, ComputeProgram& program, std::span<Devic
     vk::WriteDescriptorSet write(*program.set, i, 0, 1, type);
     if (program.bindings[i] == BindingKind::kStorageBuffer) {
       if (b.size > storage_range) {
-        throw std::length_error("a storage buffer of " + std::to_string(b.size) + " bytes exceeds maxStorageBufferRange (" +
-                                std::to_string(storage_range) + ") of '" + d.info.name + "'");
+        throw std::length_error("a storage buffer of " + std::to_string(b.size) +
+                                " bytes exceeds maxStorageBufferRange (" + std::to_string(storage_range) + ") of '" +
+                                d.info.name + "'");
       }
       infos[i] = vk::DescriptorBufferInfo(*b.buffer, 0, b.size);
       write.setBufferInfo(infos[i]);
     } else {
       if (!*b.texels) {
-        throw std::length_error("a texel buffer of " + std::to_string(b.size) + " bytes exceeds maxTexelBufferElements of '" +
-                                d.info.name + "'");
+        throw std::length_error("a texel buffer of " + std::to_string(b.size) +
+                                " bytes exceeds maxTexelBufferElements of '" + d.info.name + "'");
       }
       views[i] = *b.texels;
       write.setTexelBufferView(views[i]);
@@ -377,18 +408,22 @@ std::uint32_t WorkgroupsFor(std::uint32_t items, std::uint32_t per_workgroup) {
 }
 
 double SubmitAndWait(VulkanDevice::Impl& d, const std::function<void(vk::raii::CommandBuffer&)>& record) {
-  vk::raii::CommandBuffers buffers(d.device, vk::CommandBufferAllocateInfo(*d.command_pool, vk::CommandBufferLevel::ePrimary, 1));
+  vk::raii::CommandBuffers buffers(d.device,
+                                   vk::CommandBufferAllocateInfo(*d.command_pool, vk::CommandBufferLevel::ePrimary, 1));
   vk::raii::CommandBuffer& cb = buffers.front();
   cb.begin(vk::CommandBufferBeginInfo(vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
   cb.resetQueryPool(*d.timestamps, 0, 2);
   // Submission order alone does not make one submission's writes visible to the next, nor to the host.
-  const vk::MemoryBarrier earlier(vk::AccessFlagBits::eMemoryWrite, vk::AccessFlagBits::eMemoryRead | vk::AccessFlagBits::eMemoryWrite);
-  cb.pipelineBarrier(vk::PipelineStageFlagBits::eAllCommands, vk::PipelineStageFlagBits::eAllCommands, {}, earlier, nullptr, nullptr);
+  const vk::MemoryBarrier earlier(vk::AccessFlagBits::eMemoryWrite,
+                                  vk::AccessFlagBits::eMemoryRead | vk::AccessFlagBits::eMemoryWrite);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eAllCommands, vk::PipelineStageFlagBits::eAllCommands, {}, earlier,
+                     nullptr, nullptr);
   cb.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *d.timestamps, 0);
   record(cb);
   cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *d.timestamps, 1);
   const vk::MemoryBarrier to_host(vk::AccessFlagBits::eMemoryWrite, vk::AccessFlagBits::eHostRead);
-  cb.pipelineBarrier(vk::PipelineStageFlagBits::eAllCommands, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr, nullptr);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eAllCommands, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr,
+                     nullptr);
   cb.end();
   vk::raii::Fence fence(d.device, vk::FenceCreateInfo());
   const vk::CommandBuffer handle = *cb;
@@ -396,8 +431,9 @@ double SubmitAndWait(VulkanDevice::Impl& d, const std::function<void(vk::raii::C
   if (d.device.waitForFences(*fence, true, UINT64_MAX) != vk::Result::eSuccess) {
     throw std::runtime_error("Vulkan fence wait failed on '" + d.info.name + "'");
   }
-  auto [result, ticks] = d.timestamps.getResults<std::uint64_t>(0, 2, 2 * sizeof(std::uint64_t), sizeof(std::uint64_t),
-                                                                  vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+  auto [result, ticks] =
+      d.timestamps.getResults<std::uint64_t>(0, 2, 2 * sizeof(std::uint64_t), sizeof(std::uint64_t),
+                                             vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
   if (result != vk::Result::eSuccess) return 0.0;
   return double(ticks[1] - ticks[0]) * d.timestamp_period_ns * 1e-6;
 }

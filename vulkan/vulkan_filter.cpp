@@ -1,5 +1,7 @@
 #include "vulkan/vulkan_filter.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <chrono>
@@ -7,8 +9,6 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
-
-#include <tbb/parallel_for.h>
 
 #include "accumulate_fixed64_spv.h"
 #include "accumulate_float32_spv.h"
@@ -18,16 +18,16 @@
 #include "core/huge_pages.h"
 #include "core/input_check.h"
 #include "core/read_back_check.h"
-#include "vulkan/spirv_reflection.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/table_params.h"
 #include "core/temporal.h"
 #include "eviction_spv.h"
+#include "level_seed_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
-#include "level_seed_spv.h"
 #include "temporal_spv.h"
+#include "vulkan/spirv_reflection.h"
 #include "vulkan/vulkan_internal.h"
 
 namespace hpsf {
@@ -104,19 +104,18 @@ constexpr BindingKind kAccumulateBindings[] = {
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
-constexpr BindingKind kEvictionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
-constexpr BindingKind kLevelSeedBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                              BindingKind::kStorageBuffer};
+constexpr BindingKind kEvictionBindings[] = {
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kLevelSeedBindings[] = {
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
-constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer,
+                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
+                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
 
 struct CopyOut {
   void* to;
@@ -128,7 +127,8 @@ void ParallelCopy(const CopyOut& copy) {
   constexpr std::size_t kChunk = std::size_t(1) << 22;
   tbb::parallel_for(std::size_t(0), (copy.bytes + kChunk - 1) / kChunk, [&](std::size_t chunk) {
     const std::size_t begin = chunk * kChunk;
-    std::memcpy(static_cast<char*>(copy.to) + begin, static_cast<const char*>(copy.from) + begin, std::min(kChunk, copy.bytes - begin));
+    std::memcpy(static_cast<char*>(copy.to) + begin, static_cast<const char*>(copy.from) + begin,
+                std::min(kChunk, copy.bytes - begin));
   });
 }
 
@@ -138,7 +138,8 @@ std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
   if (!in) throw InputError(path + ": cannot open the SPIR-V file");
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (bytes.empty() || bytes.size() % 4 != 0) {
-    throw InputError(path + ": " + std::to_string(bytes.size()) + " bytes is not a whole number of 32-bit SPIR-V words");
+    throw InputError(path + ": " + std::to_string(bytes.size()) +
+                     " bytes is not a whole number of 32-bit SPIR-V words");
   }
   std::vector<std::uint32_t> words(bytes.size() / 4);
   std::memcpy(words.data(), bytes.data(), bytes.size());
@@ -165,8 +166,8 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> temporal;
   std::optional<ComputeProgram> level_seed;
   DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted, victims;
-  DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp and level_seed.comp
-  DeviceBuffer previous_tags, seeded, seeded_count;  // level_seed.comp's
+  DeviceBuffer previous_sums, previous_counts;          // the double buffer of temporal.comp and level_seed.comp
+  DeviceBuffer previous_tags, seeded, seeded_count;     // level_seed.comp's
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
   struct TableShape {
     std::uint32_t capacity;
@@ -179,7 +180,9 @@ struct VulkanFilter::Impl {
     const int m = mode == Accumulation::kFixed64 ? 0 : 1;
     if (!accumulate[m]) {
       std::span<const std::uint32_t> spirv = custom_accumulate;
-      if (spirv.empty()) spirv = m == 0 ? std::span<const std::uint32_t>(accumulate_fixed64_spv) : std::span<const std::uint32_t>(accumulate_float32_spv);
+      if (spirv.empty())
+        spirv = m == 0 ? std::span<const std::uint32_t>(accumulate_fixed64_spv)
+                       : std::span<const std::uint32_t>(accumulate_float32_spv);
       accumulate[m] = vulkan_internal::CreateComputeProgram(device, spirv, kAccumulateBindings, sizeof(AccumulatePush));
     }
     return *accumulate[m];
@@ -187,8 +190,8 @@ struct VulkanFilter::Impl {
   ComputeProgram& Resolve(Accumulation mode) {
     const int m = mode == Accumulation::kFixed64 ? 0 : 1;
     if (!resolve[m]) {
-      const std::span<const std::uint32_t> spirv =
-          m == 0 ? std::span<const std::uint32_t>(resolve_fixed64_spv) : std::span<const std::uint32_t>(resolve_float32_spv);
+      const std::span<const std::uint32_t> spirv = m == 0 ? std::span<const std::uint32_t>(resolve_fixed64_spv)
+                                                          : std::span<const std::uint32_t>(resolve_float32_spv);
       resolve[m] = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
     return *resolve[m];
@@ -278,8 +281,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   p.Ensure(p.last_seen, vk::DeviceSize(slots) * 4);
   vulkan_internal::Transfer upload(p.device, p.staging);
   std::memcpy(upload.Upload(p.tags, slots * 4), table.tags.data(), slots * 4);
-  const void* sums = fixed ? static_cast<const void*>(table.fixed_sums.data())
-                           : static_cast<const void*>(table.float_sums.data());
+  const void* sums =
+      fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data());
   std::memcpy(upload.Upload(p.sums, sum_bytes), sums, sum_bytes);
   std::memcpy(upload.Upload(p.counts, slots * 8), table.counts.data(), slots * 8);
   void* last_seen = upload.Upload(p.last_seen, slots * 4);
@@ -313,13 +316,15 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   const vk::DeviceSize storage_range = p.device.physical.getProperties().limits.maxStorageBufferRange;
   if (vk::DeviceSize(config.capacity) * 3 * 8 > storage_range) {
-    throw ConfigError("--capacity", std::to_string(config.capacity) + " slots need " + std::to_string(std::uint64_t(config.capacity) * 24) +
-                                        " bytes of sums, more than the " + std::to_string(storage_range) + " bytes '" + p.device.info.name +
-                                        "' can bind");
+    throw ConfigError("--capacity", std::to_string(config.capacity) + " slots need " +
+                                        std::to_string(std::uint64_t(config.capacity) * 24) +
+                                        " bytes of sums, more than the " + std::to_string(storage_range) + " bytes '" +
+                                        p.device.info.name + "' can bind");
   }
   if (vk::DeviceSize(n) * sizeof(KeyResult) > storage_range) {
-    throw InputError("record batch: " + std::to_string(n) + " records need " + std::to_string(std::uint64_t(n) * sizeof(KeyResult)) +
-                     " bytes of keys, more than the " + std::to_string(storage_range) + " bytes '" + p.device.info.name + "' can bind");
+    throw InputError("record batch: " + std::to_string(n) + " records need " +
+                     std::to_string(std::uint64_t(n) * sizeof(KeyResult)) + " bytes of keys, more than the " +
+                     std::to_string(storage_range) + " bytes '" + p.device.info.name + "' can bind");
   }
 
   VulkanRun run;
@@ -355,14 +360,15 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
   std::vector<glm::vec3> entering;  // for F: the contributions of the records that enter the table, else zero
   ResizeOnHugePages(entering, n);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
-    std::memcpy(records + range.begin(), batch.records.data() + range.begin(), range.size() * sizeof(Record));
-    for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
-      const Record& r = batch.records[i];
-      accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
-      entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
+        std::memcpy(records + range.begin(), batch.records.data() + range.begin(), range.size() * sizeof(Record));
+        for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
+          const Record& r = batch.records[i];
+          accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
+          entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
+        }
+      });
   run.timings.upload_ms = MillisecondsSince(start);
   run.timings.upload_copy_ms = upload.Submit();
   run.timings.upload_bytes = upload.bytes();
@@ -388,8 +394,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
-  DeviceBuffer* const accumulate_buffers[] = {&p.records,   &p.keys,      &p.tags,          &p.sums,
-                                              &p.counts,    &p.placements, &p.stats,        &p.accepted,
+  DeviceBuffer* const accumulate_buffers[] = {&p.records,   &p.keys,          &p.tags,           &p.sums,
+                                              &p.counts,    &p.placements,    &p.stats,          &p.accepted,
                                               &p.last_seen, &p.previous_sums, &p.previous_counts};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
   AccumulatePush push{
@@ -422,8 +428,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
       if (tracking) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
     }
-    const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
-    cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared, nullptr, nullptr);
+    const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite,
+                                    vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared,
+                       nullptr, nullptr);
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *accumulate.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *accumulate.layout, 0, *accumulate.set, nullptr);
     cb.pushConstants<AccumulatePush>(*accumulate.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
@@ -434,9 +442,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // the previous table (copied before the accumulate).
   if (seeding) {
     ComputeProgram& level_seed = p.LevelSeedProgram();
-    DeviceBuffer* const seed_buffers[] = {&p.keys,          &p.placements,    &p.sums,
-                                          &p.counts,        &p.previous_tags, &p.previous_sums,
-                                          &p.previous_counts, &p.seeded,      &p.seeded_count};
+    DeviceBuffer* const seed_buffers[] = {
+        &p.keys,          &p.placements,      &p.sums,   &p.counts,      &p.previous_tags,
+        &p.previous_sums, &p.previous_counts, &p.seeded, &p.seeded_count};
     vulkan_internal::BindBuffers(p.device, level_seed, seed_buffers);
     const LevelSeedPush seed_push{config.capacity,
                                   config.probe_limit,
@@ -485,8 +493,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     DeviceBuffer* const eviction_buffers[] = {&p.tags,    &p.sums, &p.counts,     &p.last_seen,
                                               &p.evicted, &p.keys, &p.placements, &p.victims};
     vulkan_internal::BindBuffers(p.device, eviction, eviction_buffers);
-    EvictionPush eviction_push{config.capacity, config.probe_limit,  config.frame,        config.eviction.unseen_frames,
-                               fixed ? 6u : 3u, 0,                   n,                   by_priority ? 1u : 0u};
+    EvictionPush eviction_push{
+        config.capacity,      config.probe_limit, config.frame, config.eviction.unseen_frames, fixed ? 6u : 3u, 0, n,
+        by_priority ? 1u : 0u};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -496,8 +505,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                          nullptr, nullptr);
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *eviction.pipeline);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *eviction.layout, 0, *eviction.set, nullptr);
-      const std::vector<std::uint32_t> passes = by_priority ? std::vector<std::uint32_t>{2u, 0u, 1u}
-                                                            : std::vector<std::uint32_t>{0u, 1u};
+      const std::vector<std::uint32_t> passes =
+          by_priority ? std::vector<std::uint32_t>{2u, 0u, 1u} : std::vector<std::uint32_t>{0u, 1u};
       for (std::uint32_t pass : passes) {
         eviction_push.pass = pass;
         cb.pushConstants<EvictionPush>(*eviction.layout, vk::ShaderStageFlagBits::eCompute, 0, eviction_push);
@@ -516,7 +525,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   DeviceBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   const std::uint32_t pixel_count = batch.width * batch.height;
-  const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits), config.capacity, pixel_count, batch.samples_per_pixel, 0};
+  const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits), config.capacity, pixel_count,
+                                 batch.samples_per_pixel, 0};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
@@ -552,15 +562,16 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   } else {
     ResizeOnHugePages(table.float_sums, config.capacity);
   }
-  const auto copies = {CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
-                       CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
-                       CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
-                       CopyOut{table.tags.data(), from_tags, std::size_t(config.capacity) * 4},
-                       CopyOut{table.counts.data(), from_counts, std::size_t(config.capacity) * 8},
-                       CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()), from_sums,
-                               sum_bytes},
-                       CopyOut{&run.wraps, from_stats, 8},
-                       CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
+  const auto copies = {
+      CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
+      CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
+      CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
+      CopyOut{table.tags.data(), from_tags, std::size_t(config.capacity) * 4},
+      CopyOut{table.counts.data(), from_counts, std::size_t(config.capacity) * 8},
+      CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()),
+              from_sums, sum_bytes},
+      CopyOut{&run.wraps, from_stats, 8},
+      CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
   if (evicting) std::memcpy(&run.evicted, from_evicted, 8);

@@ -8,7 +8,6 @@
 #include <functional>
 #include <span>
 #include <vector>
-
 #include <vulkan/vulkan_raii.hpp>
 
 #include "vulkan/vulkan_device.h"
@@ -25,7 +24,7 @@ struct VulkanDevice::Impl {
   vk::raii::CommandPool command_pool{nullptr};
   vk::raii::QueryPool timestamps{nullptr};  // two queries: before and after the recorded work
   double timestamp_period_ns = 1.0;
-  std::uint32_t kernel_memory_type = 0;   // see StagingPolicy
+  std::uint32_t kernel_memory_type = 0;  // see StagingPolicy
   std::uint32_t staging_memory_type = 0;
   VulkanDeviceInfo info;
 };

@@ -1,6 +1,6 @@
 // fixed64 accumulation: each non-negative channel becomes an unsigned 64-bit integer with F fraction bits,
-// rounded half to even (truncation would bias every cell downwards, docs/design/defects.md, D11). The host picks F per batch
-// so no channel's total can reach 2^63 (core/fixed_point_scale.h).
+// rounded half to even (truncation would bias every cell downwards, docs/design/defects.md, D11). The host picks F per
+// batch so no channel's total can reach 2^63 (core/fixed_point_scale.h).
 #ifndef HPSF_CORE_SHARED_FIXED_POINT_H
 #define HPSF_CORE_SHARED_FIXED_POINT_H
 

@@ -22,9 +22,7 @@ HPSF_FN bool IsNegative(float x) { return floatBitsToUint(x) > kSignBit; }
 // Vulkan leaves denormal handling to the device unless it supports DenormPreserve (lavapipe does not). Every
 // key-path result passes through Flush, which turns a denormal into the zero of its sign, so the result is the
 // same whether or not the device flushed it already.
-HPSF_FN float Flush(float x) {
-  return (floatBitsToUint(x) & kExponentMask) == 0u ? HPSF_SIGNED_ZERO(x) : x;
-}
+HPSF_FN float Flush(float x) { return (floatBitsToUint(x) & kExponentMask) == 0u ? HPSF_SIGNED_ZERO(x) : x; }
 HPSF_FN vec3 Flush(vec3 v) { return vec3(Flush(v.x), Flush(v.y), Flush(v.z)); }
 
 // The unbiased exponent l with 2^l <= |x| < 2^(l+1); zero and denormals report kExponentBias below the minimum

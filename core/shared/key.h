@@ -15,16 +15,16 @@
 HPSF_SHARED_BEGIN
 
 const uint kKeyed = 0u;
-const uint kKeyNoVertex = 1u;    // sky hit or path ended: the record carries radiance_before only
-const uint kKeyUnkeyable = 2u;   // |q| >= 2^31 in some axis: falls back to its own contribution
+const uint kKeyNoVertex = 1u;   // sky hit or path ended: the record carries radiance_before only
+const uint kKeyUnkeyable = 2u;  // |q| >= 2^31 in some axis: falls back to its own contribution
 
 // 48 bytes, so a shader writes it as three 16-byte vectors (lavapipe stores per lane and per store).
 struct KeyResult {
   KeyWords words;
   uint slot0;
   uint fingerprint;
-  int level;    // l' after jitter (the fixed level of the cell size with level of detail off)
-  uint status;  // kKeyed, kKeyNoVertex or kKeyUnkeyable
+  int level;      // l' after jitter (the fixed level of the cell size with level of detail off)
+  uint status;    // kKeyed, kKeyNoVertex or kKeyUnkeyable
   uint padding0;  // always 0
   uint padding1;  // always 0
 };

@@ -18,12 +18,12 @@ struct KeyParams {
   float inverse_cell_size;  // level of detail off: 1 / cell_size, correctly rounded on the host
   int level_min;            // clamp of the level, inside [-126, 126]
   int level_max;
-  uint lod_enabled;         // 1: cell size 2^l from the footprint; 0: cell_size
-  uint normal_mode;         // kNormalNone, kNormalSign or kNormalOctahedral
-  uint normal_bits;         // octahedral: bits per axis, 1..16
-  uint normal_in_index;     // 1: the normal bucket enters the index hash; 0: only the fingerprint
-  uint capacity_mask;       // capacity - 1, capacity a power of two
-  uint fingerprint_bits;    // 8..32
+  uint lod_enabled;       // 1: cell size 2^l from the footprint; 0: cell_size
+  uint normal_mode;       // kNormalNone, kNormalSign or kNormalOctahedral
+  uint normal_bits;       // octahedral: bits per axis, 1..16
+  uint normal_in_index;   // 1: the normal bucket enters the index hash; 0: only the fingerprint
+  uint capacity_mask;     // capacity - 1, capacity a power of two
+  uint fingerprint_bits;  // 8..32
   uint seed;
   uint frame;
   uint record_count;

@@ -22,8 +22,8 @@ struct KeyWords {
 
 // Both hashes absorb the six words with xxHash32's round, from different seeds, as two independent chains a
 // CPU or GPU overlaps (the cell words last, since they are known last); the index hash then ends in a PCG
-// permutation, the fingerprint in xxHash32's avalanche. With normal_in_index 0 the bucket only enters the fingerprint, so records with different normals share a
-// window and probing searches similar normals (Binder et al. §3.2.2).
+// permutation, the fingerprint in xxHash32's avalanche. With normal_in_index 0 the bucket only enters the fingerprint,
+// so records with different normals share a window and probing searches similar normals (Binder et al. §3.2.2).
 HPSF_FN uint AbsorbKeyWords(uint seed, KeyWords k, uint normal) {
   uint h = XxBegin(seed, 6u);
   h = XxAdd(h, normal);

@@ -9,8 +9,7 @@
 HPSF_SHARED_BEGIN
 
 HPSF_FN uint SignOctant(vec3 n) {
-  return (floatBitsToUint(n.x) >> 31u) | ((floatBitsToUint(n.y) >> 31u) << 1u) |
-         ((floatBitsToUint(n.z) >> 31u) << 2u);
+  return (floatBitsToUint(n.x) >> 31u) | ((floatBitsToUint(n.y) >> 31u) << 1u) | ((floatBitsToUint(n.z) >> 31u) << 2u);
 }
 
 // The top `bits` bits of each 16-bit octahedral coordinate.

@@ -16,12 +16,11 @@
 #else  // C++
 #include <cmath>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #define HPSF_FN inline __attribute__((always_inline))  // inlining the whole key path doubles its speed at -O2
 #define HPSF_PRECISE
-#define HPSF_SHARED_BEGIN \
+#define HPSF_SHARED_BEGIN  \
   namespace hpsf::shared { \
   using namespace glm;
 #define HPSF_SHARED_END }

@@ -12,7 +12,7 @@ const uint kAccumulateFixed64 = 0u;
 const uint kAccumulateFloat32 = 1u;
 
 // Placement of a record that holds no slot (core/hash_table.h names them for the host).
-const uint kPlacementNotPlaced = 0xFFFFFFFFu;    // no vertex, unkeyable or rejected: never probed
+const uint kPlacementNotPlaced = 0xFFFFFFFFu;     // no vertex, unkeyable or rejected: never probed
 const uint kPlacementProbeFailure = 0xFFFFFFFEu;  // probed its whole window without finding a slot
 
 struct TableParams {

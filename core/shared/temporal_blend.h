@@ -28,8 +28,8 @@ struct TemporalParams {
 };
 
 struct TemporalBlend {
-  dvec3 sum;       // the cell's new sums, to be rounded to the table's type (unless integrated)
-  uint64_t count;  // the cell's new count
+  dvec3 sum;        // the cell's new sums, to be rounded to the table's type (unless integrated)
+  uint64_t count;   // the cell's new count
   bool integrated;  // alpha is the integration's: the cell keeps its exact sums, S_old + S_new
 };
 

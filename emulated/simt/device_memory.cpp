@@ -15,30 +15,48 @@ void DeviceMemory::ApplyTo(Word& word, MemoryOp& op) {
   const Word old = word;
   op.result = old;
   switch (op.kind) {
-    case OpKind::kLoad: break;
-    case OpKind::kStore: word = static_cast<Word>(op.value); break;
-    case OpKind::kAtomicAdd: word = static_cast<Word>(old + static_cast<Word>(op.value)); break;
-    case OpKind::kAtomicAddFloat: word = AddFloatBits(old, op.value); break;
-    case OpKind::kAtomicCas: if (old == static_cast<Word>(op.compare)) word = static_cast<Word>(op.value); break;
-    case OpKind::kAtomicMin: if (static_cast<Word>(op.value) < old) word = static_cast<Word>(op.value); break;
+    case OpKind::kLoad:
+      break;
+    case OpKind::kStore:
+      word = static_cast<Word>(op.value);
+      break;
+    case OpKind::kAtomicAdd:
+      word = static_cast<Word>(old + static_cast<Word>(op.value));
+      break;
+    case OpKind::kAtomicAddFloat:
+      word = AddFloatBits(old, op.value);
+      break;
+    case OpKind::kAtomicCas:
+      if (old == static_cast<Word>(op.compare)) word = static_cast<Word>(op.value);
+      break;
+    case OpKind::kAtomicMin:
+      if (static_cast<Word>(op.value) < old) word = static_cast<Word>(op.value);
+      break;
   }
 }
 
 const char* ToString(OpKind kind) {
   switch (kind) {
-    case OpKind::kLoad: return "load";
-    case OpKind::kStore: return "store";
-    case OpKind::kAtomicAdd: return "atomic_add";
-    case OpKind::kAtomicAddFloat: return "atomic_add_float";
-    case OpKind::kAtomicCas: return "atomic_cas";
-    case OpKind::kAtomicMin: return "atomic_min";
+    case OpKind::kLoad:
+      return "load";
+    case OpKind::kStore:
+      return "store";
+    case OpKind::kAtomicAdd:
+      return "atomic_add";
+    case OpKind::kAtomicAddFloat:
+      return "atomic_add_float";
+    case OpKind::kAtomicCas:
+      return "atomic_cas";
+    case OpKind::kAtomicMin:
+      return "atomic_min";
   }
   return "?";
 }
 
 std::string MemoryOp::ToString() const {
-  return std::string(simt::ToString(kind)) + " [" + std::to_string(address.buffer) + "][" + std::to_string(address.index) +
-         "] value " + std::to_string(value) + " compare " + std::to_string(compare) + " -> " + std::to_string(result);
+  return std::string(simt::ToString(kind)) + " [" + std::to_string(address.buffer) + "][" +
+         std::to_string(address.index) + "] value " + std::to_string(value) + " compare " + std::to_string(compare) +
+         " -> " + std::to_string(result);
 }
 
 std::uint32_t DeviceMemory::Allocate32(std::string name, std::size_t count, std::vector<std::uint32_t> storage) {
@@ -66,8 +84,12 @@ void DeviceMemory::UpdateView(std::uint32_t buffer) {
 
 std::span<std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) { return buffers_.at(buffer).narrow_words; }
 std::span<std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) { return buffers_.at(buffer).wide_words; }
-std::span<const std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) const { return buffers_.at(buffer).narrow_words; }
-std::span<const std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) const { return buffers_.at(buffer).wide_words; }
+std::span<const std::uint32_t> DeviceMemory::Words32(std::uint32_t buffer) const {
+  return buffers_.at(buffer).narrow_words;
+}
+std::span<const std::uint64_t> DeviceMemory::Words64(std::uint32_t buffer) const {
+  return buffers_.at(buffer).wide_words;
+}
 
 std::vector<std::uint32_t> DeviceMemory::TakeWords32(std::uint32_t buffer) {
   std::vector<std::uint32_t> words = std::move(buffers_.at(buffer).narrow_words);
@@ -84,19 +106,26 @@ void DeviceMemory::ThrowOutOfBounds(const Address& address) const {
   if (address.buffer >= buffers_.size()) {
     throw KernelFault("access to buffer " + std::to_string(address.buffer) + ", which was never allocated");
   }
-  // An out-of-bounds access is a kernel defect (docs/design/defects.md, D8); the emulator reports it instead of corrupting memory.
+  // An out-of-bounds access is a kernel defect (docs/design/defects.md, D8); the emulator reports it instead of
+  // corrupting memory.
   throw KernelFault("out-of-bounds access to buffer '" + buffers_[address.buffer].name + "' at index " +
                     std::to_string(address.index) + " of " + std::to_string(views_[address.buffer].size));
 }
 
 void DeviceMemory::ApplyConcurrently(MemoryOp& op) {
   switch (op.kind) {
-    case OpKind::kLoad: return ApplyConcurrently<OpKind::kLoad>(op);
-    case OpKind::kStore: return ApplyConcurrently<OpKind::kStore>(op);
-    case OpKind::kAtomicAdd: return ApplyConcurrently<OpKind::kAtomicAdd>(op);
-    case OpKind::kAtomicAddFloat: return ApplyConcurrently<OpKind::kAtomicAddFloat>(op);
-    case OpKind::kAtomicCas: return ApplyConcurrently<OpKind::kAtomicCas>(op);
-    case OpKind::kAtomicMin: return ApplyConcurrently<OpKind::kAtomicMin>(op);
+    case OpKind::kLoad:
+      return ApplyConcurrently<OpKind::kLoad>(op);
+    case OpKind::kStore:
+      return ApplyConcurrently<OpKind::kStore>(op);
+    case OpKind::kAtomicAdd:
+      return ApplyConcurrently<OpKind::kAtomicAdd>(op);
+    case OpKind::kAtomicAddFloat:
+      return ApplyConcurrently<OpKind::kAtomicAddFloat>(op);
+    case OpKind::kAtomicCas:
+      return ApplyConcurrently<OpKind::kAtomicCas>(op);
+    case OpKind::kAtomicMin:
+      return ApplyConcurrently<OpKind::kAtomicMin>(op);
   }
 }
 

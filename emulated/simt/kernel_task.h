@@ -62,7 +62,8 @@ enum class Mode { kFaithful, kFast };
 // What a kernel sees of its thread: its index, and global memory through awaitable operations.
 class ThreadContext {
  public:
-  ThreadContext(std::uint32_t thread, DeviceMemory& memory, Mode mode) : thread_(thread), memory_(&memory), mode_(mode) {}
+  ThreadContext(std::uint32_t thread, DeviceMemory& memory, Mode mode)
+      : thread_(thread), memory_(&memory), mode_(mode) {}
 
   std::uint32_t Thread() const { return thread_; }
 

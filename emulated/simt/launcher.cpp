@@ -106,8 +106,8 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
       }
       if (observer) observer(lane, op);
       if (op.kind == OpKind::kAtomicCas && op.result != op.compare) ++report.stats.cas_failures;
-      for (std::uint64_t word : {std::uint64_t(warp), std::uint64_t(lane), std::uint64_t(op.kind), std::uint64_t(op.address.buffer),
-                                 op.address.index, op.value, op.compare, op.result}) {
+      for (std::uint64_t word : {std::uint64_t(warp), std::uint64_t(lane), std::uint64_t(op.kind),
+                                 std::uint64_t(op.address.buffer), op.address.index, op.value, op.compare, op.result}) {
         trace.Add(word);
       }
     }
@@ -128,22 +128,26 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
 
 void LaunchFast(DeviceMemory& memory, std::uint32_t threads, const Kernel& kernel, int worker_threads,
                 const ThreadPrefetch& prefetch) {
-  ParallelFor(threads, 1024, [&](std::size_t begin, std::size_t end) {
-    if (prefetch) {
-      for (auto t = std::uint32_t(begin); t < std::min<std::size_t>(end, begin + kPrefetchDistance); ++t) prefetch(t);
-    }
-    for (auto t = std::uint32_t(begin); t < end; ++t) {
-      if (prefetch && t + kPrefetchDistance < end) prefetch(t + kPrefetchDistance);
-      ThreadContext context(t, memory, Mode::kFast);
-      KernelTask task = kernel(context);
-      try {
-        task.Resume();  // never suspends in fast mode: runs to the end
-      } catch (const KernelFault& fault) {
-        throw KernelFault("thread " + std::to_string(t) + ": " + fault.what());
-      }
-      if (!task.Done()) throw std::logic_error("a kernel suspended in fast mode");
-    }
-  }, worker_threads);
+  ParallelFor(
+      threads, 1024,
+      [&](std::size_t begin, std::size_t end) {
+        if (prefetch) {
+          for (auto t = std::uint32_t(begin); t < std::min<std::size_t>(end, begin + kPrefetchDistance); ++t)
+            prefetch(t);
+        }
+        for (auto t = std::uint32_t(begin); t < end; ++t) {
+          if (prefetch && t + kPrefetchDistance < end) prefetch(t + kPrefetchDistance);
+          ThreadContext context(t, memory, Mode::kFast);
+          KernelTask task = kernel(context);
+          try {
+            task.Resume();  // never suspends in fast mode: runs to the end
+          } catch (const KernelFault& fault) {
+            throw KernelFault("thread " + std::to_string(t) + ": " + fault.what());
+          }
+          if (!task.Done()) throw std::logic_error("a kernel suspended in fast mode");
+        }
+      },
+      worker_threads);
 }
 
 }  // namespace hpsf::simt

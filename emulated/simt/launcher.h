@@ -21,9 +21,9 @@ using Kernel = std::function<KernelTask(ThreadContext&)>;
 struct LaunchStats {
   std::uint64_t steps = 0;
   std::uint64_t operations = 0;
-  std::uint64_t cas_failures = 0;                   // CAS operations whose comparison failed
-  std::uint64_t conflict_groups = 0;                // same-address groups with a write, summed over steps
-  std::map<std::uint32_t, std::uint64_t> active_lanes;  // lanes with an operation in a step -> steps
+  std::uint64_t cas_failures = 0;                             // CAS operations whose comparison failed
+  std::uint64_t conflict_groups = 0;                          // same-address groups with a write, summed over steps
+  std::map<std::uint32_t, std::uint64_t> active_lanes;        // lanes with an operation in a step -> steps
   std::map<std::uint32_t, std::uint64_t> conflicts_per_step;  // conflict groups in a step -> steps
 };
 

@@ -1,17 +1,17 @@
 // Litmus kernels with known outcome sets check the scheduler itself: the exhaustive policy must find exactly
 // the possible outcomes, in exactly as many schedules as the combinatorics predicts.
-#include <set>
-
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include <set>
 
+#include "core/error.h"
 #include "emulated/simt/launcher.h"
 
 namespace hpsf::simt {
 namespace {
 
-// counter = counter + 1 as a plain load and a plain store: a lost update waiting to happen (docs/design/defects.md, D9).
+// counter = counter + 1 as a plain load and a plain store: a lost update waiting to happen (docs/design/defects.md,
+// D9).
 KernelTask NonAtomicIncrement(ThreadContext& ctx, std::uint32_t counter) {
   const std::uint64_t value = co_await ctx.Load(counter, 0);
   co_await ctx.Store(counter, 0, value + 1);
@@ -42,8 +42,8 @@ Exploration ExploreCounter(KernelOf kernel, std::uint32_t threads, std::uint32_t
   do {
     DeviceMemory memory;
     const std::uint32_t counter = memory.Allocate32("counter", 1);
-    const LaunchReport report =
-        LaunchFaithful(memory, threads, warp_size, [&](ThreadContext& ctx) { return kernel(ctx, counter); }, schedule);
+    const LaunchReport report = LaunchFaithful(
+        memory, threads, warp_size, [&](ThreadContext& ctx) { return kernel(ctx, counter); }, schedule);
     e.outcomes.insert(memory.Words32(counter)[0]);
     e.trace_hashes.insert(report.trace_hash);
     ++e.schedules;
@@ -54,7 +54,7 @@ Exploration ExploreCounter(KernelOf kernel, std::uint32_t threads, std::uint32_t
 TEST(Litmus, NonAtomicIncrementInTwoWarpsGivesOneOrTwoInSixSchedules) {
   const Exploration e = ExploreCounter(NonAtomicIncrement, 2, 1);
   EXPECT_EQ(e.outcomes, (std::set<std::uint64_t>{1, 2}));
-  EXPECT_EQ(e.schedules, 6u);  // interleavings of 2 + 2 operations: 4! / (2! 2!)
+  EXPECT_EQ(e.schedules, 6u);            // interleavings of 2 + 2 operations: 4! / (2! 2!)
   EXPECT_EQ(e.trace_hashes.size(), 6u);  // each schedule leaves its own trace
 }
 

@@ -11,7 +11,8 @@ namespace hpsf::simt {
 
 std::size_t RoundRobinSchedule::PickWarp(std::span<const std::uint32_t> ready) {
   // The first ready warp after the last one that ran, cyclically.
-  auto next = std::upper_bound(ready.begin(), ready.end(), last_, [](std::int64_t v, std::uint32_t w) { return v < std::int64_t(w); });
+  auto next = std::upper_bound(ready.begin(), ready.end(), last_,
+                               [](std::int64_t v, std::uint32_t w) { return v < std::int64_t(w); });
   const std::size_t index = next == ready.end() ? 0 : std::size_t(next - ready.begin());
   last_ = ready[index];
   return index;
@@ -35,15 +36,16 @@ PctSchedule::PctSchedule(std::uint32_t seed, std::uint32_t depth, std::uint32_t 
   std::iota(order.begin(), order.end(), 0u);
   OrderConflict(order);
   for (std::uint32_t i = 0; i < warps; ++i) priority_[order[i]] = std::int64_t(depth) + i;
-  for (std::uint32_t i = 0; i + 1 < depth; ++i) change_points_.push_back(1 + Next(std::uint32_t(std::max<std::uint64_t>(expected_steps, 1))));
+  for (std::uint32_t i = 0; i + 1 < depth; ++i)
+    change_points_.push_back(1 + Next(std::uint32_t(std::max<std::uint64_t>(expected_steps, 1))));
 }
 
 std::size_t PctSchedule::PickWarp(std::span<const std::uint32_t> ready) {
   ++step_;
   auto highest = [&] {
-    return std::size_t(std::max_element(ready.begin(), ready.end(), [&](std::uint32_t a, std::uint32_t b) {
-                         return priority_[a] < priority_[b];
-                       }) - ready.begin());
+    return std::size_t(std::max_element(ready.begin(), ready.end(),
+                                        [&](std::uint32_t a, std::uint32_t b) { return priority_[a] < priority_[b]; }) -
+                       ready.begin());
   };
   for (std::size_t i = 0; i < change_points_.size(); ++i) {
     if (change_points_[i] == step_) priority_[ready[highest()]] = std::int64_t(i);
@@ -90,7 +92,8 @@ std::unique_ptr<Schedule> MakeSchedule(const std::string& text, std::uint32_t wa
     std::uint32_t v = 0;
     auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (error != std::errc() || end != s.data() + s.size() || s.empty()) {
-      throw ConfigError("--schedule", "expected round-robin, random:SEED, pct:SEED:DEPTH or exhaustive; got '" + text + "'");
+      throw ConfigError("--schedule",
+                        "expected round-robin, random:SEED, pct:SEED:DEPTH or exhaustive; got '" + text + "'");
     }
     return v;
   };

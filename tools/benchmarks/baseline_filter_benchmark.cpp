@@ -12,10 +12,10 @@
 #include "reference/reference_filter.h"
 #include "reference/screen_space_filter.h"
 #include "tools/benchmarks/cornell_batch.h"
-#include "verifier/metrics/channel_image.h"
-#include "verifier/metrics/image_metrics.h"
 #include "tools/hpsf/converged_reference.h"
 #include "tracer/scene_file.h"
+#include "verifier/metrics/channel_image.h"
+#include "verifier/metrics/image_metrics.h"
 
 namespace hpsf {
 namespace {

@@ -20,14 +20,14 @@ void ReleaseVulkan();
 
 }  // namespace hpsf::benchmarks
 
-#define HPSF_BENCHMARK_MAIN()                                                \
-  int main(int argc, char** argv) {                                          \
-    benchmark::Initialize(&argc, argv);                                      \
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;        \
-    benchmark::RunSpecifiedBenchmarks();                                     \
-    hpsf::benchmarks::ReleaseVulkan();                                       \
-    benchmark::Shutdown();                                                   \
-    return 0;                                                                \
+#define HPSF_BENCHMARK_MAIN()                                         \
+  int main(int argc, char** argv) {                                   \
+    benchmark::Initialize(&argc, argv);                               \
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1; \
+    benchmark::RunSpecifiedBenchmarks();                              \
+    hpsf::benchmarks::ReleaseVulkan();                                \
+    benchmark::Shutdown();                                            \
+    return 0;                                                         \
   }
 
 #endif  // HPSF_TOOLS_BENCHMARKS_BENCHMARK_VULKAN_H

@@ -3,11 +3,11 @@
 // table of the same size on all cores; fast mode as the backend runs frames (arrays kept) and in fresh memory; and
 // faithful mode on a smaller batch for its slowdown; and the Vulkan host's read-back check over the same run. Run:
 //   build/default/bin/emulator_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
-#include <atomic>
-#include <vector>
-
 #include <benchmark/benchmark.h>
 #include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <vector>
 
 #include "core/huge_pages.h"
 #include "core/read_back_check.h"
@@ -36,7 +36,8 @@ void BM_RawRandomAtomicAdds(benchmark::State& state) {
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, kFrameRecords, 4096), [&](const auto& range) {
       for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
         const std::uint32_t slot = shared::Pcg(i) & (kSlots - 1);
-        for (int c = 0; c < 4; ++c) std::atomic_ref<std::uint64_t>(table[std::size_t(c) * kSlots + slot]).fetch_add(1, std::memory_order_relaxed);
+        for (int c = 0; c < 4; ++c)
+          std::atomic_ref<std::uint64_t>(table[std::size_t(c) * kSlots + slot]).fetch_add(1, std::memory_order_relaxed);
       }
     });
   }
@@ -47,9 +48,12 @@ BENCHMARK(BM_RawRandomAtomicAdds)->Unit(benchmark::kMillisecond)->UseRealTime();
 void ReportRun(benchmark::State& state, const EmulatedRun& run) {
   state.counters["probe_failures"] = double(run.probe_failures);
   const EmulatedTimings& t = run.timings;
-  for (const auto& [name, ms] : {std::pair{"keys_ms", t.keys_ms}, {"F_ms", t.fixed_point_ms}, {"clear_ms", t.clear_ms},
-                                  {"accumulate_ms", t.accumulate_ms}, {"read_back_ms", t.read_back_ms},
-                                  {"resolve_ms", t.resolve_ms}}) {
+  for (const auto& [name, ms] : {std::pair{"keys_ms", t.keys_ms},
+                                 {"F_ms", t.fixed_point_ms},
+                                 {"clear_ms", t.clear_ms},
+                                 {"accumulate_ms", t.accumulate_ms},
+                                 {"read_back_ms", t.read_back_ms},
+                                 {"resolve_ms", t.resolve_ms}}) {
     state.counters[name] = ms;
   }
 }

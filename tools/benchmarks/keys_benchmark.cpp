@@ -1,13 +1,13 @@
 // Keys per second for 2 million records: the shared key path in C++ on one core, and keys.comp on the Vulkan
 // device (steady-state dispatches: pipeline creation and upload excluded). Run:
 //   build/default/bin/keys_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-#include <vector>
-
 #include <benchmark/benchmark.h>
 
+#include <vector>
+
 #include "core/key_batch.h"
-#include "verifier/generators/record_generators.h"
 #include "tools/benchmarks/benchmark_vulkan.h"
+#include "verifier/generators/record_generators.h"
 
 namespace hpsf {
 namespace {

@@ -39,8 +39,8 @@ void BM_Vulkan(benchmark::State& state) {
   VulkanFilter* filter = benchmarks::FilterOn(state, staging);
   if (!filter) return;
   const VulkanDeviceInfo& device = benchmarks::Device(state, staging)->info();
-  state.SetLabel(std::string(accumulation == Accumulation::kFixed64 ? "fixed64" : "float32") + (device.staged ? ", staged" : ", mapped") +
-                 " on " + device.name);
+  state.SetLabel(std::string(accumulation == Accumulation::kFixed64 ? "fixed64" : "float32") +
+                 (device.staged ? ", staged" : ", mapped") + " on " + device.name);
   VulkanTimings sum;
   for (auto _ : state) {
     VulkanRun run = filter->Run(CornellFrame(), TableConfig(accumulation));

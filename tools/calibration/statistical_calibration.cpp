@@ -8,10 +8,10 @@
 #include <tuple>
 
 #include "reference/reference_filter.h"
-#include "verifier/metrics/pixel_variance.h"
-#include "verifier/metrics/statistical_compare.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
+#include "verifier/metrics/pixel_variance.h"
+#include "verifier/metrics/statistical_compare.h"
 
 namespace hpsf {
 namespace {
@@ -21,7 +21,8 @@ struct Render {
 };
 
 // One seed's render at one spp, filtered by the reference and plain, with their variances.
-Render RenderOnce(const Scene& scene, const std::string& name, std::uint32_t size, std::uint32_t spp, std::uint32_t seed) {
+Render RenderOnce(const Scene& scene, const std::string& name, std::uint32_t size, std::uint32_t spp,
+                  std::uint32_t seed) {
   TraceOptions trace;
   trace.width = trace.height = size;
   trace.samples_per_pixel = spp;
@@ -31,8 +32,9 @@ Render RenderOnce(const Scene& scene, const std::string& name, std::uint32_t siz
   config.seed = seed;
   const FilterResult result = ReferenceFilter(batch, config);
   const std::string source = name + " seed " + std::to_string(seed) + " " + std::to_string(spp) + " spp";
-  return {MakeNoisyImage(source, result.image, EstimatePixelVariance(batch, result.placement, result.cells.size()), spp),
-          MakeNoisyImage(source, UnfilteredImage(batch), EstimatePixelVariance(batch, {}, 0), spp)};
+  return {
+      MakeNoisyImage(source, result.image, EstimatePixelVariance(batch, result.placement, result.cells.size()), spp),
+      MakeNoisyImage(source, UnfilteredImage(batch), EstimatePixelVariance(batch, {}, 0), spp)};
 }
 
 // A render whose radiance is 1 + bias times the other's: its means by that factor, its variances by its square.
@@ -71,7 +73,12 @@ std::vector<CalibrationRow> RunCalibration(const CalibrationPlan& plan, bool pro
           for (std::uint32_t other : others) {
             CalibrationRow& row = rows[Key{s, unfiltered, spp, other}];
             if (row.pairs == 0) {
-              row = {plan.scenes[s], !unfiltered, spp, other, 0, std::vector<std::uint32_t>(plan.alphas.size()),
+              row = {plan.scenes[s],
+                     !unfiltered,
+                     spp,
+                     other,
+                     0,
+                     std::vector<std::uint32_t>(plan.alphas.size()),
                      std::vector<std::uint32_t>(plan.biases.size())};
             }
             const NoisyImage& x = unfiltered ? a.at(spp).unfiltered : a.at(spp).filtered;
@@ -97,7 +104,7 @@ std::vector<CalibrationRow> RunCalibration(const CalibrationPlan& plan, bool pro
 }
 
 nlohmann::json ToJson(const CalibrationPlan& plan, const std::vector<CalibrationRow>& rows) {
-  nlohmann::json j{{"size", plan.size}, {"pairs", plan.pairs},   {"first_seed", plan.first_seed},
+  nlohmann::json j{{"size", plan.size},     {"pairs", plan.pairs},   {"first_seed", plan.first_seed},
                    {"alphas", plan.alphas}, {"biases", plan.biases}, {"rows", nlohmann::json::array()}};
   for (const CalibrationRow& r : rows) {
     j["rows"].push_back({{"scene", r.scene},

@@ -4,8 +4,10 @@
 // placed" or past the end), zeroes a slot or swaps two slots; or changes a key word, which only must not crash.
 // A bug: the checker crashes, or misses a corruption that changes what the invariants describe. Those are all
 // changes to the dump's bits, except a float32 sum moved within the bound gamma(n - 1) * sum|c| of its slot's
-// exact sum (atomics may round anywhere inside it; docs/design/contract.md), or an empty slot's sum turned to -0.0, which is
-// still zero. A corruption that leaves the dump as it was is none.
+// exact sum (atomics may round anywhere inside it; docs/design/contract.md), or an empty slot's sum turned to -0.0,
+// which is still zero. A corruption that leaves the dump as it was is none.
+#include <fuzzer/FuzzedDataProvider.h>
+
 #include <array>
 #include <bit>
 #include <cmath>
@@ -15,13 +17,11 @@
 #include <string>
 #include <vector>
 
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include "core/hash_table.h"
 #include "core/input_check.h"
 #include "emulated/emulated_filter.h"
-#include "verifier/checker/table_checker.h"
 #include "tools/fuzz/fuzz_batch.h"
+#include "verifier/checker/table_checker.h"
 
 namespace hpsf {
 namespace {

@@ -22,7 +22,8 @@ namespace {
 constexpr std::size_t kMaxInputBytes = 1 << 20;
 
 bool SameBatch(const RecordBatch& a, const RecordBatch& b) {
-  return a.frame == b.frame && a.width == b.width && a.height == b.height && a.samples_per_pixel == b.samples_per_pixel &&
+  return a.frame == b.frame && a.width == b.width && a.height == b.height &&
+         a.samples_per_pixel == b.samples_per_pixel &&
          std::memcmp(&a.fov_y_radians, &b.fov_y_radians, sizeof(double)) == 0 && a.records.size() == b.records.size() &&
          (a.records.empty() || std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(Record)) == 0);
 }

@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 namespace {
 
 void RunKept(const std::vector<std::uint8_t>& input) {
-  std::ofstream("fuzz-input.bin", std::ios::binary).write(reinterpret_cast<const char*>(input.data()), std::streamsize(input.size()));
+  std::ofstream("fuzz-input.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(input.data()), std::streamsize(input.size()));
   LLVMFuzzerTestOneInput(input.data(), input.size());
 }
 

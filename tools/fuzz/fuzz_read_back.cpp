@@ -9,6 +9,8 @@
 // A bug: a crash, a sanitizer report, a hang or an exception escaping the contract. Any verdict is accepted.
 // Built twice: as a libFuzzer target (preset fuzz) and as the ctest read_back_fuzz_tests, which runs the
 // checked-in corpus and a fixed number of inputs from the counter RNG (untrusted_inputs_main.cpp).
+#include <fuzzer/FuzzedDataProvider.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -20,13 +22,11 @@
 #include <string>
 #include <vector>
 
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include "core/error.h"
 #include "core/read_back_check.h"
 #include "emulated/emulated_backend.h"
-#include "verifier/contract/contract_levels.h"
 #include "tools/fuzz/fuzz_batch.h"
+#include "verifier/contract/contract_levels.h"
 
 namespace hpsf {
 namespace {
@@ -34,7 +34,9 @@ namespace {
 // kStats: the counters read back beside the table (the stats words, the evicted and seeded counts).
 enum class Binding { kKeys, kPlacements, kTags, kSums, kCounts, kLastSeen, kStats, kPixels, kMaxValue = kPixels };
 
-std::array<std::uint64_t, 4> Counters(const HashedRun& run) { return {run.wraps, run.count_wraps, run.evicted, run.seeded}; }
+std::array<std::uint64_t, 4> Counters(const HashedRun& run) {
+  return {run.wraps, run.count_wraps, run.evicted, run.seeded};
+}
 
 // Words of one binding, as bytes the input overwrites (kStats has no array of its own: Corrupt copies it).
 std::span<std::uint8_t> BindingBytes(HashedRun& run, Binding binding) {
@@ -175,8 +177,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   CapturedBackend captured(runs), rerun(runs);
   const JudgedBackend judged{"captured", &captured, &rerun, "the same buffers", true, true};
   const std::vector<RecordBatch> batches(frames, c.batch);
-  const CrosscheckReport report =
-      JudgeSequence(batches, numbers, c.config, std::span<const JudgedBackend>(&judged, 1));
+  const CrosscheckReport report = JudgeSequence(batches, numbers, c.config, std::span<const JudgedBackend>(&judged, 1));
   // The oracle's other side: the emulator's own runs, uncorrupted, pass through the read-back and the contract.
   if (!corrupted && !report.Passed()) {
     std::fprintf(stderr, "fuzz_read_back: uncorrupted runs fail the contract: %s\n%s", report.FirstFailure().c_str(),

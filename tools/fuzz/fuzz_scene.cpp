@@ -2,18 +2,17 @@
 // then optionally a line "--- mesh.obj ---" and the OBJ's text, written as mesh.obj in the scratch directory that
 // relative mesh paths resolve against. Every input is a scene or an hpsf::InputError; a bug is a crash, a hang,
 // a sanitizer report, any other exception, or a scene with a non-finite coordinate (or one beyond float range)
-// in its camera or triangles, at any frame of its animation. Inputs naming an absolute path or ".." are skipped: they would read the machine's
-// files (/dev/zero never ends), which hpsf rightly allows.
+// in its camera or triangles, at any frame of its animation. Inputs naming an absolute path or ".." are skipped: they
+// would read the machine's files (/dev/zero never ends), which hpsf rightly allows.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "tools/fuzz/scratch_dir.h"

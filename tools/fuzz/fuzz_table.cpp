@@ -2,19 +2,20 @@
 // slots, any probe limit, 8 to 32 fingerprint bits, fixed64 or float32) and a batch built to collide, which the
 // reference and the emulated backend filter, faithfully (the input's warp size and schedule) and fast.
 // A bug: any table checker violation, any breach of the cross-check contract (levels 2 to 4, the same code as
-// hpsf crosscheck: verifier/contract/contract_levels.h), a kernel fault, an exception, or a sanitizer report. HPSF_FUZZ_DEFECT=D9 (or D2, D3, D8, D8-unwrapped, D13)
-// runs a known broken kernel instead, to show the target finds it.
+// hpsf crosscheck: verifier/contract/contract_levels.h), a kernel fault, an exception, or a sanitizer report.
+// HPSF_FUZZ_DEFECT=D9 (or D2, D3, D8, D8-unwrapped, D13) runs a known broken kernel instead, to show the target finds
+// it.
+#include <fuzzer/FuzzedDataProvider.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include "emulated/defect_injection.h"
-#include "verifier/contract/contract_levels.h"
 #include "tools/fuzz/fuzz_batch.h"
+#include "verifier/contract/contract_levels.h"
 
 namespace hpsf {
 namespace {
@@ -30,7 +31,8 @@ Defect DefectUnderTest() {
 void Report(const FuzzCase& c, const std::string& mode, const CrosscheckReport& report) {
   std::fprintf(stderr, "fuzz_table: the %s emulator breaks the contract:\n", mode.c_str());
   for (const LevelVerdict& v : report.levels) {
-    for (const std::string& failure : v.failures) std::fprintf(stderr, "  level %d %s: %s\n", v.level, v.name.c_str(), failure.c_str());
+    for (const std::string& failure : v.failures)
+      std::fprintf(stderr, "  level %d %s: %s\n", v.level, v.name.c_str(), failure.c_str());
   }
   std::fprintf(stderr, "%s", c.ToString().c_str());
 }

@@ -24,7 +24,8 @@ nlohmann::json LastFrameEviction(const Backend& backend) {
 
 nlohmann::json LastFrameLevelSeed(const Backend& backend) {
   if (const FilterResult* exact = backend.LastExactResult()) return {{"cells_seeded", exact->stats.cells_seeded}};
-  return {{"seeded", backend.LastHashedRun()->seeded}, {"level_seed_s", backend.LastFrameTimings().level_seed_ms / 1e3}};
+  return {{"seeded", backend.LastHashedRun()->seeded},
+          {"level_seed_s", backend.LastFrameTimings().level_seed_ms / 1e3}};
 }
 
 nlohmann::json LastFrameTemporal(const Backend& backend) {

@@ -3,12 +3,11 @@
 #ifndef HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 #define HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 
+#include <CLI/CLI.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "core/backend.h"
 #include "core/filter_config.h"
@@ -17,9 +16,9 @@
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"
+#include "tools/hpsf/emulator_options.h"
 #include "verifier/contract/backend_factory.h"
 #include "verifier/contract/crosscheck.h"
-#include "tools/hpsf/emulator_options.h"
 #include "vulkan/vulkan_filter.h"
 
 namespace hpsf {

@@ -10,15 +10,15 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "tools/hpsf/check_html_report.h"
+#include "tools/hpsf/commands.h"
+#include "tools/hpsf/html_report.h"
+#include "tools/hpsf/subprocess.h"
 #include "verifier/gate/case_judgement.h"
 #include "verifier/gate/check_report.h"
 #include "verifier/gate/gate_file.h"
 #include "verifier/gate/gate_schema.h"
 #include "verifier/gate/junit_report.h"
-#include "tools/hpsf/check_html_report.h"
-#include "tools/hpsf/commands.h"
-#include "tools/hpsf/html_report.h"
-#include "tools/hpsf/subprocess.h"
 
 namespace hpsf {
 namespace {
@@ -31,7 +31,7 @@ struct CheckOptions {
   std::string out = "hpsf-check";
   bool json = false;
   bool list = false;
-  bool schema = false;  // --schema: print the gate file's JSON Schema
+  bool schema = false;             // --schema: print the gate file's JSON Schema
   std::vector<std::string> merge;  // --merge: the shards' output directories
 };
 

@@ -4,9 +4,8 @@
 #ifndef HPSF_TOOLS_HPSF_CLI_REFERENCE_H
 #define HPSF_TOOLS_HPSF_CLI_REFERENCE_H
 
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 namespace hpsf {
 

@@ -10,7 +10,8 @@ namespace hpsf {
 
 // The commands keep a reference to `context`, which must outlive the App's parse.
 // What `hpsf --help` says hpsf is.
-inline constexpr const char* kHpsfDescription = "hpsf: makes GPU hash tables for hashed path space filtering trustworthy";
+inline constexpr const char* kHpsfDescription =
+    "hpsf: makes GPU hash tables for hashed path space filtering trustworthy";
 
 void AddCommands(CLI::App& app, CommandContext& context);
 

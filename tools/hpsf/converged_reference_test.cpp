@@ -1,13 +1,14 @@
 // Converged references (tools/hpsf/converged_reference.h): the furnace, whose radiance is exactly 2 everywhere with
 // unbounded depth, comes out at 2 within its own stated variance; the image is the same bits on one thread and on
 // every core, and traced twice; a scene's digest follows its content, not its name.
+#include "tools/hpsf/converged_reference.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
-#include "tools/hpsf/converged_reference.h"
 #include "tracer/scene_digest.h"
 #include "tracer/scene_file.h"
 

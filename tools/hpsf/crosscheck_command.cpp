@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "core/error.h"
-#include "verifier/contract/crosscheck.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"
 #include "tracer/path_tracer.h"
+#include "verifier/contract/crosscheck.h"
 
 namespace hpsf {
 namespace {
@@ -80,8 +80,8 @@ int Run(CrosscheckOptions& o, bool options_only) {
   if (options_only) return kExitOk;
   const std::vector<RecordBatch> frames = LoadOrTraceFrames(o.input, o.trace, o.frames, config);
   if (o.frames_given && frames.size() != o.frames) {
-    throw ConfigError("--frames", o.input + " holds " + std::to_string(frames.size()) + " frames, not " +
-                                      std::to_string(o.frames));
+    throw ConfigError("--frames",
+                      o.input + " holds " + std::to_string(frames.size()) + " frames, not " + std::to_string(o.frames));
   }
   config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
   const CrosscheckReport report = checker.CheckFrames(frames, config, emulator);
@@ -90,8 +90,11 @@ int Run(CrosscheckOptions& o, bool options_only) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {
     for (const LevelVerdict& v : report.levels) {
-      std::cout << "level " << v.level << " " << v.name << ": " << (!v.applicable ? "n/a" : v.passed ? "PASS" : "FAIL") << " ("
-                << v.note << ")\n";
+      std::cout << "level " << v.level << " " << v.name << ": "
+                << (!v.applicable ? "n/a"
+                    : v.passed    ? "PASS"
+                                  : "FAIL")
+                << " (" << v.note << ")\n";
       for (const std::string& f : v.failures) std::cout << "  " << f << "\n";
     }
     if (report.frames > 1) std::cout << "frames: " << report.frames << ", each judged from the table before it\n";
@@ -112,18 +115,22 @@ int Run(CrosscheckOptions& o, bool options_only) {
 
 void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<CrosscheckOptions>();
-  CLI::App* c = app.add_subcommand("crosscheck", "Run the backends on one batch and judge them by the cross-check contract");
-  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")->required();
+  CLI::App* c =
+      app.add_subcommand("crosscheck", "Run the backends on one batch and judge them by the cross-check contract");
+  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")
+      ->required();
   c->add_option("--backends", o->backends, "Comma-separated: reference, emulated, vulkan")->capture_default_str();
   c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth,
-                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")->capture_default_str();
+                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
+      ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
   c->add_option("--frames", o->frames,
                 "Check a sequence of this many frames through one table per backend (a scene: traced from --frame "
                 "on; a record file: must equal its frames; default every frame of a file, one of a scene)");
-  c->add_option("--frame", o->trace.frame, "A scene's first frame (its keyframes, and the frame in every random number)")
+  c->add_option("--frame", o->trace.frame,
+                "A scene's first frame (its keyframes, and the frame in every random number)")
       ->capture_default_str();
   c->add_option("--repro-dir", o->repro_dir, "Where a failing check writes its repro bundle")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");

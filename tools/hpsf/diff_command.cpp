@@ -7,12 +7,12 @@
 #include <memory>
 
 #include "core/error.h"
-#include "verifier/metrics/image_comparison.h"
-#include "verifier/metrics/statistical_compare.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
 #include "tools/hpsf/seconds_since.h"
+#include "verifier/metrics/image_comparison.h"
+#include "verifier/metrics/statistical_compare.h"
 
 namespace hpsf {
 namespace {

@@ -6,11 +6,16 @@
 namespace hpsf {
 
 void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
-  command.add_option("--mode", flags.mode, "Emulator mode: fast (all cores) or faithful (warp steps, scheduled)")->capture_default_str();
-  command.add_option("--warp-size", flags.options.warp_size, "Emulated warp size: 8 (lavapipe), 32, 64")->capture_default_str();
-  command.add_option("--schedule", flags.options.schedule, "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH (exhaustive: tests only, up to 2 threads)")
+  command.add_option("--mode", flags.mode, "Emulator mode: fast (all cores) or faithful (warp steps, scheduled)")
       ->capture_default_str();
-  command.add_option("--vk-device", flags.vulkan.device_filter, "Vulkan backend: the device whose name contains this text");
+  command.add_option("--warp-size", flags.options.warp_size, "Emulated warp size: 8 (lavapipe), 32, 64")
+      ->capture_default_str();
+  command
+      .add_option("--schedule", flags.options.schedule,
+                  "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH (exhaustive: tests only, up to 2 threads)")
+      ->capture_default_str();
+  command.add_option("--vk-device", flags.vulkan.device_filter,
+                     "Vulkan backend: the device whose name contains this text");
   command
       .add_option_function<std::string>(
           "--vk-staging", [&flags](const std::string& text) { flags.vulkan.staging = ParseStagingPolicy(text); },
@@ -18,24 +23,31 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
           "where no device memory is host-cached (auto)")
       ->default_str("auto");
   command.add_option("--accumulate-spv", flags.vulkan.accumulate_spv,
-                     "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface (docs/reference/buffer-interface.md)");
+                     "Vulkan backend: run this SPIR-V accumulate shader through the stable buffer interface "
+                     "(docs/reference/buffer-interface.md)");
   command.add_option("--eviction-spv", flags.vulkan.eviction_spv,
-                     "Vulkan backend: run this SPIR-V eviction shader (evict and reclaim passes, docs/reference/buffer-interface.md) with --eviction");
-  command.add_option("--inject-defect", flags.defect, "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
-                     "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")
+                     "Vulkan backend: run this SPIR-V eviction shader (evict and reclaim passes, "
+                     "docs/reference/buffer-interface.md) with --eviction");
+  command
+      .add_option("--inject-defect", flags.defect,
+                  "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
+                  "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")
       ->capture_default_str();
 }
 
 EmulatorOptions ResolveEmulatorOptions(const EmulatorFlags& flags) {
   EmulatorOptions options = flags.options;
-  if (flags.mode != "fast" && flags.mode != "faithful") throw ConfigError("--mode", "expected fast or faithful; got '" + flags.mode + "'");
+  if (flags.mode != "fast" && flags.mode != "faithful")
+    throw ConfigError("--mode", "expected fast or faithful; got '" + flags.mode + "'");
   options.mode = flags.mode == "fast" ? simt::Mode::kFast : simt::Mode::kFaithful;
   if (options.mode == simt::Mode::kFaithful && options.schedule == "exhaustive") {
     // Enumerating every interleaving is feasible up to two threads of the accumulate kernel (2772 to 7722
     // schedules; broken_kernel_tests) or three of a two-operation litmus kernel (90); three accumulate threads
     // have over 1e8 (a multinomial of their operations). A render launches one thread per record.
-    throw ConfigError("--schedule", "exhaustive enumerates every interleaving: feasible up to 2 threads of the accumulate kernel "
-                                    "(thousands of schedules; 3 threads have over 1e8), not for a render; use random:SEED or pct:SEED:DEPTH");
+    throw ConfigError(
+        "--schedule",
+        "exhaustive enumerates every interleaving: feasible up to 2 threads of the accumulate kernel "
+        "(thousands of schedules; 3 threads have over 1e8), not for a render; use random:SEED or pct:SEED:DEPTH");
   }
   options.Validate();
   return options;

@@ -4,9 +4,8 @@
 #ifndef HPSF_TOOLS_HPSF_EMULATOR_OPTIONS_H
 #define HPSF_TOOLS_HPSF_EMULATOR_OPTIONS_H
 
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "emulated/emulated_filter.h"
 #include "verifier/contract/crosscheck.h"

@@ -13,7 +13,8 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command.add_flag("--variance", o.variance,
                    "Also write each pixel's variance (channels variance.R/G/B), each 8x8 tile's (tile_variance.R/G/B) "
                    "and the image mean's; needs 2+ spp (diff --statistical: 4+)");
-  command.add_option("--filter-width", c.filter_width_px, "Cell size in pixels at a primary hit")->capture_default_str();
+  command.add_option("--filter-width", c.filter_width_px, "Cell size in pixels at a primary hit")
+      ->capture_default_str();
   command.add_option("--jitter", c.jitter_scale, "Jitter amplitude in cells (0: off)")->capture_default_str();
   command.add_option("--normal", o.normal, "Normal key: none, sign or octahedral:B")->capture_default_str();
   command.add_flag("!--normal-in-fingerprint-only", c.normal_in_index, "Keep the normal bucket out of the index hash");

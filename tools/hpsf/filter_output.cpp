@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "core/error.h"
-#include "verifier/metrics/pixel_variance.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/version.h"
+#include "verifier/metrics/pixel_variance.h"
 
 namespace hpsf {
 namespace {
@@ -32,7 +32,8 @@ Image TileVarianceLayer(const PixelVariance& v) {
   const std::uint32_t t = v.tile_size;
   for (std::uint32_t y = 0; y < layer.height; ++y) {
     for (std::uint32_t x = 0; x < layer.width; ++x) {
-      layer.pixels[std::size_t(y) * layer.width + x] = v.tile_variance.pixels[std::size_t(y / t) * v.tile_variance.width + x / t];
+      layer.pixels[std::size_t(y) * layer.width + x] =
+          v.tile_variance.pixels[std::size_t(y / t) * v.tile_variance.width + x / t];
     }
   }
   return layer;
@@ -99,23 +100,27 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
     return;
   }
   const auto& s = report["stats"];
-  std::cout << "wrote " << report["output"].get<std::string>() << " and " << report["preview"].get<std::string>() << " ("
-            << (report["filtered"].get<bool>() ? "filtered, " + report["backend"].get<std::string>() : std::string("unfiltered"))
+  std::cout << "wrote " << report["output"].get<std::string>() << " and " << report["preview"].get<std::string>()
+            << " ("
+            << (report["filtered"].get<bool>() ? "filtered, " + report["backend"].get<std::string>()
+                                               : std::string("unfiltered"))
             << ")\n";
   if (s.contains("cells")) {
     std::cout << "records " << s["records"] << ", without vertex " << s["records_without_vertex"] << ", unkeyable "
-              << s["unkeyable"] << ", rejected " << s["rejected_non_finite"].get<std::uint64_t>() + s["rejected_negative"].get<std::uint64_t>()
+              << s["unkeyable"] << ", rejected "
+              << s["rejected_non_finite"].get<std::uint64_t>() + s["rejected_negative"].get<std::uint64_t>()
               << ", cells " << s["cells"] << ", F " << s["fixed_point_bits"] << "\n";
   } else if (s.contains("device")) {
-    std::cout << "vulkan on " << s["device"].get<std::string>() << ": slots used " << s["slots_used"] << ", probe failures "
-              << s["probe_failures"] << ", F " << s["fixed_point_bits"] << (s["staged"].get<bool>() ? ", staged" : ", mapped")
-              << "; ms upload " << s["timings_ms"]["upload"] << " + copy " << s["timings_ms"]["upload_copy"] << ", accumulate "
-              << s["timings_ms"]["accumulate"] << ", resolve " << s["timings_ms"]["resolve"] << ", read-back copy "
-              << s["timings_ms"]["read_back_copy"] << " + " << s["timings_ms"]["read_back"] << "; GB/s up "
-              << s["transfers"]["upload_gb_per_s"] << ", down " << s["transfers"]["read_back_gb_per_s"] << "\n";
+    std::cout << "vulkan on " << s["device"].get<std::string>() << ": slots used " << s["slots_used"]
+              << ", probe failures " << s["probe_failures"] << ", F " << s["fixed_point_bits"]
+              << (s["staged"].get<bool>() ? ", staged" : ", mapped") << "; ms upload " << s["timings_ms"]["upload"]
+              << " + copy " << s["timings_ms"]["upload_copy"] << ", accumulate " << s["timings_ms"]["accumulate"]
+              << ", resolve " << s["timings_ms"]["resolve"] << ", read-back copy " << s["timings_ms"]["read_back_copy"]
+              << " + " << s["timings_ms"]["read_back"] << "; GB/s up " << s["transfers"]["upload_gb_per_s"] << ", down "
+              << s["transfers"]["read_back_gb_per_s"] << "\n";
   } else {
-    std::cout << "emulated (" << s["mode"].get<std::string>() << "): slots used " << s["slots_used"] << ", probe failures "
-              << s["probe_failures"] << ", F " << s["fixed_point_bits"]
+    std::cout << "emulated (" << s["mode"].get<std::string>() << "): slots used " << s["slots_used"]
+              << ", probe failures " << s["probe_failures"] << ", F " << s["fixed_point_bits"]
               << (s.contains("trace_hash") ? ", trace " + s["trace_hash"].get<std::string>() : std::string()) << "\n";
   }
   if (report.contains("mean_variance")) {
@@ -124,7 +129,8 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
                 v[2].get<double>());
   }
   if (report.contains("rays_per_s")) {
-    std::printf("%.3g rays/s, %.3g records/s filtered\n", report["rays_per_s"].get<double>(), report["records_per_s"].get<double>());
+    std::printf("%.3g rays/s, %.3g records/s filtered\n", report["rays_per_s"].get<double>(),
+                report["records_per_s"].get<double>());
   }
 }
 

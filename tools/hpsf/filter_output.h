@@ -3,9 +3,8 @@
 #ifndef HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
 #define HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/record.h"
 #include "tools/hpsf/backend_options.h"
@@ -26,7 +25,6 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
 
 // Prints the report as JSON, or a short human summary.
 void PrintReport(const nlohmann::json& report, bool as_json);
-
 
 }  // namespace hpsf
 

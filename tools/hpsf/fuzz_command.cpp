@@ -1,26 +1,25 @@
 #include "tools/hpsf/fuzz_command.h"
 
-#include <algorithm>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/backend_registry.h"
 #include "core/error.h"
-#include "verifier/fuzzing/adversarial_case.h"
-#include "verifier/fuzzing/case_shrinker.h"
-#include "verifier/contract/crosscheck.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"
 #include "tools/hpsf/seconds_since.h"
+#include "verifier/contract/crosscheck.h"
+#include "verifier/fuzzing/adversarial_case.h"
+#include "verifier/fuzzing/case_shrinker.h"
 
 namespace hpsf {
 namespace {
@@ -67,7 +66,7 @@ struct Failure {
   CrosscheckReport found_report;
   ShrinkResult shrink;
   double shrink_seconds = 0;
-  CrosscheckReport report;  // of the shrunk case, or of the case as found when the shrunk one stopped failing
+  CrosscheckReport report;        // of the shrunk case, or of the case as found when the shrunk one stopped failing
   bool timing_dependent = false;  // the shrunk case passed every rerun: the bundle holds the case as found
 };
 
@@ -85,7 +84,8 @@ CrosscheckReport CheckUntilFails(Crosschecker& checker, const AdversarialCase& c
   return report;
 }
 
-nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, const std::array<std::uint64_t, kAdversarialFamilies>& families,
+nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds,
+                      const std::array<std::uint64_t, kAdversarialFamilies>& families,
                       const FixedPointRange& fixed_point, const std::optional<Failure>& failure) {
   nlohmann::json j = {{"version", 1},
                       {"command", "fuzz"},
@@ -98,9 +98,10 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds, 
                       {"seconds", seconds},
                       {"runs_per_second", seconds > 0 ? double(runs) / seconds : 0.0},
                       {"passed", !failure.has_value()}};
-  j["fixed_point_bits"] = fixed_point.any ? nlohmann::json{{"min", fixed_point.min}, {"max", fixed_point.max}}
-                                          : nlohmann::json(nullptr);
-  for (int f = 0; f < kAdversarialFamilies; ++f) j["runs_per_family"][ToString(AdversarialFamily(f))] = families[std::size_t(f)];
+  j["fixed_point_bits"] =
+      fixed_point.any ? nlohmann::json{{"min", fixed_point.min}, {"max", fixed_point.max}} : nlohmann::json(nullptr);
+  for (int f = 0; f < kAdversarialFamilies; ++f)
+    j["runs_per_family"][ToString(AdversarialFamily(f))] = families[std::size_t(f)];
   if (failure) {
     j["failure"] = {{"run", failure->run},
                     {"seconds_to_find", failure->seconds_to_find},
@@ -128,13 +129,15 @@ int Run(FuzzOptions& o, bool options_only) {
   }
   const Defect defect = ParseDefect(o.defect);
   if (defect != Defect::kNone && backend.kind != BackendKind::kEmulated) {
-    throw ConfigError("--inject-defect", "breaks the emulated backend's kernel; for Vulkan give a broken shader with --accumulate-spv");
+    throw ConfigError("--inject-defect",
+                      "breaks the emulated backend's kernel; for Vulkan give a broken shader with --accumulate-spv");
   }
   if (!o.vulkan.accumulate_spv.empty() && !backend.runs_user_shaders) {
     throw ConfigError("--accumulate-spv", "runs on the Vulkan backend; add --backend vulkan");
   }
   if (o.accumulation.empty() && !o.vulkan.accumulate_spv.empty()) {
-    throw ConfigError("--accum", "say which mode the shader given with --accumulate-spv accumulates in: fixed64, float32 or both");
+    throw ConfigError("--accum",
+                      "say which mode the shader given with --accumulate-spv accumulates in: fixed64, float32 or both");
   }
   std::optional<Accumulation> accumulation;
   if (!o.accumulation.empty() && o.accumulation != "both") accumulation = ParseAccumulation(o.accumulation);
@@ -168,7 +171,8 @@ int Run(FuzzOptions& o, bool options_only) {
     if (terminal && SecondsSince(last_progress) >= 0.25) {
       last_progress = Clock::now();
       const double elapsed = SecondsSince(start);
-      std::fprintf(stderr, "\rfuzz: %llu runs, %.1f runs/s, %.0f s", (unsigned long long)(run + 1), double(run + 1) / elapsed, elapsed);
+      std::fprintf(stderr, "\rfuzz: %llu runs, %.1f runs/s, %.0f s", (unsigned long long)(run + 1),
+                   double(run + 1) / elapsed, elapsed);
     }
   }
   if (terminal) std::fprintf(stderr, "\r%60s\r", "");
@@ -183,9 +187,9 @@ int Run(FuzzOptions& o, bool options_only) {
       failure->timing_dependent = Check(checker, failure->found).Passed();
     }
     if (!failure->timing_dependent) {
-      failure->shrink = ShrinkCase(failure->found, [&](const AdversarialCase& c) {
-        return !CheckUntilFails(checker, c, tries).Passed();
-      }, accumulation.has_value());
+      failure->shrink = ShrinkCase(
+          failure->found, [&](const AdversarialCase& c) { return !CheckUntilFails(checker, c, tries).Passed(); },
+          accumulation.has_value());
       failure->report = CheckUntilFails(checker, failure->shrink.shrunk, 3 * tries);
       failure->timing_dependent = failure->report.Passed();  // the shrunk case lost the timing it needs
     }
@@ -202,25 +206,28 @@ int Run(FuzzOptions& o, bool options_only) {
   if (o.json) {
     std::cout << ToJson(o, run, seconds, families, fixed_point, failure).dump(2) << "\n";
   } else if (!failure) {
-    std::printf("fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u, %s: every table passed the checker and the contract\n",
-                (unsigned long long)run, seconds, double(run) / seconds, o.seed, fixed_point.ToString().c_str());
+    std::printf(
+        "fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u, %s: every table passed the checker and the contract\n",
+        (unsigned long long)run, seconds, double(run) / seconds, o.seed, fixed_point.ToString().c_str());
   } else {
     const Failure& f = *failure;
-    std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` %s)\n", (unsigned long long)f.run,
-                f.seconds_to_find, o.seed, o.seed, (unsigned long long)(f.run + 1),
+    std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` %s)\n",
+                (unsigned long long)f.run, f.seconds_to_find, o.seed, o.seed, (unsigned long long)(f.run + 1),
                 f.timing_dependent ? "draws the case again, which fails on some runs only" : "finds it again");
     std::printf("  found: %s\n", f.found.ToString().c_str());
     if (f.timing_dependent) {
-      std::printf("  not shrunk (%llu checks, %.2f s): the failure depends on timing (a rerun of the case, or of the "
-                  "shrunk case, passed), so the bundle holds the case as found, which may need reruns to fail again\n",
-                  (unsigned long long)f.shrink.checks, f.shrink_seconds);
+      std::printf(
+          "  not shrunk (%llu checks, %.2f s): the failure depends on timing (a rerun of the case, or of the "
+          "shrunk case, passed), so the bundle holds the case as found, which may need reruns to fail again\n",
+          (unsigned long long)f.shrink.checks, f.shrink_seconds);
     } else {
       std::printf("  shrunk in %llu checks (%.2f s)%s: %s\n", (unsigned long long)f.shrink.checks, f.shrink_seconds,
                   f.shrink.exhausted ? ", stopped at the check limit" : "", f.shrink.shrunk.ToString().c_str());
     }
     std::printf("  %s (%s, F %d)\n", f.report.FirstFailure().c_str(), ToString(f.report.accumulation).c_str(),
                 f.report.fixed_point_bits);
-    std::printf("  repro bundle in %s: reproduce.sh runs `hpsf crosscheck records.hpsfv` with the same options\n", o.repro_dir.c_str());
+    std::printf("  repro bundle in %s: reproduce.sh runs `hpsf crosscheck records.hpsfv` with the same options\n",
+                o.repro_dir.c_str());
   }
   return failure ? kExitCheckFailed : kExitOk;
 }
@@ -229,16 +236,23 @@ int Run(FuzzOptions& o, bool options_only) {
 
 void AddFuzzCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<FuzzOptions>();
-  CLI::App* c = app.add_subcommand("fuzz", "Adversarial batches against a backend or your accumulate shader, judged by the "
-                                           "table checker and the cross-check contract; a failure is shrunk to a repro bundle");
+  CLI::App* c = app.add_subcommand("fuzz",
+                                   "Adversarial batches against a backend or your accumulate shader, judged by the "
+                                   "table checker and the cross-check contract; a failure is shrunk to a repro bundle");
   c->add_option("--backend", o->backend, "The backend fuzzed beside the reference: " + BackendNames(true))
       ->capture_default_str();
-  c->add_option("--accumulate-spv", o->vulkan.accumulate_spv, "Vulkan: your accumulate shader (SPIR-V) through the stable buffer interface");
-  c->add_option("--accum", o->accumulation, "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
-  c->add_option("--inject-defect", o->defect, "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
-                "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")->capture_default_str();
-  CLI::Option* time = c->add_option("--time", o->seconds, "Stop after this many seconds (default 60 when --runs is not given)");
-  c->add_option("--runs", o->runs, "Stop after this many batches: the same seed and runs judge the same batches")->excludes(time);
+  c->add_option("--accumulate-spv", o->vulkan.accumulate_spv,
+                "Vulkan: your accumulate shader (SPIR-V) through the stable buffer interface");
+  c->add_option("--accum", o->accumulation,
+                "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
+  c->add_option("--inject-defect", o->defect,
+                "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
+                "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")
+      ->capture_default_str();
+  CLI::Option* time =
+      c->add_option("--time", o->seconds, "Stop after this many seconds (default 60 when --runs is not given)");
+  c->add_option("--runs", o->runs, "Stop after this many batches: the same seed and runs judge the same batches")
+      ->excludes(time);
   c->add_option("--seed", o->seed, "Seed of the batches and schedules")->capture_default_str();
   c->add_option("--max-records", o->max_records, "Records per batch at most, 2..4096")->capture_default_str();
   c->add_option("--repro-dir", o->repro_dir, "Where a failure's shrunk repro bundle is written")->capture_default_str();

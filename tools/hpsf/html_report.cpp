@@ -19,10 +19,10 @@
 #include <stdexcept>
 
 #include "core/error.h"
-#include "verifier/metrics/diff_verdict.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/report_assets.h"
 #include "tools/hpsf/version.h"
+#include "verifier/metrics/diff_verdict.h"
 
 namespace hpsf {
 namespace {

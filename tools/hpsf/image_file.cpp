@@ -1,5 +1,7 @@
 #include "tools/hpsf/image_file.h"
 
+#include <OpenImageIO/imageio.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -7,8 +9,6 @@
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
-
-#include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
 #include "verifier/metrics/srgb.h"

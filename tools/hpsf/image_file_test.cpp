@@ -1,15 +1,16 @@
 // The EXR's variance channels (`--variance`) as the statistical comparison reads them back (ReadChannelImage, then
 // ToNoisyImage): by name, exactly, and with a clear error naming the file and what is missing when a file has none.
+#include "tools/hpsf/image_file.h"
+
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <map>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "core/error.h"
-#include "verifier/metrics/statistical_compare.h"
 #include "tools/hpsf/channel_image_file.h"
-#include "tools/hpsf/image_file.h"
+#include "verifier/metrics/statistical_compare.h"
 
 namespace hpsf {
 namespace {

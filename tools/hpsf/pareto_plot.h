@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "verifier/metrics/pareto.h"
 #include "tools/hpsf/heatmap.h"
+#include "verifier/metrics/pareto.h"
 
 namespace hpsf {
 

@@ -202,8 +202,8 @@ void RunReplay(ReplayOptions& o, bool options_only) {
     config.frame = frames[k].frame;
     nlohmann::json frame = {{"frame", config.frame}};
     const bool last = k + 1 == frames.size();
-    nlohmann::json written = FilterSequenceFrame(backend, frames[k], config, o.filter,
-                                                 {o.records, o.backend, o.output}, o.frame_out, last, frame);
+    nlohmann::json written = FilterSequenceFrame(backend, frames[k], config, o.filter, {o.records, o.backend, o.output},
+                                                 o.frame_out, last, frame);
     if (last) report = std::move(written);
     per_frame.push_back(frame);
   }
@@ -220,17 +220,23 @@ void RunReplay(ReplayOptions& o, bool options_only) {
 
 void AddRenderCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* c = app.add_subcommand("render", "Trace a scene into sample records, filter them, write OUT.exr and OUT.png");
-  c->add_option("scene", o->scene, "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
-                                   "cornell-zero-red) or a scene file")->required();
+  CLI::App* c =
+      app.add_subcommand("render", "Trace a scene into sample records, filter them, write OUT.exr and OUT.png");
+  c->add_option("scene", o->scene,
+                "A built-in scene (cornell, furnace, cornell-far-1e5, cornell-far-1e7, cornell-tiny, "
+                "cornell-zero-red) or a scene file")
+      ->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();
   c->add_option("--backend", o->backend, "Filter backend: " + BackendNames())->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth,
-                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")->capture_default_str();
-  c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")->capture_default_str();
-  c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")->capture_default_str();
+                "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
+      ->capture_default_str();
+  c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")
+      ->capture_default_str();
+  c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")
+      ->capture_default_str();
   c->add_option("--frame", o->trace.frame,
                 "Trace an animated scene at this frame (its keyframes, and the frame in every random number); "
                 "the first of --frames")
@@ -250,7 +256,8 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
 
 void AddReplayCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<ReplayOptions>();
-  CLI::App* c = app.add_subcommand("replay", "Filter recorded frames (.hpsfv) and write the last to OUT.exr and OUT.png");
+  CLI::App* c =
+      app.add_subcommand("replay", "Filter recorded frames (.hpsfv) and write the last to OUT.exr and OUT.png");
   c->add_option("records", o->records, "The .hpsfv file; its frames go through one table, each as its number")
       ->required();
   c->add_option("-o,--output", o->output, "The EXR to write; the PNG preview goes beside it")->required();

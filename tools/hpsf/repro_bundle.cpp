@@ -58,16 +58,20 @@ void WriteReproBundle(const std::string& dir_name, std::span<const RecordBatch> 
   for (const std::string& argument : arguments) options.append(" ").append(Quoted(argument));
   std::ofstream(dir / "reproduce.sh")
       << "#!/bin/sh\n"
-      << "# Reproduces the failed cross-check exactly (same records, options, seed and schedule) from any folder on any\n"
+      << "# Reproduces the failed cross-check exactly (same records, options, seed and schedule) from any folder on "
+         "any\n"
       << "# machine with hpsf: $HPSF if set, else hpsf on PATH. Writes reproduced.json beside report.json.\n"
       << "cd \"$(dirname \"$0\")\" || exit 3\n"
       << "hpsf=${HPSF:-$(command -v hpsf)}\n"
-      << "if [ -z \"$hpsf\" ]; then echo \"reproduce.sh: no hpsf: set HPSF=/path/to/hpsf or put hpsf on PATH\" >&2; exit 3; fi\n"
+      << "if [ -z \"$hpsf\" ]; then echo \"reproduce.sh: no hpsf: set HPSF=/path/to/hpsf or put hpsf on PATH\" >&2; "
+         "exit 3; fi\n"
       << "written=" << Quoted(std::string("hpsf ") + kHpsfVersion) << "\n"
       << "running=$(\"$hpsf\" --version 2>/dev/null)\n"
-      << "[ \"$running\" = \"$written\" ] || echo \"reproduce.sh: warning: written by $written, reproduced with ${running:-an hpsf that gives no version} ($hpsf)\" >&2\n"
+      << "[ \"$running\" = \"$written\" ] || echo \"reproduce.sh: warning: written by $written, reproduced with "
+         "${running:-an hpsf that gives no version} ($hpsf)\" >&2\n"
       << "exec \"$hpsf\" crosscheck records.hpsfv" << options << " --repro-dir reproduced --json > reproduced.json\n";
-  std::filesystem::permissions(dir / "reproduce.sh", std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
+  std::filesystem::permissions(dir / "reproduce.sh", std::filesystem::perms::owner_exec,
+                               std::filesystem::perm_options::add);
 }
 
 std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& backends, const FilterConfig& c,
@@ -75,23 +79,38 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                              const VulkanBackendOptions& vulkan) {
   std::string backend_list;
   for (const std::string& b : backends) backend_list.append(backend_list.empty() ? "" : ",").append(b);
-  std::vector<std::string> a = {"--backends", backend_list,
-                                "--filter-width", ExactFloat(c.filter_width_px),
-                                "--jitter", ExactFloat(c.jitter_scale),
-                                "--normal", c.normal.ToString(),
-                                "--lod", c.lod ? "on" : "off",
-                                "--cell-size", ExactFloat(c.cell_size),
+  std::vector<std::string> a = {"--backends",
+                                backend_list,
+                                "--filter-width",
+                                ExactFloat(c.filter_width_px),
+                                "--jitter",
+                                ExactFloat(c.jitter_scale),
+                                "--normal",
+                                c.normal.ToString(),
+                                "--lod",
+                                c.lod ? "on" : "off",
+                                "--cell-size",
+                                ExactFloat(c.cell_size),
                                 "--level-min=" + std::to_string(c.level_min),
                                 "--level-max=" + std::to_string(c.level_max),
-                                "--accum", ToString(c.accumulation),
-                                "--seed", std::to_string(c.seed),
-                                "--capacity", std::to_string(c.capacity),
-                                "--probe-limit", std::to_string(c.probe_limit),
-                                "--fingerprint-bits", std::to_string(c.fingerprint_bits),
-                                "--eviction", c.eviction.ToString(),
-                                "--temporal", c.temporal.ToString(),
-                                "--level-change", c.level_seed.ToString(),
-                                "--fixed-point-bits", c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
+                                "--accum",
+                                ToString(c.accumulation),
+                                "--seed",
+                                std::to_string(c.seed),
+                                "--capacity",
+                                std::to_string(c.capacity),
+                                "--probe-limit",
+                                std::to_string(c.probe_limit),
+                                "--fingerprint-bits",
+                                std::to_string(c.fingerprint_bits),
+                                "--eviction",
+                                c.eviction.ToString(),
+                                "--temporal",
+                                c.temporal.ToString(),
+                                "--level-change",
+                                c.level_seed.ToString(),
+                                "--fixed-point-bits",
+                                c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
   const bool faithful = emulator.mode == simt::Mode::kFaithful;
   a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});

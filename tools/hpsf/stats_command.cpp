@@ -8,10 +8,10 @@
 #include "core/error.h"
 #include "core/footprint.h"
 #include "core/key_batch.h"
-#include "verifier/theory/table_statistics.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
 #include "tracer/path_tracer.h"
+#include "verifier/theory/table_statistics.h"
 
 namespace hpsf {
 namespace {
@@ -31,8 +31,8 @@ void PrintRate(std::uint32_t value, const RateFigure& f) {
 
 void PrintText(const TableStatistics& s, const std::string& input) {
   std::printf("%s: %llu records, %llu keyed, %llu distinct keys; capacity %u: load %.4f\n", input.c_str(),
-              (unsigned long long)s.records, (unsigned long long)s.keyed_records,
-              (unsigned long long)s.distinct_keys, s.capacity, s.load);
+              (unsigned long long)s.records, (unsigned long long)s.keyed_records, (unsigned long long)s.distinct_keys,
+              s.capacity, s.load);
   if (!s.probe_histogram.empty()) {
     std::printf("probes of a successful search (no limit): mean %.4f, theory %.4f\n", s.mean_probes,
                 s.mean_probes_theory);
@@ -42,12 +42,13 @@ void PrintText(const TableStatistics& s, const std::string& input) {
                   s.probe_histogram[k], s.probe_histogram_theory[k]);
     }
   }
-  std::printf("probe failures per probe limit (keys in the batch's order; the bound counts failed keys as "
-              "inserted):\n  %-9s %12s %12s   %s\n",
-              "limit", "rate", "bound", "interval");
+  std::printf(
+      "probe failures per probe limit (keys in the batch's order; the bound counts failed keys as "
+      "inserted):\n  %-9s %12s %12s   %s\n",
+      "limit", "rate", "bound", "interval");
   for (const ProbeLimitFigure& f : s.probe_limits) PrintRate(f.probe_limit, f.failures);
-  std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits",
-              "rate", "predicted", "interval");
+  std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits", "rate",
+              "predicted", "interval");
   for (const AliasFigure& f : s.fingerprints) PrintRate(f.fingerprint_bits, f.aliases);
   std::printf("  32 bits extrapolated: %.3g aliases per key\n", s.extrapolated_alias_rate_32);
   std::printf("records per cell: max %llu;", (unsigned long long)s.max_records_per_cell);
@@ -91,8 +92,9 @@ int Run(StatsOptions& o, bool options_only) {
 
 void AddStatsCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<StatsOptions>();
-  CLI::App* c = app.add_subcommand("stats", "The figures that size a table for a scene: load, probes, failures, "
-                                            "aliases, records per cell, jitter; each beside its theory");
+  CLI::App* c = app.add_subcommand("stats",
+                                   "The figures that size a table for a scene: load, probes, failures, "
+                                   "aliases, records per cell, jitter; each beside its theory");
   c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")
       ->required();
   c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();

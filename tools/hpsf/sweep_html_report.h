@@ -4,9 +4,8 @@
 #ifndef HPSF_TOOLS_HPSF_SWEEP_HTML_REPORT_H
 #define HPSF_TOOLS_HPSF_SWEEP_HTML_REPORT_H
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace hpsf {
 

@@ -3,11 +3,11 @@
 // module that does not declare RTE rounding and signed-zero/Inf/NaN preservation for 32-bit floats.
 // Reading the binary (not spirv-dis's text) keeps the check exact; messages name instructions as spirv-dis does.
 #include <glslang/SPIRV/GLSL.std.450.h>
-#include <glslang/SPIRV/spirv.hpp>
 
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <glslang/SPIRV/spirv.hpp>
 #include <iterator>
 #include <map>
 #include <set>
@@ -43,7 +43,8 @@ bool ReadModule(const char* path, std::vector<Instruction>& module, std::string&
   if (words[0] != spv::MagicNumber) return error = "not a SPIR-V module (magic number)", false;
   for (std::size_t at = 5; at < words.size();) {
     std::uint32_t count = words[at] >> 16;
-    if (count == 0 || at + count > words.size()) return error = "truncated instruction at word " + std::to_string(at), false;
+    if (count == 0 || at + count > words.size())
+      return error = "truncated instruction at word " + std::to_string(at), false;
     module.push_back({static_cast<spv::Op>(words[at] & 0xFFFFu), {words.begin() + at + 1, words.begin() + at + count}});
     at += count;
   }
@@ -51,25 +52,47 @@ bool ReadModule(const char* path, std::vector<Instruction>& module, std::string&
 }
 
 const std::map<std::uint32_t, const char*> kForbiddenGlslStd450 = {
-    {GLSLstd450Sin, "Sin"},       {GLSLstd450Cos, "Cos"},           {GLSLstd450Tan, "Tan"},
-    {GLSLstd450Asin, "Asin"},     {GLSLstd450Acos, "Acos"},         {GLSLstd450Atan, "Atan"},
-    {GLSLstd450Atan2, "Atan2"},   {GLSLstd450Pow, "Pow"},           {GLSLstd450Exp, "Exp"},
-    {GLSLstd450Log, "Log"},       {GLSLstd450Exp2, "Exp2"},         {GLSLstd450Log2, "Log2"},
-    {GLSLstd450Sqrt, "Sqrt"},     {GLSLstd450InverseSqrt, "InverseSqrt"}, {GLSLstd450Fma, "Fma"},
-    {GLSLstd450Length, "Length"}, {GLSLstd450Distance, "Distance"}, {GLSLstd450Cross, "Cross"},
-    {GLSLstd450Normalize, "Normalize"}, {GLSLstd450Reflect, "Reflect"}, {GLSLstd450Refract, "Refract"},
+    {GLSLstd450Sin, "Sin"},
+    {GLSLstd450Cos, "Cos"},
+    {GLSLstd450Tan, "Tan"},
+    {GLSLstd450Asin, "Asin"},
+    {GLSLstd450Acos, "Acos"},
+    {GLSLstd450Atan, "Atan"},
+    {GLSLstd450Atan2, "Atan2"},
+    {GLSLstd450Pow, "Pow"},
+    {GLSLstd450Exp, "Exp"},
+    {GLSLstd450Log, "Log"},
+    {GLSLstd450Exp2, "Exp2"},
+    {GLSLstd450Log2, "Log2"},
+    {GLSLstd450Sqrt, "Sqrt"},
+    {GLSLstd450InverseSqrt, "InverseSqrt"},
+    {GLSLstd450Fma, "Fma"},
+    {GLSLstd450Length, "Length"},
+    {GLSLstd450Distance, "Distance"},
+    {GLSLstd450Cross, "Cross"},
+    {GLSLstd450Normalize, "Normalize"},
+    {GLSLstd450Reflect, "Reflect"},
+    {GLSLstd450Refract, "Refract"},
 };
 
 const std::map<spv::Op, const char*> kForbiddenOps = {
-    {spv::OpFDiv, "OpFDiv"}, {spv::OpFRem, "OpFRem"}, {spv::OpFMod, "OpFMod"}, {spv::OpDot, "OpDot"},
-    {spv::OpOuterProduct, "OpOuterProduct"}, {spv::OpMatrixTimesMatrix, "OpMatrixTimesMatrix"},
-    {spv::OpMatrixTimesVector, "OpMatrixTimesVector"}, {spv::OpVectorTimesMatrix, "OpVectorTimesMatrix"},
+    {spv::OpFDiv, "OpFDiv"},
+    {spv::OpFRem, "OpFRem"},
+    {spv::OpFMod, "OpFMod"},
+    {spv::OpDot, "OpDot"},
+    {spv::OpOuterProduct, "OpOuterProduct"},
+    {spv::OpMatrixTimesMatrix, "OpMatrixTimesMatrix"},
+    {spv::OpMatrixTimesVector, "OpMatrixTimesVector"},
+    {spv::OpVectorTimesMatrix, "OpVectorTimesMatrix"},
 };
 
 // Rounded float arithmetic that a compiler may fuse unless the result carries NoContraction.
 const std::map<spv::Op, const char*> kContractibleOps = {
-    {spv::OpFAdd, "OpFAdd"}, {spv::OpFSub, "OpFSub"}, {spv::OpFMul, "OpFMul"},
-    {spv::OpVectorTimesScalar, "OpVectorTimesScalar"}, {spv::OpMatrixTimesScalar, "OpMatrixTimesScalar"},
+    {spv::OpFAdd, "OpFAdd"},
+    {spv::OpFSub, "OpFSub"},
+    {spv::OpFMul, "OpFMul"},
+    {spv::OpVectorTimesScalar, "OpVectorTimesScalar"},
+    {spv::OpMatrixTimesScalar, "OpMatrixTimesScalar"},
 };
 
 }  // namespace
@@ -93,8 +116,10 @@ int main(int argc, char** argv) {
   for (const Instruction& in : module) {
     const auto& o = in.operands;
     if (in.opcode == spv::OpName && !o.empty()) names[o[0]] = DecodeString(o, 1);
-    if (in.opcode == spv::OpExtInstImport && o.size() > 1 && DecodeString(o, 1) == "GLSL.std.450") glsl_std450.insert(o[0]);
-    if (in.opcode == spv::OpDecorate && o.size() > 1 && o[1] == spv::DecorationNoContraction) no_contraction.insert(o[0]);
+    if (in.opcode == spv::OpExtInstImport && o.size() > 1 && DecodeString(o, 1) == "GLSL.std.450")
+      glsl_std450.insert(o[0]);
+    if (in.opcode == spv::OpDecorate && o.size() > 1 && o[1] == spv::DecorationNoContraction)
+      no_contraction.insert(o[0]);
     if (in.opcode == spv::OpExecutionMode && o.size() > 2 && o[2] == 32) {
       rte32 = rte32 || o[1] == spv::ExecutionModeRoundingModeRTE;
       preserve32 = preserve32 || o[1] == spv::ExecutionModeSignedZeroInfNanPreserve;
@@ -112,17 +137,20 @@ int main(int argc, char** argv) {
     if (auto it = kForbiddenOps.find(in.opcode); it != kForbiddenOps.end() && o.size() > 1) {
       report((std::string(it->second) + ": inexact in Vulkan, not allowed on the key path").c_str(), o[1]);
     }
-    if (auto it = kContractibleOps.find(in.opcode); it != kContractibleOps.end() && o.size() > 1 && !no_contraction.count(o[1])) {
+    if (auto it = kContractibleOps.find(in.opcode);
+        it != kContractibleOps.end() && o.size() > 1 && !no_contraction.count(o[1])) {
       report((std::string(it->second) + " without NoContraction: make the expression precise").c_str(), o[1]);
     }
     if (in.opcode == spv::OpExtInst && o.size() > 3 && glsl_std450.count(o[2])) {
       if (auto it = kForbiddenGlslStd450.find(o[3]); it != kForbiddenGlslStd450.end()) {
-        report((std::string("OpExtInst ") + it->second + ": inexact in Vulkan, not allowed on the key path").c_str(), o[1]);
+        report((std::string("OpExtInst ") + it->second + ": inexact in Vulkan, not allowed on the key path").c_str(),
+               o[1]);
       }
     }
   }
   if (!rte32) std::fprintf(stderr, "%s: no RoundingModeRTE execution mode for 32-bit floats\n", path), ++violations;
-  if (!preserve32) std::fprintf(stderr, "%s: no SignedZeroInfNanPreserve execution mode for 32-bit floats\n", path), ++violations;
+  if (!preserve32)
+    std::fprintf(stderr, "%s: no SignedZeroInfNanPreserve execution mode for 32-bit floats\n", path), ++violations;
   if (violations > 0) {
     std::fprintf(stderr, "%s: %d key-path violation(s)\n", path, violations);
     return 1;

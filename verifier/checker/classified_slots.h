@@ -1,5 +1,5 @@
-// The slots of a hashed table that the contract classifies, over a sequence of frames (docs/design/contract.md: level 3 and
-// level 4 judge every record outside them): a slot whose placed records carry two or more full keys since it was
+// The slots of a hashed table that the contract classifies, over a sequence of frames (docs/design/contract.md: level 3
+// and level 4 judge every record outside them): a slot whose placed records carry two or more full keys since it was
 // last empty (the fingerprint aliased them, in one frame or across frames), and a slot holding a cell some of whose
 // records failed to probe in an earlier frame (the reference kept them; the table never saw them). Within one
 // frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots. With priority
@@ -43,9 +43,9 @@ class ClassifiedSlots {
   bool LookupAliased(const shared::KeyWords& neighbour) const;
 
   bool evicts_under_pressure_, seeds_levels_, normal_in_index_;
-  std::optional<HashTableDump> previous_table_;             // with level seeds: the table before this frame
-  std::vector<std::optional<FullKey>> previous_key_of_;     // and the live cell of each of its slots
-  std::vector<std::optional<FullKey>> key_of_;   // per slot, the full key last placed there since it was empty
+  std::optional<HashTableDump> previous_table_;          // with level seeds: the table before this frame
+  std::vector<std::optional<FullKey>> previous_key_of_;  // and the live cell of each of its slots
+  std::vector<std::optional<FullKey>> key_of_;           // per slot, the full key last placed there since it was empty
   std::vector<std::vector<FullKey>> keys_here_;  // with pressure: per slot, every full key placed since it was empty
   std::vector<bool> aliased_, after_failure_, classified_;
   std::set<FullKey> failed_;   // cells with a probe failure in some frame

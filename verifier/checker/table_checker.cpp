@@ -16,7 +16,8 @@ constexpr std::size_t kMaxRecordsNamed = 8;
 
 std::string Records(const std::vector<std::uint32_t>& records) {
   std::string s;
-  for (std::size_t i = 0; i < records.size() && i < kMaxRecordsNamed; ++i) s += (s.empty() ? "" : ", ") + std::to_string(records[i]);
+  for (std::size_t i = 0; i < records.size() && i < kMaxRecordsNamed; ++i)
+    s += (s.empty() ? "" : ", ") + std::to_string(records[i]);
   if (records.size() > kMaxRecordsNamed) s += ", ... (" + std::to_string(records.size()) + " in all)";
   return s;
 }
@@ -69,8 +70,8 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
   const CellState by_exact = BlendCellState(params, false, before, accumulated);
   const std::uint64_t n = here.size();
   const std::uint64_t most = std::min(before.count, params.max_count) + n;
-  const bool count_ok = in.temporal.mode == TemporalMode::kEma ? t.counts[s] == by_exact.count
-                                                                 : t.counts[s] >= n && t.counts[s] <= most;
+  const bool count_ok =
+      in.temporal.mode == TemporalMode::kEma ? t.counts[s] == by_exact.count : t.counts[s] >= n && t.counts[s] <= most;
   if (!count_ok) {
     fail("count " + std::to_string(t.counts[s]) + ", expected " +
          (in.temporal.mode == TemporalMode::kEma ? std::to_string(by_exact.count)
@@ -98,17 +99,26 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
 
 const char* ToString(TableInvariant invariant) {
   switch (invariant) {
-    case TableInvariant::kPlacementOfUnkeyedRecord: return "placement of an unkeyed record";
-    case TableInvariant::kSlotOutsideWindow: return "slot outside the probe window";
-    case TableInvariant::kTagIsNotTheFingerprint: return "tag is not the record's fingerprint";
-    case TableInvariant::kEarlierSlotEmptyOrMatching: return "earlier slot of the window empty or matching";
+    case TableInvariant::kPlacementOfUnkeyedRecord:
+      return "placement of an unkeyed record";
+    case TableInvariant::kSlotOutsideWindow:
+      return "slot outside the probe window";
+    case TableInvariant::kTagIsNotTheFingerprint:
+      return "tag is not the record's fingerprint";
+    case TableInvariant::kEarlierSlotEmptyOrMatching:
+      return "earlier slot of the window empty or matching";
     case TableInvariant::kFailureWindowNotFull:
       return "probe failure with an empty, matching or claimable slot in its window";
-    case TableInvariant::kCountMismatch: return "count differs from the records placed";
-    case TableInvariant::kSumMismatch: return "sum differs from the records placed";
-    case TableInvariant::kEmptySlotNotZero: return "empty slot with a count or sum";
-    case TableInvariant::kOrphanTag: return "tag without a placed record";
-    case TableInvariant::kTotalMismatch: return "table total differs from the placed contributions";
+    case TableInvariant::kCountMismatch:
+      return "count differs from the records placed";
+    case TableInvariant::kSumMismatch:
+      return "sum differs from the records placed";
+    case TableInvariant::kEmptySlotNotZero:
+      return "empty slot with a count or sum";
+    case TableInvariant::kOrphanTag:
+      return "tag without a placed record";
+    case TableInvariant::kTotalMismatch:
+      return "table total differs from the placed contributions";
     case TableInvariant::kTagChangedAcrossFrames:
       return "slot claimed in an earlier frame lost its tag";
     case TableInvariant::kEvictionPolicy:
@@ -147,7 +157,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // A dump holds the sums of its own mode only.
   auto fixed_before = [&](std::uint32_t s, int c) { return before && fixed ? before->fixed_sums[s][c] : 0; };
   auto float_before = [&](std::uint32_t s, int c) { return before && !fixed ? before->float_sums[s][c] : 0.0f; };
-  auto violate = [&](TableInvariant invariant, std::uint32_t slot, std::vector<std::uint32_t> records, std::string detail) {
+  auto violate = [&](TableInvariant invariant, std::uint32_t slot, std::vector<std::uint32_t> records,
+                     std::string detail) {
     violations.push_back({invariant, slot, std::move(records), std::move(detail)});
   };
 
@@ -167,7 +178,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     const std::uint32_t slot = in.placements[i];
     const bool keyed = key.status == shared::kKeyed && CheckRecordInputs(in.records[i]) == InputVerdict::kAccepted;
     if (!keyed || slot == kNotPlaced) {
-      if (keyed != (slot != kNotPlaced)) violate(TableInvariant::kPlacementOfUnkeyedRecord, 0xFFFFFFFFu, {i}, keyed ? "keyed but never probed" : "placed without a key");
+      if (keyed != (slot != kNotPlaced))
+        violate(TableInvariant::kPlacementOfUnkeyedRecord, 0xFFFFFFFFu, {i},
+                keyed ? "keyed but never probed" : "placed without a key");
       continue;
     }
     if (slot == kProbeFailure) {
@@ -187,7 +200,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     }
     const std::uint32_t distance = (slot - key.slot0) & mask;
     if (distance >= t.probe_limit) {
-      violate(TableInvariant::kSlotOutsideWindow, slot, {i}, "slot0 " + std::to_string(key.slot0) + ", probe " + std::to_string(distance));
+      violate(TableInvariant::kSlotOutsideWindow, slot, {i},
+              "slot0 " + std::to_string(key.slot0) + ", probe " + std::to_string(distance));
     }
     if (t.tags[slot] != key.fingerprint) {
       violate(TableInvariant::kTagIsNotTheFingerprint, slot, {i},
@@ -300,9 +314,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       // A priority victim left live keeps its tag: the policy check below reports it, once.
       const bool left_live = priority && t.tags[s] == snapshot_tag(s) && t.counts[s] != 0;
       if (t.tags[s] != expected && !left_live) {
-        const TableInvariant invariant = t.tags[s] == kEmptyTag    ? TableInvariant::kHoleBeforeLiveSlot
+        const TableInvariant invariant = t.tags[s] == kEmptyTag   ? TableInvariant::kHoleBeforeLiveSlot
                                          : t.tags[s] == tombstone ? TableInvariant::kTombstoneKept
-                                                                   : TableInvariant::kTagChangedAcrossFrames;
+                                                                  : TableInvariant::kTagChangedAcrossFrames;
         violate(
             invariant, s, here,
             "tombstone of tag " + std::to_string(snapshot_tag(s)) + ", tag " + std::to_string(t.tags[s]) + " after; " +
@@ -323,11 +337,11 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       const std::string why =
           !priority ? "last seen in frame " + std::to_string(last_seen_before(s)) + ", policy " + eviction.ToString() +
                           " after frame " + std::to_string(in.frame)
-          : evicted_by_policy ? "the lowest priority in the window of record " + std::to_string(victim_of[s]) +
-                                    ", which found no slot: priority"
-                              : "not the lowest priority in the window of any record that found no slot (last seen " +
-                                    std::to_string(last_seen_before(s)) + ", count " + std::to_string(count_before(s)) +
-                                    "): priority";
+          : evicted_by_policy
+              ? "the lowest priority in the window of record " + std::to_string(victim_of[s]) +
+                    ", which found no slot: priority"
+              : "not the lowest priority in the window of any record that found no slot (last seen " +
+                    std::to_string(last_seen_before(s)) + ", count " + std::to_string(count_before(s)) + "): priority";
       violate(TableInvariant::kEvictionPolicy, s, {},
               why + (evicted_by_policy ? " evicts it, but it holds count " + std::to_string(t.counts[s])
                                        : " keeps it, but it was emptied"));
@@ -368,8 +382,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (t.counts[s] != expected_count) {
       violate(TableInvariant::kCountMismatch, s, here,
               "count " + std::to_string(t.counts[s]) + (seed.count > 0 ? ", seeded " : ", before ") +
-                  std::to_string(base_count) + " + placed " +
-                  std::to_string(here.size()) + (expected_count >> 64 ? ": more than a 64-bit count holds (D12)" : ""));
+                  std::to_string(base_count) + " + placed " + std::to_string(here.size()) +
+                  (expected_count >> 64 ? ": more than a 64-bit count holds (D12)" : ""));
     }
     for (int c = 0; c < 3; ++c) {
       unsigned __int128 exact = fixed_base(c);
@@ -384,8 +398,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
         table_total[c] += t.fixed_sums[s][c];
         placed_total[c] += exact;
         if (exact != t.fixed_sums[s][c]) {
-          violate(TableInvariant::kSumMismatch, s, here, "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) +
-                                                              ", exact " + std::to_string(std::uint64_t(exact)));
+          violate(TableInvariant::kSumMismatch, s, here,
+                  "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) + ", exact " +
+                      std::to_string(std::uint64_t(exact)));
         }
       } else {
         // Float atomics are not promised to round to nearest: u = 2^-23, gamma(k) = k u / (1 - k u), over the k
@@ -394,8 +409,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
         const double k = double(terms > 0 ? terms - 1 : 0), u = 0x1p-23;
         const double bound = k * u / (1.0 - k * u) * magnitude;
         if (!(std::abs(double(t.float_sums[s][c]) - exact_float) <= bound)) {
-          violate(TableInvariant::kSumMismatch, s, here, "channel " + std::to_string(c) + ": sum " + std::to_string(t.float_sums[s][c]) +
-                                                              ", exact " + std::to_string(exact_float) + ", bound " + std::to_string(bound));
+          violate(TableInvariant::kSumMismatch, s, here,
+                  "channel " + std::to_string(c) + ": sum " + std::to_string(t.float_sums[s][c]) + ", exact " +
+                      std::to_string(exact_float) + ", bound " + std::to_string(bound));
         }
       }
     }

@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "core/eviction.h"
-#include "core/level_seed.h"
 #include "core/hash_table.h"
-#include "core/temporal.h"
 #include "core/key_batch.h"
+#include "core/level_seed.h"
 #include "core/record.h"
+#include "core/temporal.h"
 
 namespace hpsf {
 
@@ -65,9 +65,9 @@ struct TableCheckInput {
   std::span<const std::uint32_t> placements;  // per record
   // The table before this frame, of the same shape and F; null: the frame started from an empty table.
   const HashTableDump* before = nullptr;
-  Eviction eviction = {};   // the sequence's policy; the tables then carry last_seen
-  std::uint32_t frame = 0;  // this frame's number
-  Temporal temporal = {};   // the sequence's temporal mode
+  Eviction eviction = {};       // the sequence's policy; the tables then carry last_seen
+  std::uint32_t frame = 0;      // this frame's number
+  Temporal temporal = {};       // the sequence's temporal mode
   LevelSeed level_seed = {};    // the sequence's --level-change
   bool normal_in_index = true;  // the key's, for the neighbours' windows a seed is looked up in
 };

@@ -11,7 +11,8 @@ namespace hpsf {
 namespace {
 
 std::uint64_t SlotsUsed(const HashTableDump& table) {
-  return std::uint64_t(std::count_if(table.tags.begin(), table.tags.end(), [](SlotTag tag) { return tag != kEmptyTag; }));
+  return std::uint64_t(
+      std::count_if(table.tags.begin(), table.tags.end(), [](SlotTag tag) { return tag != kEmptyTag; }));
 }
 
 double GigabytesPerSecond(std::uint64_t bytes, double ms) { return ms > 0.0 ? double(bytes) / (ms * 1e6) : 0.0; }
@@ -28,9 +29,15 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"tombstones", run.tombstones},
                       {"seeded", run.seeded}};
   const EmulatedTimings& t = run.timings;
-  j["timings_ms"] = {{"keys", t.keys_ms},           {"fixed_point", t.fixed_point_ms}, {"clear", t.clear_ms},
-                     {"accumulate", t.accumulate_ms}, {"level_seed", t.level_seed_ms},   {"temporal", t.temporal_ms},
-                     {"eviction", t.eviction_ms},     {"read_back", t.read_back_ms},     {"resolve", t.resolve_ms}};
+  j["timings_ms"] = {{"keys", t.keys_ms},
+                     {"fixed_point", t.fixed_point_ms},
+                     {"clear", t.clear_ms},
+                     {"accumulate", t.accumulate_ms},
+                     {"level_seed", t.level_seed_ms},
+                     {"temporal", t.temporal_ms},
+                     {"eviction", t.eviction_ms},
+                     {"read_back", t.read_back_ms},
+                     {"resolve", t.resolve_ms}};
   if (options.mode == simt::Mode::kFaithful) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.trace_hash));
@@ -123,7 +130,8 @@ BackendInstance MakeBackend(const BackendInfo& info, const BackendSettings& sett
         instance.device = std::make_unique<VulkanDevice>(settings.vulkan.device_filter, settings.vulkan.staging);
         device = instance.device.get();
       }
-      auto vulkan = std::make_unique<VulkanBackend>(*device, settings.vulkan.accumulate_spv, settings.vulkan.eviction_spv);
+      auto vulkan =
+          std::make_unique<VulkanBackend>(*device, settings.vulkan.accumulate_spv, settings.vulkan.eviction_spv);
       const VulkanBackend* made = vulkan.get();
       const VulkanDeviceInfo* device_info = &device->info();
       instance.last_frame_stats = [made, device_info] { return ToJson(made->run(), *device_info); };

@@ -6,9 +6,8 @@
 
 #include <functional>
 #include <memory>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/backend.h"
 #include "core/backend_registry.h"
@@ -20,8 +19,8 @@
 namespace hpsf {
 
 struct BackendSettings {
-  EmulatorOptions emulator = {};  // emulated: mode, warp size, schedule, threads
-  Defect defect = Defect::kNone;  // emulated: a known defect injected into its accumulate kernel
+  EmulatorOptions emulator = {};     // emulated: mode, warp size, schedule, threads
+  Defect defect = Defect::kNone;     // emulated: a known defect injected into its accumulate kernel
   VulkanBackendOptions vulkan = {};  // vulkan: the device, its memory placement, a team's shaders
 };
 

@@ -12,9 +12,9 @@
 #include "reference/float_replay.h"
 #include "reference/reference_backend.h"
 #include "verifier/checker/classified_slots.h"
+#include "verifier/checker/table_checker.h"
 #include "verifier/contract/image_check.h"
 #include "verifier/contract/rerun_check.h"
-#include "verifier/checker/table_checker.h"
 
 namespace hpsf {
 namespace {

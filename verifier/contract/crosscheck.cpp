@@ -4,10 +4,10 @@
 #include <optional>
 #include <vector>
 
-#include "core/error.h"
-#include "verifier/contract/contract_levels.h"
 #include "core/backend_registry.h"
+#include "core/error.h"
 #include "verifier/contract/backend_factory.h"
+#include "verifier/contract/contract_levels.h"
 
 namespace hpsf {
 
@@ -55,8 +55,8 @@ CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::s
   }
   if (has("vulkan")) {
     if (!vulkan_) vulkan_ = std::make_unique<VulkanContext>(vulkan_options_);
-    hashed.push_back({"vulkan", vulkan_->backend.backend.get(), vulkan_->rerun.backend.get(), "rerun on the device", false,
-                      true});
+    hashed.push_back(
+        {"vulkan", vulkan_->backend.backend.get(), vulkan_->rerun.backend.get(), "rerun on the device", false, true});
   }
   CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed);
   if (has("vulkan")) report.vulkan_device = vulkan_->description;

@@ -1,5 +1,5 @@
-// The cross-check contract (docs/design/contract.md) between backends on one batch or a sequence of frames through one table:
-// level 1 keys (joins with Vulkan), level 2 every hashed backend passes the table checker (each frame from the
+// The cross-check contract (docs/design/contract.md) between backends on one batch or a sequence of frames through one
+// table: level 1 keys (joins with Vulkan), level 2 every hashed backend passes the table checker (each frame from the
 // table before it), level 3 agreement with the reference outside the records a backend classified (probe
 // failures, aliased slots), level 4 determinism of a rerun. One module for `hpsf crosscheck`, `hpsf fuzz` and the
 // tests; the levels themselves are verifier/contract/contract_levels.h.
@@ -8,11 +8,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/filter_config.h"
 #include "core/record.h"
@@ -68,7 +67,8 @@ struct VulkanBackendOptions {
 // defect: a known broken kernel for the emulated backend, to show the gate fails.
 class Crosschecker {
  public:
-  Crosschecker(const std::vector<std::string>& backends, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
+  Crosschecker(const std::vector<std::string>& backends, Defect defect = Defect::kNone,
+               const VulkanBackendOptions& vulkan = {});
   ~Crosschecker();
   Crosschecker(const Crosschecker&) = delete;
   Crosschecker& operator=(const Crosschecker&) = delete;
@@ -90,8 +90,9 @@ class Crosschecker {
 };
 
 // One batch through a Crosschecker of its own.
-CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config, const std::vector<std::string>& backends,
-                            const EmulatorOptions& emulator, Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
+CrosscheckReport Crosscheck(const RecordBatch& batch, const FilterConfig& config,
+                            const std::vector<std::string>& backends, const EmulatorOptions& emulator,
+                            Defect defect = Defect::kNone, const VulkanBackendOptions& vulkan = {});
 
 }  // namespace hpsf
 

@@ -40,10 +40,11 @@ SlotSums SumsByPlacement(const RecordBatch& batch, const HashedRun& run) {
 std::string Describe(std::size_t pixel, int channel, float got, double expected, double bound) {
   char text[160];
   if (bound > 0.0) {
-    std::snprintf(text, sizeof text, "pixel %zu channel %d: %.9g, its table gives %.17g within %.3g", pixel, channel, double(got), expected,
-                  bound);
+    std::snprintf(text, sizeof text, "pixel %zu channel %d: %.9g, its table gives %.17g within %.3g", pixel, channel,
+                  double(got), expected, bound);
   } else {
-    std::snprintf(text, sizeof text, "pixel %zu channel %d: %.9g, its table gives %.9g exactly", pixel, channel, double(got), expected);
+    std::snprintf(text, sizeof text, "pixel %zu channel %d: %.9g, its table gives %.9g exactly", pixel, channel,
+                  double(got), expected);
   }
   return text;
 }
@@ -55,7 +56,8 @@ void CheckFixed(const RecordBatch& batch, const HashedRun& run, std::vector<std:
     if (slot >= run.table.capacity) continue;
     glm::dvec3 average;
     for (int c = 0; c < 3; ++c) {
-      average[c] = FromFixedPoint(run.table.fixed_sums[slot][c], run.table.fixed_point_bits) / double(run.table.counts[slot]);
+      average[c] =
+          FromFixedPoint(run.table.fixed_sums[slot][c], run.table.fixed_point_bits) / double(run.table.counts[slot]);
     }
     averages[i] = average;
   }
@@ -82,9 +84,9 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
       std::optional<glm::dvec3> average;
       // A slot that carried samples into the frame, or was seeded from another level (core/level_seed.h), holds more
       // than this frame's records: level 2 bounds its sum.
-      const bool carried = slot < run.table.capacity &&
-                           ((before && before->counts[slot] > 0) ||
-                            (run.seeded > 0 && run.table.counts[slot] != sums.records[slot]));
+      const bool carried =
+          slot < run.table.capacity &&
+          ((before && before->counts[slot] > 0) || (run.seeded > 0 && run.table.counts[slot] != sums.records[slot]));
       if (carried) {
         const std::array<float, 3>& sum = run.table.float_sums[slot];
         average = glm::dvec3(sum[0], sum[1], sum[2]) / double(run.table.counts[slot]);
@@ -92,7 +94,8 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
         const double n = double(run.table.counts[slot]), k = n - 1.0;
         average = sums.exact[slot] / n;
         // The slot's float sum is within gamma(n - 1) * sum|c| of the exact one; divided by n, times |throughput|.
-        bound += glm::abs(glm::dvec3(r.throughput)) * (k * kUnitRoundoff / (1.0 - k * kUnitRoundoff)) * sums.magnitude[slot] / n;
+        bound += glm::abs(glm::dvec3(r.throughput)) * (k * kUnitRoundoff / (1.0 - k * kUnitRoundoff)) *
+                 sums.magnitude[slot] / n;
       }
       const glm::dvec3 value = AcceptedRecordValue(r, average ? &*average : nullptr);
       expected += value;
@@ -114,7 +117,8 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
 std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const HashedRun& run,
                                                 const HashTableDump* before) {
   std::vector<std::string> out;
-  if (run.image.pixels.size() != std::size_t(batch.width) * batch.height) return {"the image does not have the batch's size"};
+  if (run.image.pixels.size() != std::size_t(batch.width) * batch.height)
+    return {"the image does not have the batch's size"};
   if (run.table.accumulation == Accumulation::kFixed64) {
     CheckFixed(batch, run, out);
   } else {

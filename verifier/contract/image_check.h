@@ -2,9 +2,9 @@
 // table, every record taking the average of the slot it was placed in. fixed64 sums are exact, so the image is
 // bit-identical to core's resolve of them. float32 sums are rounded in whatever order the atomics applied, so
 // the image is held to the exact resolve (each slot's sum taken exactly from the records placed there) within
-// what the per-slot bound of docs/design/contract.md, gamma(n - 1) * sum|c|, allows after the throughput and the pixel mean, plus
-// the final rounding to float. Where nothing failed or aliased, the records of a slot are exactly those of the
-// reference's cell (level 3 checks that apart), so this is the bound against the exact reference. Over frames, a
+// what the per-slot bound of docs/design/contract.md, gamma(n - 1) * sum|c|, allows after the throughput and the pixel
+// mean, plus the final rounding to float. Where nothing failed or aliased, the records of a slot are exactly those of
+// the reference's cell (level 3 checks that apart), so this is the bound against the exact reference. Over frames, a
 // float32 slot that held samples before the frame carries a sum rounded in earlier frames (and blended): the table
 // checker bounds it (level 2), and the image is held to the resolve of the table's own sum.
 #ifndef HPSF_VERIFIER_CONTRACT_IMAGE_CHECK_H

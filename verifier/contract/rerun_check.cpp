@@ -17,7 +17,8 @@ bool SameBits(const std::vector<std::array<float, 3>>& a, const std::vector<std:
 bool Placed(const HashedRun& run, std::size_t record) { return run.placements[record] < run.table.capacity; }
 
 // Per record: placed in both runs or in neither, and its slot's count (and in fixed64 its sums) the same in both.
-void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, bool sums, std::vector<std::string>& out) {
+void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, bool sums,
+                              std::vector<std::string>& out) {
   const bool fixed = first.table.accumulation == Accumulation::kFixed64;
   for (std::size_t i = 0; i < first.placements.size() && out.size() < kDifferencesShown; ++i) {
     const std::string record = "record " + std::to_string(i) + ": ";
@@ -32,8 +33,8 @@ void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, b
                     std::to_string(a) + ") and " + std::to_string(second.table.counts[b]) + " in the other (slot " +
                     std::to_string(b) + ")");
     } else if (sums && fixed && first.table.fixed_sums[a] != second.table.fixed_sums[b]) {
-      out.push_back(record + "its slot's fixed-point sums differ between the runs (slots " + std::to_string(a) + " and " +
-                    std::to_string(b) + ")");
+      out.push_back(record + "its slot's fixed-point sums differ between the runs (slots " + std::to_string(a) +
+                    " and " + std::to_string(b) + ")");
     }
   }
 }
@@ -50,10 +51,14 @@ void CompareWholeTables(const HashedRun& first, const HashedRun& second, std::ve
 
 const char* ToString(RerunPromise promise) {
   switch (promise) {
-    case RerunPromise::kEverything: return "ordered run: table, placements and image bit for bit";
-    case RerunPromise::kCountsSumsAndImage: return "fixed64, nothing failed or aliased: each record's count and sums, and the image";
-    case RerunPromise::kCounts: return "float32, nothing failed or aliased: each record's count (sums follow the order of adds)";
-    case RerunPromise::kNothing: return "probe failures or aliases: which records they hit follows the order of atomics";
+    case RerunPromise::kEverything:
+      return "ordered run: table, placements and image bit for bit";
+    case RerunPromise::kCountsSumsAndImage:
+      return "fixed64, nothing failed or aliased: each record's count and sums, and the image";
+    case RerunPromise::kCounts:
+      return "float32, nothing failed or aliased: each record's count (sums follow the order of adds)";
+    case RerunPromise::kNothing:
+      return "probe failures or aliases: which records they hit follows the order of atomics";
   }
   return "?";
 }
@@ -69,10 +74,17 @@ std::vector<std::string> CompareReruns(const HashedRun& first, const HashedRun& 
   if (promise == RerunPromise::kNothing) return out;
   if (first.placements.size() != second.placements.size()) return {"the runs placed different numbers of records"};
   switch (promise) {
-    case RerunPromise::kEverything: CompareWholeTables(first, second, out); break;
-    case RerunPromise::kCountsSumsAndImage: CompareSlotsOfEachRecord(first, second, true, out); break;
-    case RerunPromise::kCounts: CompareSlotsOfEachRecord(first, second, false, out); break;
-    case RerunPromise::kNothing: break;
+    case RerunPromise::kEverything:
+      CompareWholeTables(first, second, out);
+      break;
+    case RerunPromise::kCountsSumsAndImage:
+      CompareSlotsOfEachRecord(first, second, true, out);
+      break;
+    case RerunPromise::kCounts:
+      CompareSlotsOfEachRecord(first, second, false, out);
+      break;
+    case RerunPromise::kNothing:
+      break;
   }
   if (promise != RerunPromise::kCounts && !SameBits(first.image, second.image)) out.push_back("the image changed");
   return out;

@@ -3,9 +3,9 @@
 // such differences for real (property_tests/crosscheck_repeat_test.cpp runs those).
 #include "verifier/contract/rerun_check.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/hash_table.h"
 
@@ -38,7 +38,9 @@ HashedRun MovedToSlot2(HashedRun run) {
   return run;
 }
 
-bool Keeps(const HashedRun& a, const HashedRun& b, RerunPromise promise) { return CompareReruns(a, b, promise).empty(); }
+bool Keeps(const HashedRun& a, const HashedRun& b, RerunPromise promise) {
+  return CompareReruns(a, b, promise).empty();
+}
 
 TEST(RerunPromise, ClassifiesByOrderAccumulationAndFailures) {
   EXPECT_EQ(RerunPromiseFor(true, Accumulation::kFloat32, true), RerunPromise::kEverything);

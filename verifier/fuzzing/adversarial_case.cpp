@@ -10,9 +10,9 @@
 
 #include "core/eviction.h"
 #include "core/footprint.h"
-#include "core/temporal.h"
 #include "core/shared/key.h"
 #include "core/shared/rng.h"
+#include "core/temporal.h"
 #include "verifier/generators/record_generators.h"
 
 namespace hpsf {
@@ -91,14 +91,21 @@ Record Spoil(RecordGenerator& g, Record r) {
   if (g.Bits() % 16u != 0u) return r;
   const int channel = g.UniformInt(0, 2);
   switch (g.Bits() % 5u) {
-    case 0: r.contribution[channel] = std::numeric_limits<float>::quiet_NaN(); break;
-    case 1: r.contribution[channel] = std::numeric_limits<float>::infinity(); break;
-    case 2: r.contribution[channel] = -g.Uniform(0.001f, 2.0f); break;
+    case 0:
+      r.contribution[channel] = std::numeric_limits<float>::quiet_NaN();
+      break;
+    case 1:
+      r.contribution[channel] = std::numeric_limits<float>::infinity();
+      break;
+    case 2:
+      r.contribution[channel] = -g.Uniform(0.001f, 2.0f);
+      break;
     case 3:
       r.position.x = 3e9f;
       r.previous.x = 3e9f;
       break;
-    default: return MakeRecordWithoutVertex(r.path.x, 0u, glm::vec3(r.radiance_before));
+    default:
+      return MakeRecordWithoutVertex(r.path.x, 0u, glm::vec3(r.radiance_before));
   }
   return r;
 }
@@ -120,7 +127,9 @@ std::vector<Record> RecordsOverCells(RecordGenerator& g, const std::vector<glm::
   return records;
 }
 
-std::uint32_t PowerOfTwo(RecordGenerator& g, int low_log2, int high_log2) { return 1u << g.UniformInt(low_log2, high_log2); }
+std::uint32_t PowerOfTwo(RecordGenerator& g, int low_log2, int high_log2) {
+  return 1u << g.UniformInt(low_log2, high_log2);
+}
 
 std::uint32_t ProbeLimit(RecordGenerator& g, std::uint32_t capacity, std::uint32_t at_most) {
   return std::uint32_t(g.UniformInt(1, int(std::min(capacity, at_most))));
@@ -269,12 +278,18 @@ std::size_t AdversarialCase::Records() const {
 
 const char* ToString(AdversarialFamily family) {
   switch (family) {
-    case AdversarialFamily::kCrowded: return "crowded";
-    case AdversarialFamily::kZeroFingerprint: return "zero-fingerprint";
-    case AdversarialFamily::kWrappingWindows: return "wrapping-windows";
-    case AdversarialFamily::kSharedFingerprint: return "shared-fingerprint";
-    case AdversarialFamily::kKeyPath: return "key-path";
-    case AdversarialFamily::kSpread: return "spread";
+    case AdversarialFamily::kCrowded:
+      return "crowded";
+    case AdversarialFamily::kZeroFingerprint:
+      return "zero-fingerprint";
+    case AdversarialFamily::kWrappingWindows:
+      return "wrapping-windows";
+    case AdversarialFamily::kSharedFingerprint:
+      return "shared-fingerprint";
+    case AdversarialFamily::kKeyPath:
+      return "key-path";
+    case AdversarialFamily::kSpread:
+      return "spread";
   }
   return "?";
 }
@@ -285,7 +300,10 @@ std::string AdversarialCase::ToString() const {
   if (!later.empty()) s.append(" in ").append(std::to_string(later.size() + 1)).append(" frames");
   s.append(", ").append(config.ToString());
   if (emulator.mode == simt::Mode::kFaithful) {
-    s.append(", faithful warp ").append(std::to_string(emulator.warp_size)).append(" schedule ").append(emulator.schedule);
+    s.append(", faithful warp ")
+        .append(std::to_string(emulator.warp_size))
+        .append(" schedule ")
+        .append(emulator.schedule);
   } else {
     s.append(", fast");
   }
@@ -295,18 +313,31 @@ std::string AdversarialCase::ToString() const {
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options) {
   RecordGenerator g(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 0u, 0u}, 0xADF0u));
   AdversarialCase a;
-  a.family = AdversarialFamily(g.Bits() % std::uint32_t(options.spread ? kAdversarialFamilies : kAdversarialFamilies - 1));
+  a.family =
+      AdversarialFamily(g.Bits() % std::uint32_t(options.spread ? kAdversarialFamilies : kAdversarialFamilies - 1));
   a.config = CellKeyedConfig(g);
   const Accumulation accumulation = g.Bits() % 4u == 0u ? Accumulation::kFloat32 : Accumulation::kFixed64;
   const std::uint32_t count = std::uint32_t(g.UniformInt(2, int(std::max(2u, options.max_records))));
   std::vector<glm::ivec3> cells;
   switch (a.family) {
-    case AdversarialFamily::kCrowded: cells = Crowded(g, a.config); break;
-    case AdversarialFamily::kZeroFingerprint: cells = ZeroFingerprint(g, a.config); break;
-    case AdversarialFamily::kWrappingWindows: cells = WrappingWindows(g, a.config); break;
-    case AdversarialFamily::kSharedFingerprint: cells = SharedFingerprint(g, a.config); break;
-    case AdversarialFamily::kKeyPath: a.batch.records = KeyPath(g, a.config, count); break;
-    case AdversarialFamily::kSpread: a.batch.records = Spread(g, a.config); break;
+    case AdversarialFamily::kCrowded:
+      cells = Crowded(g, a.config);
+      break;
+    case AdversarialFamily::kZeroFingerprint:
+      cells = ZeroFingerprint(g, a.config);
+      break;
+    case AdversarialFamily::kWrappingWindows:
+      cells = WrappingWindows(g, a.config);
+      break;
+    case AdversarialFamily::kSharedFingerprint:
+      cells = SharedFingerprint(g, a.config);
+      break;
+    case AdversarialFamily::kKeyPath:
+      a.batch.records = KeyPath(g, a.config, count);
+      break;
+    case AdversarialFamily::kSpread:
+      a.batch.records = Spread(g, a.config);
+      break;
   }
   // After the family, whose key-path configuration replaces the whole config: a user's shader handles its mode only.
   a.config.accumulation = options.accumulation ? *options.accumulation : accumulation;
@@ -327,9 +358,15 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
     a.emulator.warp_size = std::array{8u, 32u, 64u}[g.Bits() % 3u];
     const std::uint32_t schedule_seed = g.Bits() % 100000u;
     switch (g.Bits() % 3u) {
-      case 0: a.emulator.schedule = "round-robin"; break;
-      case 1: a.emulator.schedule = "random:" + std::to_string(schedule_seed); break;
-      default: a.emulator.schedule = "pct:" + std::to_string(schedule_seed) + ":" + std::to_string(g.UniformInt(1, 4)); break;
+      case 0:
+        a.emulator.schedule = "round-robin";
+        break;
+      case 1:
+        a.emulator.schedule = "random:" + std::to_string(schedule_seed);
+        break;
+      default:
+        a.emulator.schedule = "pct:" + std::to_string(schedule_seed) + ":" + std::to_string(g.UniformInt(1, 4));
+        break;
     }
   }
   // Rounding: a small F of the case's own, where truncation and rounding differ.

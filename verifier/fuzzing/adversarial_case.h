@@ -1,17 +1,17 @@
 // Adversarial cases for `hpsf fuzz`: a table configuration, an emulator schedule and a small batch built to
 // break a GPU hash table, each a pure function of (seed, run) through the counter RNG. Random batches almost never
-// reach a table's hard cases, so each family constructs them (docs/design/testing.md, "Feed the oracle"): a crowded tiny table
-// whose few cells repeat side by side (one subgroup races on one slot), keys whose fingerprint reduces to the
-// empty tag, windows that wrap past the table's end, distinct keys that share slot0 and fingerprint, and the
-// key path's boundary cases from the property-test generators; rejected, unkeyable and vertex-less records are
-// mixed into every family. None is aimed at one defect: each is a kind of input a correct table must survive.
-// Three dimensions cut across the families, each for a class of bug that the plain cases hide: the spread
-// family (Vulkan only) lays a few cells over several of the Vulkan accumulate's workgroups at matching offsets, since lavapipe
-// runs a workgroup's subgroups one after another and only its worker threads truly interleave (a race one execution
-// order hides); one fixed64 case in four takes a small F of its own, from -2 to 9 bits, where c * 2^F has a fraction
-// and rounding matters (the automatic F makes it whole and hides truncation); and one case in four is a sequence of
-// 2 to 6 frames through one table, with a drawn eviction policy and temporal mode, whose later frames revisit
-// the first frame's records and add new ones (a frame-state defect one frame hides).
+// reach a table's hard cases, so each family constructs them (docs/design/testing.md, "Feed the oracle"): a crowded
+// tiny table whose few cells repeat side by side (one subgroup races on one slot), keys whose fingerprint reduces to
+// the empty tag, windows that wrap past the table's end, distinct keys that share slot0 and fingerprint, and the key
+// path's boundary cases from the property-test generators; rejected, unkeyable and vertex-less records are mixed into
+// every family. None is aimed at one defect: each is a kind of input a correct table must survive. Three dimensions cut
+// across the families, each for a class of bug that the plain cases hide: the spread family (Vulkan only) lays a few
+// cells over several of the Vulkan accumulate's workgroups at matching offsets, since lavapipe runs a workgroup's
+// subgroups one after another and only its worker threads truly interleave (a race one execution order hides); one
+// fixed64 case in four takes a small F of its own, from -2 to 9 bits, where c * 2^F has a fraction and rounding matters
+// (the automatic F makes it whole and hides truncation); and one case in four is a sequence of 2 to 6 frames through
+// one table, with a drawn eviction policy and temporal mode, whose later frames revisit the first frame's records and
+// add new ones (a frame-state defect one frame hides).
 #ifndef HPSF_VERIFIER_FUZZING_ADVERSARIAL_CASE_H
 #define HPSF_VERIFIER_FUZZING_ADVERSARIAL_CASE_H
 
@@ -35,9 +35,9 @@ const char* ToString(AdversarialFamily family);
 
 struct AdversarialCase {
   AdversarialFamily family = AdversarialFamily::kCrowded;
-  FilterConfig config;       // validated; frame 0, so `hpsf crosscheck` options express all of it
-  EmulatorOptions emulator;  // faithful with a drawn warp size and schedule, or fast
-  RecordBatch batch;         // the first frame: width = records, height = 1, one sample per pixel, frame 0
+  FilterConfig config;             // validated; frame 0, so `hpsf crosscheck` options express all of it
+  EmulatorOptions emulator;        // faithful with a drawn warp size and schedule, or fast
+  RecordBatch batch;               // the first frame: width = records, height = 1, one sample per pixel, frame 0
   std::vector<RecordBatch> later;  // a sequence's frames after the first, numbered 1, 2, ... (may skip once shrunk)
   std::vector<RecordBatch> Frames() const;  // batch, then later
   std::size_t Records() const;              // over every frame
@@ -45,8 +45,8 @@ struct AdversarialCase {
 };
 
 struct AdversarialOptions {
-  std::uint32_t max_records = 96;  // per frame; the spread family sizes its batches by workgroups instead
-  bool allow_fast_mode = true;  // false when a broken kernel runs: its races must replay from the schedule
+  std::uint32_t max_records = 96;            // per frame; the spread family sizes its batches by workgroups instead
+  bool allow_fast_mode = true;               // false when a broken kernel runs: its races must replay from the schedule
   std::optional<Accumulation> accumulation;  // a user's shader may handle one mode only; else one in four is float32
   // The spread family's thousands of records are for a device whose workgroups run at once (Vulkan); the emulator
   // interleaves a race by its schedule in a few records, and skips the family.

@@ -2,6 +2,8 @@
 // family reaching what it is built for in nearly every case (else the fuzzer's power is luck).
 #include "verifier/fuzzing/adversarial_case.h"
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstring>
 #include <map>
@@ -9,8 +11,6 @@
 #include <string>
 #include <tuple>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/footprint.h"
 #include "core/input_check.h"
@@ -20,8 +20,9 @@ namespace hpsf {
 namespace {
 
 std::vector<KeyResult> Keys(const AdversarialCase& c) {
-  const shared::KeyParams params = MakeKeyParams(
-      c.config, FootprintScale(c.config.filter_width_px, c.batch.fov_y_radians, c.batch.height), std::uint32_t(c.batch.records.size()));
+  const shared::KeyParams params =
+      MakeKeyParams(c.config, FootprintScale(c.config.filter_width_px, c.batch.fov_y_radians, c.batch.height),
+                    std::uint32_t(c.batch.records.size()));
   std::vector<KeyResult> keys;
   for (const Record& r : c.batch.records) {
     keys.push_back(CheckRecordInputs(r) == InputVerdict::kAccepted ? shared::ComputeKey(params, r) : KeyResult{});
@@ -30,7 +31,9 @@ std::vector<KeyResult> Keys(const AdversarialCase& c) {
 }
 
 using Words = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
-Words WordsOf(const KeyResult& k) { return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal}; }
+Words WordsOf(const KeyResult& k) {
+  return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal};
+}
 
 // What the family is built to reach, read from the keys core computes for the case's records.
 bool ReachesItsAim(const AdversarialCase& c) {
@@ -39,17 +42,21 @@ bool ReachesItsAim(const AdversarialCase& c) {
   switch (c.family) {
     case AdversarialFamily::kCrowded:  // neighbours share a cell
       for (std::size_t i = 1; i < keys.size(); ++i) {
-        if (keys[i].status == shared::kKeyed && keys[i - 1].status == shared::kKeyed && WordsOf(keys[i]) == WordsOf(keys[i - 1])) return true;
+        if (keys[i].status == shared::kKeyed && keys[i - 1].status == shared::kKeyed &&
+            WordsOf(keys[i]) == WordsOf(keys[i - 1]))
+          return true;
       }
       return false;
     case AdversarialFamily::kZeroFingerprint:  // a key whose reduced fingerprint is 0 before the fix
       for (const KeyResult& k : keys) {
-        if (k.status == shared::kKeyed && (shared::FullFingerprint(k.words) >> (32u - c.config.fingerprint_bits)) == 0u) return true;
+        if (k.status == shared::kKeyed && (shared::FullFingerprint(k.words) >> (32u - c.config.fingerprint_bits)) == 0u)
+          return true;
       }
       return false;
     case AdversarialFamily::kWrappingWindows:  // two distinct keys whose windows reach the last slot
       for (const KeyResult& k : keys) {
-        if (k.status == shared::kKeyed && k.slot0 + c.config.probe_limit > c.config.capacity) distinct.insert(WordsOf(k));
+        if (k.status == shared::kKeyed && k.slot0 + c.config.probe_limit > c.config.capacity)
+          distinct.insert(WordsOf(k));
       }
       return distinct.size() >= 2;
     case AdversarialFamily::kSharedFingerprint: {  // two distinct keys with one slot0 and one fingerprint
@@ -62,7 +69,8 @@ bool ReachesItsAim(const AdversarialCase& c) {
       }
       return false;
     }
-    case AdversarialFamily::kKeyPath: return true;  // the property-test generators' own reach is generator_tests'
+    case AdversarialFamily::kKeyPath:
+      return true;                      // the property-test generators' own reach is generator_tests'
     case AdversarialFamily::kSpread: {  // a cell whose records sit in two workgroups of the Vulkan accumulate
       std::map<Words, std::set<std::size_t>> workgroups;
       for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -111,7 +119,8 @@ TEST(AdversarialCase, EveryCaseIsValidAndEveryFamilyIsDrawn) {
     for (std::size_t k = 0; k < c.later.size(); ++k) {
       EXPECT_EQ(c.later[k].frame, k + 1);
       ASSERT_GE(c.later[k].records.size(), 1u);
-      ASSERT_EQ(std::size_t(c.later[k].width) * c.later[k].height * c.later[k].samples_per_pixel, c.later[k].records.size());
+      ASSERT_EQ(std::size_t(c.later[k].width) * c.later[k].height * c.later[k].samples_per_pixel,
+                c.later[k].records.size());
     }
     sequences += !c.later.empty();
     if (!c.later.empty()) {
@@ -171,7 +180,8 @@ TEST(AdversarialCase, EachFamilyReachesItsAim) {
     reached[std::size_t(c.family)] += ReachesItsAim(c);
   }
   for (int f = 0; f < kAdversarialFamilies; ++f) {
-    std::printf("%-18s reached its aim in %d of %d cases\n", ToString(AdversarialFamily(f)), reached[std::size_t(f)], drawn[std::size_t(f)]);
+    std::printf("%-18s reached its aim in %d of %d cases\n", ToString(AdversarialFamily(f)), reached[std::size_t(f)],
+                drawn[std::size_t(f)]);
     EXPECT_GE(reached[std::size_t(f)], drawn[std::size_t(f)] * 9 / 10) << ToString(AdversarialFamily(f));
   }
 }

@@ -99,11 +99,13 @@ class Shrinker {
     if (c.config.temporal.mode != TemporalMode::kIntegrate) attempt([](AdversarialCase& a) { a.config.temporal = {}; });
     if (c.config.fixed_point_bits) attempt([](AdversarialCase& a) { a.config.fixed_point_bits.reset(); });
     if (c.config.fingerprint_bits != 32) attempt([](AdversarialCase& a) { a.config.fingerprint_bits = 32; });
-    if (!keep_accumulation_ && c.config.accumulation != Accumulation::kFixed64) attempt([](AdversarialCase& a) { a.config.accumulation = Accumulation::kFixed64; });
+    if (!keep_accumulation_ && c.config.accumulation != Accumulation::kFixed64)
+      attempt([](AdversarialCase& a) { a.config.accumulation = Accumulation::kFixed64; });
     if (c.emulator.mode == simt::Mode::kFaithful && c.emulator.schedule != "round-robin") {
       attempt([](AdversarialCase& a) { a.emulator.schedule = "round-robin"; });
     }
-    if (c.emulator.mode == simt::Mode::kFaithful && c.emulator.warp_size != 8) attempt([](AdversarialCase& a) { a.emulator.warp_size = 8; });
+    if (c.emulator.mode == simt::Mode::kFaithful && c.emulator.warp_size != 8)
+      attempt([](AdversarialCase& a) { a.emulator.warp_size = 8; });
     for (std::uint32_t limit = 1; limit < c.config.probe_limit; ++limit) {
       const std::uint32_t before = c.config.probe_limit;
       attempt([limit](AdversarialCase& a) { a.config.probe_limit = limit; });
@@ -147,7 +149,8 @@ ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails
   const AdversarialCase before_config = c;
   shrinker.SimplifyConfig(c);
   // A simpler configuration may need fewer records (a shorter window fills with fewer keys) or frames.
-  if (c.config.ToString() != before_config.config.ToString() || c.emulator.schedule != before_config.emulator.schedule) {
+  if (c.config.ToString() != before_config.config.ToString() ||
+      c.emulator.schedule != before_config.emulator.schedule) {
     shrinker.ShrinkFrames(c);
     shrinker.ShrinkAllRecords(c);
   }

@@ -19,8 +19,8 @@ using CaseFailsFn = std::function<bool(const AdversarialCase&)>;
 
 struct ShrinkResult {
   AdversarialCase shrunk;
-  std::uint64_t checks = 0;   // calls of the predicate
-  bool exhausted = false;     // stopped at max_checks: smaller, but maybe not 1-minimal
+  std::uint64_t checks = 0;  // calls of the predicate
+  bool exhausted = false;    // stopped at max_checks: smaller, but maybe not 1-minimal
 };
 
 // keep_accumulation: the mode was the user's choice (a shader may handle one mode only), so it is not simplified.

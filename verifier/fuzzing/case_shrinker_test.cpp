@@ -2,11 +2,11 @@
 // that still fail, leaves a kept accumulation alone and stops at its check limit.
 #include "verifier/fuzzing/case_shrinker.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/eviction.h"
 #include "core/temporal.h"
@@ -16,7 +16,8 @@ namespace hpsf {
 namespace {
 
 bool HasPixel(const AdversarialCase& c, std::uint32_t pixel) {
-  return std::any_of(c.batch.records.begin(), c.batch.records.end(), [&](const Record& r) { return r.path.x == pixel; });
+  return std::any_of(c.batch.records.begin(), c.batch.records.end(),
+                     [&](const Record& r) { return r.path.x == pixel; });
 }
 
 // A case of 96 records whose pixels are 0..95, in a float32 table with a drawn schedule.
@@ -93,7 +94,8 @@ TEST(ShrinkCase, ASequenceShrinksToTheFramesAndRecordsThatFail) {
 TEST(ShrinkCase, TheResultIsOneMinimal) {
   // Fails while at least three records of pixels divisible by 7 remain: any three of them is a minimal answer.
   const auto fails = [](const AdversarialCase& c) {
-    return std::count_if(c.batch.records.begin(), c.batch.records.end(), [](const Record& r) { return r.path.x % 7 == 0; }) >= 3;
+    return std::count_if(c.batch.records.begin(), c.batch.records.end(),
+                         [](const Record& r) { return r.path.x % 7 == 0; }) >= 3;
   };
   const ShrinkResult result = ShrinkCase(LargeCase(), fails);
   ASSERT_TRUE(fails(result.shrunk));

@@ -1,7 +1,8 @@
 // What a gate case's command said, as the gate reports it: the outcome from its exit code (0 pass, 1 warn, 2 fail,
-// 3 bad input, 4 hpsf's internal error, a signal or anything else a crash) and, from the command's versioned JSON report, a first line naming what did
-// not pass (the contract's level and the slot or record for a cross-check or a fuzz failure, the rate above its
-// theory for statistics, the backend and the explanation for a golden) and every such line in the details.
+// 3 bad input, 4 hpsf's internal error, a signal or anything else a crash) and, from the command's versioned JSON
+// report, a first line naming what did not pass (the contract's level and the slot or record for a cross-check or a
+// fuzz failure, the rate above its theory for statistics, the backend and the explanation for a golden) and every such
+// line in the details.
 #ifndef HPSF_VERIFIER_GATE_CASE_JUDGEMENT_H
 #define HPSF_VERIFIER_GATE_CASE_JUDGEMENT_H
 

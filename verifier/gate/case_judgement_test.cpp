@@ -20,7 +20,10 @@ nlohmann::json FailedCrosscheck() {
   return {{"accumulation", "fixed64"},
           {"fixed_point_bits", 50},
           {"levels",
-           {{{"level", 2}, {"name", "tables"}, {"applicable", true}, {"passed", false},
+           {{{"level", 2},
+             {"name", "tables"},
+             {"applicable", true},
+             {"passed", false},
              {"failures", {"vulkan: invalid shader output: record 3: placement 9 is neither a slot"}}}}}};
 }
 
@@ -35,10 +38,16 @@ TEST(CaseJudgement, FailedCheckNamesItsLevel) {
 // `hpsf golden check` writes its verdicts in.
 TEST(CaseJudgement, GoldenFailureNamesTheComparisonThatFailedNotOneThatPassed) {
   const nlohmann::json check = {{"checks",
-                                 {{{"case", "cornell"}, {"backend", "reference"}, {"verdict", "PASS"},
-                                   {"explanation", "PASS: max 0 <= 0"}, {"artifacts", nlohmann::json::array()}},
-                                  {{"case", "cornell"}, {"backend", "vulkan"}, {"verdict", "FAIL"},
-                                   {"explanation", "FAIL: max 0.5 > 0"}, {"artifacts", {"heat.png"}}}}}};
+                                 {{{"case", "cornell"},
+                                   {"backend", "reference"},
+                                   {"verdict", "PASS"},
+                                   {"explanation", "PASS: max 0 <= 0"},
+                                   {"artifacts", nlohmann::json::array()}},
+                                  {{"case", "cornell"},
+                                   {"backend", "vulkan"},
+                                   {"verdict", "FAIL"},
+                                   {"explanation", "FAIL: max 0.5 > 0"},
+                                   {"artifacts", {"heat.png"}}}}}};
   const GateCaseResult r = Judged({2, 0, "", check}, "golden");
   EXPECT_EQ(r.outcome, CaseOutcome::kFailed);
   EXPECT_EQ(r.message, "cornell on vulkan: FAIL: max 0.5 > 0");

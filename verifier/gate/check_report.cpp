@@ -20,8 +20,11 @@ const nlohmann::json& At(const nlohmann::json& j, const std::string& pointer, nl
   const nlohmann::json& v = j.at(p);
   const bool number = kind == nlohmann::json::value_t::number_unsigned && v.is_number_unsigned();
   const bool real = kind == nlohmann::json::value_t::number_float && v.is_number();
-  if (v.type() != kind && !number && !real) throw InputError(source + ": " + pointer + ": not a " + std::string(
-      kind == nlohmann::json::value_t::string ? "string" : kind == nlohmann::json::value_t::array ? "list" : "number"));
+  if (v.type() != kind && !number && !real)
+    throw InputError(source + ": " + pointer + ": not a " +
+                     std::string(kind == nlohmann::json::value_t::string  ? "string"
+                                 : kind == nlohmann::json::value_t::array ? "list"
+                                                                          : "number"));
   return v;
 }
 
@@ -36,8 +39,8 @@ CaseOutcome CheckReport::Worst() const {
 std::vector<FamilyTotals> CheckReport::Families() const {
   std::vector<FamilyTotals> families;
   for (const GateCaseResult& r : results) {
-    auto it = std::find_if(families.begin(), families.end(),
-                           [&](const FamilyTotals& f) { return f.family == r.family; });
+    auto it =
+        std::find_if(families.begin(), families.end(), [&](const FamilyTotals& f) { return f.family == r.family; });
     if (it == families.end()) it = families.insert(families.end(), FamilyTotals{r.family});
     ++it->cases;
     it->passed += r.outcome == CaseOutcome::kPassed;
@@ -66,18 +69,25 @@ nlohmann::json CheckReport::ToJson() const {
   }
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyTotals& f : Families()) {
-    families[f.family] = {{"cases", f.cases},   {"pass", f.passed},   {"warn", f.warned},
-                          {"fail", f.failed},   {"error", f.errors},  {"seconds", f.seconds}};
+    families[f.family] = {{"cases", f.cases}, {"pass", f.passed},  {"warn", f.warned},
+                          {"fail", f.failed}, {"error", f.errors}, {"seconds", f.seconds}};
   }
-  return {{"version", 1},        {"command", "check"},  {"gate", gate},         {"shard", shard},
-          {"gate_cases", gate_cases}, {"passed", Passed()}, {"outcome", OutcomeName(Worst())},
-          {"families", families}, {"cases", cases}};
+  return {{"version", 1},
+          {"command", "check"},
+          {"gate", gate},
+          {"shard", shard},
+          {"gate_cases", gate_cases},
+          {"passed", Passed()},
+          {"outcome", OutcomeName(Worst())},
+          {"families", families},
+          {"cases", cases}};
 }
 
 CheckReport CheckReportFromJson(const nlohmann::json& j, const std::string& source) {
   using Kind = nlohmann::json::value_t;
   if (!j.is_object()) throw InputError(source + ": not a JSON object");
-  if (At(j, "/version", Kind::number_unsigned, source).get<int>() != 1) throw InputError(source + ": /version: expected 1");
+  if (At(j, "/version", Kind::number_unsigned, source).get<int>() != 1)
+    throw InputError(source + ": /version: expected 1");
   if (At(j, "/command", Kind::string, source).get<std::string>() != "check") {
     throw InputError(source + ": /command: not a report of hpsf check");
   }
@@ -124,8 +134,9 @@ CheckReport MergeCheckReports(const std::vector<CheckReport>& reports, const std
   for (std::size_t k = 0; k < reports.size(); ++k) {
     const CheckReport& r = reports[k];
     if (r.gate != merged.gate || r.gate_cases != merged.gate_cases) {
-      throw InputError(sources[k] + ": a report of " + r.gate + " (" + std::to_string(r.gate_cases) + " cases), not of " +
-                       merged.gate + " (" + std::to_string(merged.gate_cases) + " cases) as " + sources[0]);
+      throw InputError(sources[k] + ": a report of " + r.gate + " (" + std::to_string(r.gate_cases) +
+                       " cases), not of " + merged.gate + " (" + std::to_string(merged.gate_cases) + " cases) as " +
+                       sources[0]);
     }
     for (const GateCaseResult& c : r.results) {
       if (by_index[c.index]) {
@@ -137,7 +148,8 @@ CheckReport MergeCheckReports(const std::vector<CheckReport>& reports, const std
   }
   for (std::size_t i = 0; i < by_index.size(); ++i) {
     if (!by_index[i]) {
-      throw InputError("--merge: case " + std::to_string(i) + " of " + merged.gate + " is in none of the reports: a shard is missing");
+      throw InputError("--merge: case " + std::to_string(i) + " of " + merged.gate +
+                       " is in none of the reports: a shard is missing");
     }
     merged.results.push_back(*by_index[i]);
   }

@@ -6,10 +6,9 @@
 #define HPSF_VERIFIER_GATE_CHECK_REPORT_H
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "verifier/gate/junit_report.h"
 
@@ -23,15 +22,15 @@ struct FamilyTotals {
 };
 
 struct CheckReport {
-  std::string gate;            // the gate file, or "the default gate"
-  std::string shard = "1/1";   // "I/N", or "1/1" for a merge of every shard
-  std::size_t gate_cases = 0;  // cases in the whole gate
+  std::string gate;                     // the gate file, or "the default gate"
+  std::string shard = "1/1";            // "I/N", or "1/1" for a merge of every shard
+  std::size_t gate_cases = 0;           // cases in the whole gate
   std::vector<GateCaseResult> results;  // this run's, in gate order, each with its index
 
-  CaseOutcome Worst() const;  // kPassed when there is no case
+  CaseOutcome Worst() const;                                       // kPassed when there is no case
   bool Passed() const { return Worst() <= CaseOutcome::kWarned; }  // no case failed or crashed
-  std::vector<FamilyTotals> Families() const;  // in the order families first appear in the results
-  nlohmann::json ToJson() const;               // version 1
+  std::vector<FamilyTotals> Families() const;                      // in the order families first appear in the results
+  nlohmann::json ToJson() const;                                   // version 1
 };
 
 // A report read back; an InputError naming `source` and the JSON place of what is wrong.

@@ -2,12 +2,12 @@
 // ships conforms, each bad gate below is refused by both, and the schema's backends are the registry's.
 #include "verifier/gate/gate_schema.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "core/backend_registry.h"
 #include "core/error.h"
@@ -53,7 +53,8 @@ TEST(GateSchema, EveryBadGateIsRefusedByTheSchemaAndByTheLoader) {
       R"({"hpsf_gate": 1, "statistics": {)" + std::string(scenes) + R"(, "configs": {"a": {"capacity": [1]}}}})",
       R"({"hpsf_gate": 1, "statistics": {)" + std::string(scenes) + R"(, "configs": {"a/b": {}}}})",
       R"({"hpsf_gate": 1, "crosscheck": {)" + std::string(scenes) + R"(, "backends": {"x": {"mode": "fast"}}}})",
-      R"({"hpsf_gate": 1, "crosscheck": {)" + std::string(scenes) + R"(, "backends": {"x": {"backend": "reference"}}}})",
+      R"({"hpsf_gate": 1, "crosscheck": {)" + std::string(scenes) +
+          R"(, "backends": {"x": {"backend": "reference"}}}})",
       R"({"hpsf_gate": 1, "fuzz": {"time": 60, "backends": {"x": {"backend": "emulated"}}}})",
       R"({"hpsf_gate": 1, "fuzz": {"runs": 0, "backends": {"x": {"backend": "emulated"}}}})",
       R"({"hpsf_gate": 1, "golden": {"cases": ["cornell/fixed64"]}})",

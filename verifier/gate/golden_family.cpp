@@ -3,8 +3,8 @@
 // and compares the image with its golden (exit 1 warns, 2 fails).
 #include <algorithm>
 
-#include "verifier/gate/golden_manifest.h"
 #include "verifier/gate/gate_families.h"
+#include "verifier/gate/golden_manifest.h"
 
 namespace hpsf::gate {
 

@@ -1,7 +1,6 @@
 #include "verifier/gate/json_schema.h"
 
 #include <exception>
-
 #include <valijson/adapters/nlohmann_json_adapter.hpp>
 #include <valijson/schema.hpp>
 #include <valijson/schema_parser.hpp>

@@ -85,7 +85,8 @@ std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>&
       const std::string warning = r->outcome == CaseOutcome::kWarned ? "warning: " + r->details : "";
       xml += "      <system-out>" + Escaped(warning) + "reproduce: " + Escaped(r->reproduce) +
              (r->bundle.empty() ? "" : "\nrepro bundle: " + Escaped(r->bundle)) +
-             (r->fixed_point.empty() ? "" : "\naccumulation: " + Escaped(r->fixed_point)) + "</system-out>\n    </testcase>\n";
+             (r->fixed_point.empty() ? "" : "\naccumulation: " + Escaped(r->fixed_point)) +
+             "</system-out>\n    </testcase>\n";
     }
     xml += "  </testsuite>\n";
   }

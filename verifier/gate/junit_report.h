@@ -19,13 +19,13 @@ struct GateCaseResult {
   std::string family;  // "crosscheck", "statistics", "golden" or "fuzz"
   CaseOutcome outcome = CaseOutcome::kPassed;
   double seconds = 0.0;
-  std::string message;    // the first failure or warning, one line
-  std::string details;    // every failure or warning, or the output of a case that crashed
-  std::string reproduce;  // the command line that reproduces the case
-  std::string bundle;     // a failed case's repro bundle, else empty
-  std::string html;       // the case's own HTML report (a golden's comparisons), else empty
+  std::string message;      // the first failure or warning, one line
+  std::string details;      // every failure or warning, or the output of a case that crashed
+  std::string reproduce;    // the command line that reproduces the case
+  std::string bundle;       // a failed case's repro bundle, else empty
+  std::string html;         // the case's own HTML report (a golden's comparisons), else empty
   std::string fixed_point;  // the accumulation and F its report states ("fixed64, F 50"), else empty
-  std::size_t index = 0;  // the case's place in the whole gate (a shard runs some of them)
+  std::size_t index = 0;    // the case's place in the whole gate (a shard runs some of them)
 };
 
 std::string JUnitXml(const std::string& name, const std::vector<GateCaseResult>& results);

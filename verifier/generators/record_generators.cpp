@@ -25,7 +25,8 @@ struct JitterSetup {
 JitterSetup Setup(const Record& r, const shared::KeyParams& p) {
   if (p.lod_enabled == 0u) return {p.jitter_scale * p.cell_size, p.inverse_cell_size};
   const glm::vec3 x(r.position), x_prev(r.previous);
-  const int level = shared::LevelOfDetail(p.footprint_scale, shared::PathLength(r.position.w, x, x_prev), p.level_min, p.level_max);
+  const int level =
+      shared::LevelOfDetail(p.footprint_scale, shared::PathLength(r.position.w, x, x_prev), p.level_min, p.level_max);
   return {shared::Flush(p.jitter_scale * shared::PowerOfTwo(level)), 0.0f};
 }
 
@@ -33,13 +34,20 @@ JitterSetup Setup(const Record& r, const shared::KeyParams& p) {
 
 const char* ToString(RecordKind kind) {
   switch (kind) {
-    case RecordKind::kUniform: return "uniform";
-    case RecordKind::kCellBoundary: return "cell-boundary";
-    case RecordKind::kLevelBoundary: return "level-boundary";
-    case RecordKind::kFar1e5: return "far-1e5";
-    case RecordKind::kFar1e7: return "far-1e7";
-    case RecordKind::kSignedZeroNormal: return "signed-zero-normal";
-    case RecordKind::kNoVertex: return "no-vertex";
+    case RecordKind::kUniform:
+      return "uniform";
+    case RecordKind::kCellBoundary:
+      return "cell-boundary";
+    case RecordKind::kLevelBoundary:
+      return "level-boundary";
+    case RecordKind::kFar1e5:
+      return "far-1e5";
+    case RecordKind::kFar1e7:
+      return "far-1e7";
+    case RecordKind::kSignedZeroNormal:
+      return "signed-zero-normal";
+    case RecordKind::kNoVertex:
+      return "no-vertex";
   }
   return "?";
 }
@@ -57,13 +65,9 @@ std::uint32_t RecordGenerator::Bits() {
   return shared::RandomBits(c, 0u);
 }
 
-float RecordGenerator::Uniform(float low, float high) {
-  return low + (high - low) * shared::BitsToUnitFloat(Bits());
-}
+float RecordGenerator::Uniform(float low, float high) { return low + (high - low) * shared::BitsToUnitFloat(Bits()); }
 
-int RecordGenerator::UniformInt(int low, int high) {
-  return low + int(Bits() % std::uint32_t(high - low + 1));
-}
+int RecordGenerator::UniformInt(int low, int high) { return low + int(Bits() % std::uint32_t(high - low + 1)); }
 
 KeyCase RecordGenerator::Case() {
   KeyCase c;
@@ -85,7 +89,8 @@ KeyCase RecordGenerator::Case() {
   }
   f.lod = Bits() % 4u != 0u;
   // Cell sizes from tiny (most records unkeyable) to huge; footprints from denormal products to large.
-  f.cell_size = std::array{1.0f, 0.37f, 1e-4f, 1e-30f, std::ldexp(1.0f, UniformInt(-100, 100)), Uniform(0.01f, 50.0f)}[Bits() % 6u];
+  f.cell_size = std::array{
+      1.0f, 0.37f, 1e-4f, 1e-30f, std::ldexp(1.0f, UniformInt(-100, 100)), Uniform(0.01f, 50.0f)}[Bits() % 6u];
   c.footprint_scale = std::array{0.01f, 1e-3f, Uniform(1e-4f, 0.1f), 1e-30f, 1e-38f, 0.0f, 16.0f}[Bits() % 7u];
   return c;
 }
@@ -156,17 +161,23 @@ Record RecordGenerator::SolveOntoLevelBoundary(VertexSample v, const shared::Key
 
 Record RecordGenerator::Make(RecordKind kind, const shared::KeyParams& p) {
   switch (kind) {
-    case RecordKind::kUniform: return MakeVertexRecord(Vertex(glm::vec3(0.0f), 1000.0f));
-    case RecordKind::kCellBoundary: return SolveOntoCellBoundary(Vertex(glm::vec3(0.0f), 100.0f), p);
-    case RecordKind::kLevelBoundary: return SolveOntoLevelBoundary(Vertex(glm::vec3(0.0f), 100.0f), p);
-    case RecordKind::kFar1e5: return MakeVertexRecord(Vertex(glm::vec3(1e5f, -1e5f, 1e5f), 500.0f));
-    case RecordKind::kFar1e7: return MakeVertexRecord(Vertex(glm::vec3(-1e7f, 1e7f, 1e7f), 500.0f));
+    case RecordKind::kUniform:
+      return MakeVertexRecord(Vertex(glm::vec3(0.0f), 1000.0f));
+    case RecordKind::kCellBoundary:
+      return SolveOntoCellBoundary(Vertex(glm::vec3(0.0f), 100.0f), p);
+    case RecordKind::kLevelBoundary:
+      return SolveOntoLevelBoundary(Vertex(glm::vec3(0.0f), 100.0f), p);
+    case RecordKind::kFar1e5:
+      return MakeVertexRecord(Vertex(glm::vec3(1e5f, -1e5f, 1e5f), 500.0f));
+    case RecordKind::kFar1e7:
+      return MakeVertexRecord(Vertex(glm::vec3(-1e7f, 1e7f, 1e7f), 500.0f));
     case RecordKind::kSignedZeroNormal: {
       VertexSample v = Vertex(glm::vec3(0.0f), 10.0f);
       v.normal = SignedZeroNormal();
       return MakeVertexRecord(v);
     }
-    case RecordKind::kNoVertex: return MakeRecordWithoutVertex(pixel_++, Bits() % 64u, glm::vec3(Uniform(0.0f, 5.0f)));
+    case RecordKind::kNoVertex:
+      return MakeRecordWithoutVertex(pixel_++, Bits() % 64u, glm::vec3(Uniform(0.0f, 5.0f)));
   }
   return Record{};
 }
@@ -191,7 +202,8 @@ KeyPathTrace TraceKeyPath(const Record& r, const shared::KeyParams& p) {
   const float u2 = shared::RandomFloat(counter, shared::kJitterDimensionV);
   const JitterSetup setup = Setup(r, p);
   KeyPathTrace t;
-  t.jittered = shared::JitterInTangentPlane(glm::vec3(r.position), glm::vec3(r.tangent), glm::vec3(r.bitangent), setup.amplitude, u1, u2);
+  t.jittered = shared::JitterInTangentPlane(glm::vec3(r.position), glm::vec3(r.tangent), glm::vec3(r.bitangent),
+                                            setup.amplitude, u1, u2);
   t.path_length = shared::PathLength(r.position.w, t.jittered, glm::vec3(r.previous));
   float inverse = setup.inverse_size;
   if (p.lod_enabled != 0u) {

@@ -7,10 +7,9 @@
 #define HPSF_VERIFIER_GENERATORS_RECORD_GENERATORS_H
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/filter_config.h"
 #include "core/record.h"
@@ -67,7 +66,7 @@ class RecordGenerator {
 // the boundaries they aim for.
 struct KeyPathTrace {
   glm::vec3 jittered;
-  float path_length;  // d' after the jitter
+  float path_length;   // d' after the jitter
   float inverse_size;  // 1 / cell size of the jittered position
   glm::vec3 quotient;  // q = x' * inverse_size
 };

@@ -25,7 +25,7 @@ struct ErrorSplit {
   // The standard error of bias2 from the spread of its per-value terms (values taken as independent, which
   // neighbouring pixels of a filtered image are not quite): a bias2 within about two of it is no bias resolved.
   double bias2_standard_error = 0.0;
-  double reference_variance = 0.0;  // mean_v q_v
+  double reference_variance = 0.0;                                                         // mean_v q_v
   double relmse = 0.0, rel_bias2 = 0.0, rel_variance = 0.0, rel_reference_variance = 0.0;  // weighted by w_v
   // The bias of the image mean: the mean over the K images of (image mean - reference mean), and its standard error
   // from the spread of those K differences and the reference mean's own variance (sum_v q_v / n^2). An image-wide

@@ -1,5 +1,8 @@
 #include "verifier/metrics/image_metrics.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -7,9 +10,6 @@
 #include <limits>
 #include <sstream>
 #include <vector>
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 

@@ -13,9 +13,8 @@
 #define HPSF_VERIFIER_METRICS_IMAGE_METRICS_H
 
 #include <cstdint>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "verifier/metrics/channel_image.h"
 

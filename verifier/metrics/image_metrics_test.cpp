@@ -1,6 +1,14 @@
 // The plain metrics of `hpsf diff` and its verdict rule on constructed images whose answers are known by hand,
 // and RMSE, PSNR, the mean and the maximum error (with its place) against OpenImageIO's own comparison, the code
 // behind `idiff` and `oiiotool --diff`, on two real renders.
+#include "verifier/metrics/image_metrics.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,21 +16,13 @@
 #include <regex>
 #include <string>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include "core/error.h"
 #include "property_tests/traced_batch.h"
 #include "reference/reference_filter.h"
 #include "verifier/metrics/diff_verdict.h"
 #include "verifier/metrics/image_comparison.h"
-#include "verifier/metrics/image_metrics.h"
-#include "verifier/metrics/ssim.h"
 #include "verifier/metrics/srgb.h"
+#include "verifier/metrics/ssim.h"
 
 namespace hpsf {
 namespace {

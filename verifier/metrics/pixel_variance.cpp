@@ -72,7 +72,10 @@ glm::vec3 F(glm::dvec3 v) { return glm::vec3(v); }
 class TileSums {
  public:
   TileSums(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size)
-      : width_(width), height_(height), tile_size_(tile_size), tiles_x_((width + tile_size - 1) / tile_size),
+      : width_(width),
+        height_(height),
+        tile_size_(tile_size),
+        tiles_x_((width + tile_size - 1) / tile_size),
         tiles_((height + tile_size - 1) / tile_size * tiles_x_) {}
 
   std::size_t TileOf(std::size_t pixel) const {

@@ -21,7 +21,8 @@
 //   Var ~= (1/P^2) sum_p S2_p / n + (1/(n P))^2 [sum_p sum_c q_c (T_pc^2 - A_pc) / (n - 1) + sum_c q_c (T_c^2 - A_c)].
 // Any square tile R of K pixels is the same sum over R's pixels and the pairs of R's samples that read one cell
 // (T_Rc and A_Rc summed over R):
-//   Var(M_R) ~= (1/K^2) sum_p S2_p / n + (1/(n K))^2 [sum_p sum_c q_c (T_pc^2 - A_pc) / (n - 1) + sum_c q_c (T_Rc^2 - A_Rc)],
+//   Var(M_R) ~= (1/K^2) sum_p S2_p / n + (1/(n K))^2 [sum_p sum_c q_c (T_pc^2 - A_pc) / (n - 1) + sum_c q_c (T_Rc^2 -
+//   A_Rc)],
 // which is the image mean's for one tile over the whole image and the pixel's for tiles of one pixel. The
 // statistical comparison tests tiles, not pixels: a pixel's S2_p rests on n samples, so at a few spp it often
 // misses most of the pixel's noise (all n samples jittered into one cell, none into its neighbour), while a tile's
@@ -33,10 +34,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <span>
 #include <string>
-
-#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "core/record.h"

@@ -1,13 +1,12 @@
 #include "verifier/metrics/statistical_compare.h"
 
 #include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <utility>
-
-#include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/students_t.hpp>
 
 #include "core/error.h"
 #include "verifier/theory/chi_square.h"
@@ -99,8 +98,8 @@ std::uint32_t Tiles(std::uint32_t pixels, std::uint32_t tile) { return (pixels +
 // A variance read from a file is a count of noise: finite and not negative, or the file is bad input.
 void RequireVariance(float v, const std::string& source, const std::string& what, std::size_t x, std::size_t y, int c) {
   if (!(v >= 0.0f) || std::isinf(v)) {
-    throw InputError(source + ": " + what + " at (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
-                     "RGB"[c] + ") is " + std::to_string(v) + ", not a finite variance");
+    throw InputError(source + ": " + what + " at (" + std::to_string(x) + ", " + std::to_string(y) + ", " + "RGB"[c] +
+                     ") is " + std::to_string(v) + ", not a finite variance");
   }
 }
 
@@ -132,13 +131,13 @@ std::string StatisticalComparison::ToString() const {
 
 NoisyImage MakeNoisyImage(std::string source, const Image& mean, const PixelVariance& variance,
                           std::uint32_t samples_per_pixel) {
-  return {std::move(source), mean,        variance.variance, variance.tile_variance, variance.tile_size,
-          samples_per_pixel, variance.mean_variance};
+  return {std::move(source),     mean, variance.variance, variance.tile_variance, variance.tile_size, samples_per_pixel,
+          variance.mean_variance};
 }
 
 NoisyImage ToNoisyImage(const ChannelImage& image) {
-  const char* const names[9] = {"R", "G", "B", "variance.R", "variance.G", "variance.B",
-                                "tile_variance.R", "tile_variance.G", "tile_variance.B"};
+  const char* const names[9] = {
+      "R", "G", "B", "variance.R", "variance.G", "variance.B", "tile_variance.R", "tile_variance.G", "tile_variance.B"};
   int index[9];
   for (int k = 0; k < 9; ++k) {
     index[k] = image.ChannelIndex(names[k]);
@@ -183,7 +182,9 @@ NoisyImage ToNoisyImage(const ChannelImage& image) {
 }
 
 nlohmann::json ToJson(const StatisticalComparison& c) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"); };
+  auto number = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
+  };
   auto test = [&](const TileT& t) {
     return nlohmann::json{{"t", number(t.t)}, {"dof", number(t.dof)}, {"p", number(t.p)}};
   };
@@ -223,8 +224,8 @@ StatisticalComparison CompareStatistically(const NoisyImage& a, const NoisyImage
     throw InputError(b.source + " is " + Size(b.mean) + ", " + a.source + " " + Size(a.mean));
   }
   if (b.tile_size != a.tile_size) {
-    throw InputError(b.source + " has variance tiles of " + std::to_string(b.tile_size) + " pixels, " + a.source + " of " +
-                     std::to_string(a.tile_size));
+    throw InputError(b.source + " has variance tiles of " + std::to_string(b.tile_size) + " pixels, " + a.source +
+                     " of " + std::to_string(a.tile_size));
   }
   StatisticalComparison result;
   result.alpha = alpha;

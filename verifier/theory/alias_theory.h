@@ -18,12 +18,12 @@ namespace hpsf {
 double FingerprintProbability(std::uint32_t tag, std::uint32_t bits);
 
 struct AliasTally {
-  std::uint64_t keys = 0;      // distinct keys inserted
-  std::uint64_t aliased = 0;   // keys that joined another key's slot
-  std::uint64_t failed = 0;    // keys that found their window full of other tags
-  double predicted = 0.0;      // sum over keys of the chance of an alias, given the table each one met
-  double variance = 0.0;       // sum over keys of p (1 - p)
-  double compared = 0.0;       // other keys' tags compared, summed over keys (what the chance grows with)
+  std::uint64_t keys = 0;     // distinct keys inserted
+  std::uint64_t aliased = 0;  // keys that joined another key's slot
+  std::uint64_t failed = 0;   // keys that found their window full of other tags
+  double predicted = 0.0;     // sum over keys of the chance of an alias, given the table each one met
+  double variance = 0.0;      // sum over keys of p (1 - p)
+  double compared = 0.0;      // other keys' tags compared, summed over keys (what the chance grows with)
   double Rate() const { return keys == 0 ? 0.0 : double(aliased) / double(keys); }
   double PredictedRate() const { return keys == 0 ? 0.0 : predicted / double(keys); }
 };

@@ -1,10 +1,9 @@
 #include "verifier/theory/jitter_statistics.h"
 
 #include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <stdexcept>
-
-#include <boost/math/distributions/chi_squared.hpp>
 
 #include "core/filter_config.h"
 
@@ -87,13 +86,20 @@ std::vector<KeyResult> CoreKeyPass(std::span<const Record> records, const KeyPar
 
 const char* ToString(JitterTest test) {
   switch (test) {
-    case JitterTest::kSquare: return "square";
-    case JitterTest::kMean: return "mean";
-    case JitterTest::kPixelPairs: return "pixel pairs";
-    case JitterTest::kSamplePairs: return "sample pairs";
-    case JitterTest::kBouncePairs: return "bounce pairs";
-    case JitterTest::kKernel: return "kernel";
-    case JitterTest::kLevelChange: return "level change";
+    case JitterTest::kSquare:
+      return "square";
+    case JitterTest::kMean:
+      return "mean";
+    case JitterTest::kPixelPairs:
+      return "pixel pairs";
+    case JitterTest::kSamplePairs:
+      return "sample pairs";
+    case JitterTest::kBouncePairs:
+      return "bounce pairs";
+    case JitterTest::kKernel:
+      return "kernel";
+    case JitterTest::kLevelChange:
+      return "level change";
   }
   return "?";
 }
@@ -141,8 +147,8 @@ JitterExperiment MakeJitterExperiment(JitterTest test, std::uint32_t seed, std::
       for (std::uint32_t i = 0; i < samples; ++i) {
         const double z = kLevelNearest + (kLevelFarthest - kLevelNearest) * (i + 0.5) / samples;
         e.records.push_back(JitterRecord(i, 0, 0, glm::vec3(0.0f, 0.0f, float(z)), kY, kZ, kX, glm::vec3(0.0f)));
-        const std::vector<double> p = LevelChangeProbabilities(double(e.records.back().position.z),
-                                                               LevelBefore(e.records.back(), e.params));
+        const std::vector<double> p =
+            LevelChangeProbabilities(double(e.records.back().position.z), LevelBefore(e.records.back(), e.params));
         for (std::size_t c = 0; c < p.size(); ++c) e.probabilities[c] += p[c] / samples;
       }
       break;
@@ -204,8 +210,8 @@ std::vector<std::uint64_t> CountJitterCells(const JitterExperiment& e, std::span
 
 JitterVerdict RunJitterTest(const KeyPassFunction& pass, const JitterExperiment& e) {
   const std::vector<KeyResult> keys = pass(e.records, e.params);
-  const bool pairs = e.test == JitterTest::kPixelPairs || e.test == JitterTest::kSamplePairs ||
-                     e.test == JitterTest::kBouncePairs;
+  const bool pairs =
+      e.test == JitterTest::kPixelPairs || e.test == JitterTest::kSamplePairs || e.test == JitterTest::kBouncePairs;
   JitterVerdict verdict{e.test, pairs ? keys.size() / 2 : keys.size(), {}};
   if (e.test != JitterTest::kMean) {
     verdict.chi_square = ChiSquareTest(CountJitterCells(e, keys), e.probabilities);

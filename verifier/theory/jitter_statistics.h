@@ -30,10 +30,9 @@ using KeyPassFunction = std::function<std::vector<KeyResult>(std::span<const Rec
 std::vector<KeyResult> CoreKeyPass(std::span<const Record> records, const KeyParams& params);
 
 enum class JitterTest { kSquare, kMean, kPixelPairs, kSamplePairs, kBouncePairs, kKernel, kLevelChange };
-inline constexpr JitterTest kJitterTests[] = {JitterTest::kSquare,      JitterTest::kMean,
-                                             JitterTest::kPixelPairs,  JitterTest::kSamplePairs,
-                                             JitterTest::kBouncePairs, JitterTest::kKernel,
-                                             JitterTest::kLevelChange};
+inline constexpr JitterTest kJitterTests[] = {
+    JitterTest::kSquare,      JitterTest::kMean,   JitterTest::kPixelPairs, JitterTest::kSamplePairs,
+    JitterTest::kBouncePairs, JitterTest::kKernel, JitterTest::kLevelChange};
 const char* ToString(JitterTest test);
 
 // A test's batch and the parameters it runs under: change either to plant an alternative.

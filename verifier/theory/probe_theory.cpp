@@ -9,7 +9,8 @@ namespace {
 
 std::vector<bool> InsertWithoutLimit(std::span<const std::uint32_t> slot0s, std::uint32_t capacity,
                                      std::vector<std::uint32_t>* probes = nullptr) {
-  if (slot0s.empty() || slot0s.size() >= capacity) throw std::invalid_argument("probe theory: needs 0 < keys < capacity");
+  if (slot0s.empty() || slot0s.size() >= capacity)
+    throw std::invalid_argument("probe theory: needs 0 < keys < capacity");
   std::vector<bool> taken(capacity, false);
   for (const std::uint32_t slot0 : slot0s) {
     std::uint32_t slot = slot0 & (capacity - 1u);

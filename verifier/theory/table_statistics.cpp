@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/math/distributions/binomial.hpp>
 #include <cmath>
 #include <map>
-
-#include <boost/math/distributions/binomial.hpp>
 
 #include "verifier/theory/alias_theory.h"
 #include "verifier/theory/probe_theory.h"
@@ -60,7 +59,7 @@ std::vector<std::uint32_t> SortedWith(std::span<const std::uint32_t> values, std
 }
 
 nlohmann::json RateJson(const RateFigure& f) {
-  return {{"events", f.events}, {"trials", f.trials},     {"rate", f.Rate()},
+  return {{"events", f.events}, {"trials", f.trials},          {"rate", f.Rate()},
           {"theory", f.theory}, {"interval", {f.low, f.high}}, {"exceeds_theory", f.ExceedsTheory()}};
 }
 

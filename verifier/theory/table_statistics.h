@@ -8,10 +8,9 @@
 #define HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/filter_config.h"
 #include "core/key_batch.h"
@@ -38,7 +37,7 @@ struct ProbeLimitFigure {
 
 struct AliasFigure {
   std::uint32_t fingerprint_bits = 0;
-  RateFigure aliases;   // keys that joined another key's slot; theory: the prediction from the windows
+  RateFigure aliases;  // keys that joined another key's slot; theory: the prediction from the windows
 };
 
 struct TableStatistics {
@@ -50,7 +49,7 @@ struct TableStatistics {
   double mean_probes = 0.0, mean_probes_theory = 0.0;
   std::vector<ProbeLimitFigure> probe_limits;
   std::vector<AliasFigure> fingerprints;
-  double extrapolated_alias_rate_32 = 0.0;  // aliases per key at 32 bits, from the widths measured
+  double extrapolated_alias_rate_32 = 0.0;      // aliases per key at 32 bits, from the widths measured
   std::vector<std::uint64_t> records_per_cell;  // [k]: keys with 2^k .. 2^(k+1) - 1 records
   std::uint64_t max_records_per_cell = 0;
   std::vector<JitterVerdict> jitter;
@@ -61,7 +60,8 @@ struct TableStatistics {
 };
 
 // The distinct full keys among the keyed results, in the order they first come, and how many results carry each.
-std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys, std::vector<std::uint64_t>* results_per_key = nullptr);
+std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys,
+                                    std::vector<std::uint64_t>* results_per_key = nullptr);
 
 TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
                                        const FilterConfig& config);

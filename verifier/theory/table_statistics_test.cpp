@@ -1,11 +1,12 @@
 // `hpsf stats`'s figures: within their theory for the key path's own keys, a warning when an index hash clusters
 // (probe failures above the theory); the distinct keys and records per cell counted.
-#include <cstdio>
+#include "verifier/theory/table_statistics.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "core/key_batch.h"
-#include "verifier/theory/table_statistics.h"
 
 namespace hpsf {
 namespace {
