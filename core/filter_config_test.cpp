@@ -1,9 +1,9 @@
 #include "core/filter_config.h"
 
-#include <gtest/gtest.h>
-
 #include <functional>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 

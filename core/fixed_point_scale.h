@@ -7,8 +7,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <glm/vec3.hpp>
 #include <span>
+
+#include <glm/vec3.hpp>
 
 #include "core/record.h"
 

@@ -1,10 +1,10 @@
 #include "core/shared/fixed_point.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/fixed_point_scale.h"
 #include "core/record.h"

@@ -1,10 +1,10 @@
 #include "core/shared/float_bits.h"
 
-#include <gtest/gtest.h>
-
 #include <bit>
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 namespace hpsf::shared {
 namespace {

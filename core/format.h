@@ -3,8 +3,9 @@
 #ifndef HPSF_CORE_FORMAT_H
 #define HPSF_CORE_FORMAT_H
 
-#include <glm/vec3.hpp>
 #include <string>
+
+#include <glm/vec3.hpp>
 
 namespace hpsf {
 

@@ -4,8 +4,9 @@
 
 #include <cstdint>
 #include <cstring>
-#include <glm/vec3.hpp>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace hpsf {
 

@@ -1,9 +1,9 @@
 #include "core/shared/key.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 #include "core/filter_config.h"
 #include "core/key_batch.h"

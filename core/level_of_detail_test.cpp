@@ -1,9 +1,9 @@
 #include "core/shared/level_of_detail.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 namespace hpsf::shared {
 namespace {

@@ -2,10 +2,10 @@
 // checker call SeedOf, so agreement between them cannot show that it seeds what Binder et al. §3.4.2 describe.
 // A lookup over a map stands for the table before the frame; each case states the cell's neighbours and the seed
 // worked out by hand.
-#include <gtest/gtest.h>
-
 #include <map>
 #include <tuple>
+
+#include <gtest/gtest.h>
 
 #include "core/level_seed.h"
 #include "core/shared/level_seed.h"

@@ -4,6 +4,7 @@
 #define HPSF_CORE_OCTAHEDRAL_H
 
 #include <cstdint>
+
 #include <glm/vec3.hpp>
 
 namespace hpsf {

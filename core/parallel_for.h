@@ -5,11 +5,6 @@
 #ifndef HPSF_CORE_PARALLEL_FOR_H
 #define HPSF_CORE_PARALLEL_FOR_H
 
-#include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -19,6 +14,11 @@
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #if defined(__SANITIZE_THREAD__)
 #define HPSF_PLAIN_THREADS 1

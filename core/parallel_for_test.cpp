@@ -3,12 +3,12 @@
 // in every build, so the path only TSan runs cannot rot unseen.
 #include "core/parallel_for.h"
 
-#include <gtest/gtest.h>
-
 #include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hpsf {
 namespace {

@@ -4,10 +4,11 @@
 #define HPSF_CORE_RECORD_H
 
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <string>
 #include <type_traits>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/shared/record_layout.h"
 

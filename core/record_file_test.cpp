@@ -1,11 +1,11 @@
 #include "core/record_file.h"
 
-#include <gtest/gtest.h>
-
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 

@@ -5,10 +5,11 @@
 #ifndef HPSF_CORE_RESOLVE_H
 #define HPSF_CORE_RESOLVE_H
 
-#include <glm/vec3.hpp>
 #include <optional>
 #include <span>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "core/input_check.h"

@@ -4,8 +4,9 @@
 #ifndef HPSF_CORE_TANGENT_FRAME_H
 #define HPSF_CORE_TANGENT_FRAME_H
 
-#include <glm/vec3.hpp>
 #include <string>
+
+#include <glm/vec3.hpp>
 
 namespace hpsf {
 

@@ -1,10 +1,10 @@
 #include "core/tangent_frame.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
-#include <glm/geometric.hpp>
 #include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 namespace hpsf {
 namespace {

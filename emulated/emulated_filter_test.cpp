@@ -2,12 +2,12 @@
 // table checker, and lose no light in the furnace.
 #include "emulated/emulated_filter.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "reference/float_replay.h"
 #include "reference/reference_filter.h"

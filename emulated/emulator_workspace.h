@@ -8,9 +8,10 @@
 
 #include <array>
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <utility>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/hashed_run.h"
 #include "core/huge_pages.h"

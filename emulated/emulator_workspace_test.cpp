@@ -1,9 +1,9 @@
 // A run in arrays kept from another run (emulated/emulator_workspace.h) is bit for bit the run in fresh memory:
 // nothing of the earlier run's keys, table or image shows through, whichever run is the larger.
-#include <gtest/gtest.h>
-
 #include <cstring>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "emulated/emulated_backend.h"
 #include "emulated/emulated_filter.h"

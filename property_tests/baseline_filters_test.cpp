@@ -3,10 +3,10 @@
 // and every normal test, so the images are bit-identical; the neighbour test itself on constructed vertices; a
 // radius too small to reach another vertex is plain path tracing, bit for bit; a window that covers the image makes
 // the screen-space filter the radius search, and a window of one pixel at 1 spp plain path tracing.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 #include "core/filter_config.h"
 #include "property_tests/traced_batch.h"

@@ -2,13 +2,13 @@
 // defect of docs/design/defects.md (D2, D3, D8, D9, D13), run on inputs constructed to reach the defect. For each, the
 // table checker or the cross-check contract must fail. D9 and D13 need a particular interleaving: the tests report
 // which schedule policies found them and after how many schedules.
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-
 #include <bit>
 #include <cstdio>
 #include <functional>
 #include <optional>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 
 #include "core/hash_table.h"
 #include "core/input_check.h"

@@ -4,11 +4,11 @@
 // random numbers or the key path become: no test here depends on a scene whose keys happen to collide. On
 // lavapipe a subgroup's lanes run in lockstep, so D9 and D13 race on every run; each input is also run through
 // the correct shader, which must pass.
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/filter_config.h"
 #include "property_tests/constructed_cells.h"

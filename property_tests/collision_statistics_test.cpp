@@ -10,13 +10,13 @@
 // Alternatives it must reject, shown below with the same statistic: an index hash that clusters (the sum of
 // the cell coordinates) and one that drops words (the x coordinate alone), both rejected at every load from 0.5
 // (in tables of 2^13 slots); kResolution below states the power against any other shift of the mean.
-#include <gtest/gtest.h>
-
 #include <algorithm>
-#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <functional>
 #include <vector>
+
+#include <boost/math/distributions/students_t.hpp>
+#include <gtest/gtest.h>
 
 #include "core/footprint.h"
 #include "core/key_batch.h"

@@ -5,12 +5,12 @@
 #ifndef HPSF_PROPERTY_TESTS_CONSTRUCTED_CELLS_H
 #define HPSF_PROPERTY_TESTS_CONSTRUCTED_CELLS_H
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <functional>
-#include <glm/vec3.hpp>
 #include <vector>
+
+#include <glm/vec3.hpp>
+#include <gtest/gtest.h>
 
 #include "core/filter_config.h"
 #include "core/key_batch.h"

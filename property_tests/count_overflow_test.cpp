@@ -6,13 +6,13 @@
 // way from a count just below 2^32, in the emulator and as a shader through --accumulate-spv: the checker catches
 // it, and its image differs from the correct kernel's.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/hashed_run.h"
 #include "emulated/defect_injection.h"

@@ -4,14 +4,14 @@
 // classified, never blamed on a correct backend; and the broken variants of frames (D7 in the emulator and as a
 // shader, D10) fail it.
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/backend.h"
 #include "core/eviction.h"

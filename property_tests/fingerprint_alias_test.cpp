@@ -8,14 +8,14 @@
 // Alternatives it must reject, shown below with the same statistic and keys: fingerprints that keep the low
 // bits of the index hash (the bits that chose the slot, so keys crowding a window share them) and fingerprints
 // two bits short of their width (four times the aliases), both at every width. kResolution states the power.
-#include <gtest/gtest.h>
-
 #include <algorithm>
-#include <boost/math/distributions/binomial.hpp>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <vector>
+
+#include <boost/math/distributions/binomial.hpp>
+#include <gtest/gtest.h>
 
 #include "core/key_batch.h"
 #include "emulated/emulated_filter.h"

@@ -1,12 +1,12 @@
 // fixed64 conversion on the device equals the C++ conversion bit for bit: round half to even at ties, exact
 // above 2^24, zero for values whose scaled form is below the normal range.
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <vector>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include "core/shared/fixed_point.h"
 #include "property_tests/vulkan_test_devices.h"

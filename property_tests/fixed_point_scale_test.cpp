@@ -2,14 +2,14 @@
 // table that integrates K frames, K such totals stay below 2^63.
 #include "core/fixed_point_scale.h"
 
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <functional>
 #include <vector>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include "core/shared/fixed_point.h"
 

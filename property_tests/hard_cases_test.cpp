@@ -4,8 +4,6 @@
 // that the records keyed, without a vertex, unkeyable and rejected are what the case was built to give; then
 // what the case itself is about (a level at its clamp, the F chosen, a firefly kept to its cells, ...). Each
 // prints one line of figures for docs/results.md's table ("hard case | ...").
-#include <gtest/gtest.h>
-
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +12,8 @@
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "core/fixed_point_scale.h"

@@ -3,11 +3,11 @@
 // or resolved with a wrong count or without a record in float32, is caught.
 #include "verifier/contract/image_check.h"
 
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include <bit>
 #include <optional>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include "core/resolve.h"
 #include "emulated/emulated_filter.h"

@@ -12,17 +12,17 @@
 // projection d - |n| d leaves it.
 #include "verifier/theory/jitter_statistics.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
-#include <boost/math/distributions/non_central_chi_squared.hpp>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <numeric>
 #include <utility>
 #include <vector>
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/non_central_chi_squared.hpp>
+#include <gtest/gtest.h>
 
 #include "core/shared/jitter.h"
 #include "core/shared/rng.h"

@@ -1,11 +1,11 @@
 // Level 1 of the cross-check, on lavapipe here and on a real GPU where there is one: every output word of
 // keys.comp equals the C++ result of the same shared code, bit for bit, with no exceptions, whether the host
 // maps the device's buffers or moves data through staging buffers.
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include <fstream>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include "core/input_check.h"
 #include "core/key_batch.h"

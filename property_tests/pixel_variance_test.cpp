@@ -6,13 +6,13 @@
 // the spread a correct estimate's ratio has over seeds, and what a wrong estimate gives.
 #include "verifier/metrics/pixel_variance.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "emulated/emulated_filter.h"
 #include "reference/reference_filter.h"

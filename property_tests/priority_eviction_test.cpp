@@ -4,8 +4,6 @@
 // frame and the frame's placements, and catches the compare of the wrong sign in the emulator and as a shader; the
 // contract over a sequence holds where the exact map, which has no pressure, keeps what the table evicted.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <cstdio>
 #include <map>
@@ -13,6 +11,8 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "core/eviction.h"

@@ -2,12 +2,12 @@
 // field, and a negative value in each field the checks call a radiance or a length. Each is rejected on the host
 // and counted, never placed in a table, its pixel stays finite, and the cross-check holds with all backends,
 // the Vulkan host mapping its buffers or staging them.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/input_check.h"
 #include "emulated/emulated_filter.h"

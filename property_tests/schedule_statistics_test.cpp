@@ -23,8 +23,6 @@
 // Rejection needs noncentrality about 50 at one degree of freedom (more at more). The weakest alternatives here,
 // lane order once in 50 on 2 lanes and the first of 2 warps once in 50, reach 105 with the sample sizes above
 // (type II error 2e-10 and 6e-9, printed by each test); the others are far beyond.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,6 +33,8 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "emulated/simt/launcher.h"
 #include "verifier/theory/chi_square.h"

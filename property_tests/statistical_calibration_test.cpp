@@ -10,10 +10,10 @@
 // 64x64, 4 and 16 spp, each against the same spp and against 256; docs/results.md's table has 200 pairs at 2 to 64 spp.
 #include "tools/calibration/statistical_calibration.h"
 
-#include <gtest/gtest.h>
+#include <cstdio>
 
 #include <boost/math/distributions/binomial.hpp>
-#include <cstdio>
+#include <gtest/gtest.h>
 
 namespace hpsf {
 namespace {

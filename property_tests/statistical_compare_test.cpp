@@ -3,10 +3,10 @@
 // refusals. Renders: statistical_renders_test.cpp; the false-alarm rates: statistical_calibration_test.cpp.
 #include "verifier/metrics/statistical_compare.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 

@@ -2,11 +2,11 @@
 // consistent with noise, 1% more green is seen by the image-mean test, one pixel ten times brighter by its tile's
 // test. The renders use fixed seeds, so each verdict is one fixed outcome; the power stated for the 1% bias is
 // computed from the renders.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "reference/reference_filter.h"
 #include "tracer/path_tracer.h"

@@ -5,9 +5,6 @@
 // another that the same corruption also trips.
 #include "verifier/checker/table_checker.h"
 
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -17,6 +14,9 @@
 #include <ostream>
 #include <set>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"

@@ -8,8 +8,6 @@
 // accumulate (D10) by the checker and the contract. In float32, where each cell takes one add a frame, every
 // backend blends to the reference's bits, and each of the checker's float32 blend bounds rejects a planted value.
 
-#include <gtest/gtest.h>
-
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +17,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/backend.h"
 #include "core/error.h"

@@ -3,8 +3,6 @@
 // (each frame's own random numbers) it is the sum of each frame's table alone. The table checker judges each
 // frame from the table before it, and catches a backend that forgets the table between frames.
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cstdint>
 #include <map>
@@ -12,6 +10,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/backend.h"
 #include "core/error.h"

@@ -3,13 +3,13 @@
 // level 2 (the table checker) and level 3 (fixed64 cells and image bit-identical to the reference where
 // nothing failed or aliased) hold; generated batches with tiny tables and 8-bit fingerprints pass the checker.
 // Also reports how close the emulator (warp size 8, round-robin) comes to lavapipe's float32 bits.
-#include <gtest/gtest.h>
-#include <rapidcheck/gtest.h>
-
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
 
 #include "core/hash_table.h"
 #include "emulated/emulated_filter.h"

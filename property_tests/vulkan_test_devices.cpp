@@ -1,10 +1,10 @@
 #include "property_tests/vulkan_test_devices.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "vulkan/vulkan_objects.h"
 

@@ -7,10 +7,11 @@
 #define HPSF_REFERENCE_FILTER_VERTICES_H
 
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <optional>
 #include <span>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/filter_config.h"
 #include "core/image.h"

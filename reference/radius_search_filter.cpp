@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+
 #include <nanoflann.hpp>
 
 #include "core/parallel_for.h"

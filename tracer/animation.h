@@ -6,9 +6,10 @@
 #define HPSF_TRACER_ANIMATION_H
 
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace hpsf {
 

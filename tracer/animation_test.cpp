@@ -2,10 +2,10 @@
 // tracer tracing the scene at its frame.
 #include "tracer/animation.h"
 
-#include <gtest/gtest.h>
-
 #include <cstring>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "tracer/path_tracer.h"

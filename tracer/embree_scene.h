@@ -4,11 +4,11 @@
 #ifndef HPSF_TRACER_EMBREE_SCENE_H
 #define HPSF_TRACER_EMBREE_SCENE_H
 
-#include <embree3/rtcore.h>
-
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <optional>
+
+#include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
 
 #include "tracer/scene.h"
 

@@ -1,8 +1,8 @@
 // The hard cases of docs/design/tracer.md: far from the origin, tiny, zero albedo channels, and
 // unkeyable records on purpose.
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "reference/reference_filter.h"
 #include "tracer/path_tracer.h"

@@ -3,9 +3,10 @@
 #ifndef HPSF_TRACER_OBJ_MESH_H
 #define HPSF_TRACER_OBJ_MESH_H
 
-#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace hpsf {
 

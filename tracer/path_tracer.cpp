@@ -1,11 +1,8 @@
 #include "tracer/path_tracer.h"
 
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <glm/geometric.hpp>
 #include <memory>
 #include <mutex>
 #include <numbers>
@@ -13,6 +10,9 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <glm/geometric.hpp>
+#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "core/parallel_for.h"

@@ -1,9 +1,9 @@
 #include "tracer/path_tracer.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstring>
+
+#include <gtest/gtest.h>
 
 #include "core/input_check.h"
 #include "reference/reference_filter.h"

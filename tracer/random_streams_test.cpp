@@ -1,11 +1,11 @@
 // The tracer's random streams: every (seed, frame) is a stream of its own. A tracer that folded the frame into the
 // seed would make frame f of seed s repeat frame 0 of seed s + f, and every backend, sharing the records, would
 // agree with it: only a statement about the streams themselves catches it.
-#include <gtest/gtest.h>
-
 #include <cstring>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/shared/rng.h"
 #include "tracer/path_tracer.h"

@@ -7,9 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "tracer/animation.h"
 

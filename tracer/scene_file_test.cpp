@@ -1,10 +1,10 @@
 #include "tracer/scene_file.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "tracer/obj_mesh.h"

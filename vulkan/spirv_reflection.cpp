@@ -1,9 +1,9 @@
 #include "vulkan/spirv_reflection.h"
 
-#include <spirv_cross/spirv_cross_c.h>
-
 #include <memory>
 #include <set>
+
+#include <spirv_cross/spirv_cross_c.h>
 
 #include "core/error.h"
 

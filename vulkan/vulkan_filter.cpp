@@ -1,7 +1,5 @@
 #include "vulkan/vulkan_filter.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <bit>
 #include <chrono>
@@ -9,6 +7,8 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
+
+#include <tbb/parallel_for.h>
 
 #include "accumulate_fixed64_spv.h"
 #include "accumulate_float32_spv.h"

@@ -8,6 +8,7 @@
 #include <functional>
 #include <span>
 #include <vector>
+
 #include <vulkan/vulkan_raii.hpp>
 
 #include "vulkan/vulkan_device.h"

@@ -16,6 +16,7 @@
 #else  // C++
 #include <cmath>
 #include <cstdint>
+
 #include <glm/glm.hpp>
 
 #define HPSF_FN inline __attribute__((always_inline))  // inlining the whole key path doubles its speed at -O2

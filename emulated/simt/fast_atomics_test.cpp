@@ -2,11 +2,11 @@
 // word through DeviceMemory::ApplyConcurrently in a tight loop, as fast mode does from all cores. The final words
 // must be exact. Measured on a 2-core machine with each atomic replaced by its racy form: a load-then-store add
 // (integer or float) failed 5 runs of 5, a load-compare-store CAS 8 of 8 (with 2 x 2^22 tries).
-#include <gtest/gtest.h>
-
 #include <bit>
 #include <thread>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "emulated/simt/device_memory.h"
 

@@ -1,8 +1,8 @@
 // Litmus kernels with known outcome sets check the scheduler itself: the exhaustive policy must find exactly
 // the possible outcomes, in exactly as many schedules as the combinatorics predicts.
-#include <gtest/gtest.h>
-
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "emulated/simt/launcher.h"

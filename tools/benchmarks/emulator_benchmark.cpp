@@ -3,11 +3,11 @@
 // table of the same size on all cores; fast mode as the backend runs frames (arrays kept) and in fresh memory; and
 // faithful mode on a smaller batch for its slowdown; and the Vulkan host's read-back check over the same run. Run:
 //   build/default/bin/emulator_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
-#include <benchmark/benchmark.h>
-#include <tbb/parallel_for.h>
-
 #include <atomic>
 #include <vector>
+
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
 
 #include "core/huge_pages.h"
 #include "core/read_back_check.h"

@@ -1,9 +1,9 @@
 // Keys per second for 2 million records: the shared key path in C++ on one core, and keys.comp on the Vulkan
 // device (steady-state dispatches: pipeline creation and upload excluded). Run:
 //   build/default/bin/keys_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-#include <benchmark/benchmark.h>
-
 #include <vector>
+
+#include <benchmark/benchmark.h>
 
 #include "core/key_batch.h"
 #include "tools/benchmarks/benchmark_vulkan.h"

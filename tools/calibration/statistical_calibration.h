@@ -6,9 +6,10 @@
 #define HPSF_TOOLS_CALIBRATION_STATISTICAL_CALIBRATION_H
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace hpsf {
 

@@ -3,9 +3,10 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <glm/vec3.hpp>
 #include <limits>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/key_batch.h"
 

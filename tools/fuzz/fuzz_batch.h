@@ -7,10 +7,10 @@
 #ifndef HPSF_TOOLS_FUZZ_FUZZ_BATCH_H
 #define HPSF_TOOLS_FUZZ_FUZZ_BATCH_H
 
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include <cstdint>
 #include <string>
+
+#include <fuzzer/FuzzedDataProvider.h>
 
 #include "core/filter_config.h"
 #include "core/record.h"

@@ -6,8 +6,6 @@
 // changes to the dump's bits, except a float32 sum moved within the bound gamma(n - 1) * sum|c| of its slot's
 // exact sum (atomics may round anywhere inside it; docs/design/contract.md), or an empty slot's sum turned to -0.0,
 // which is still zero. A corruption that leaves the dump as it was is none.
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include <array>
 #include <bit>
 #include <cmath>
@@ -16,6 +14,8 @@
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include <fuzzer/FuzzedDataProvider.h>
 
 #include "core/hash_table.h"
 #include "core/input_check.h"

@@ -7,11 +7,12 @@
 // exception, a crash, a sanitizer report) is a bug. Every command's own registration, diff, golden, fuzz and
 // device included, is run in options-only mode by command_options_tests (tools/hpsf/command_options_test.cpp),
 // which needs the whole tool; this target keeps the fuzz build free of Vulkan, Embree and OpenImageIO.
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "core/error.h"
 #include "emulated/defect_injection.h"

@@ -9,8 +9,6 @@
 // A bug: a crash, a sanitizer report, a hang or an exception escaping the contract. Any verdict is accepted.
 // Built twice: as a libFuzzer target (preset fuzz) and as the ctest read_back_fuzz_tests, which runs the
 // checked-in corpus and a fixed number of inputs from the counter RNG (untrusted_inputs_main.cpp).
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -21,6 +19,8 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include <fuzzer/FuzzedDataProvider.h>
 
 #include "core/error.h"
 #include "core/read_back_check.h"

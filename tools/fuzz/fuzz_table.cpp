@@ -5,13 +5,13 @@
 // hpsf crosscheck: verifier/contract/contract_levels.h), a kernel fault, an exception, or a sanitizer report.
 // HPSF_FUZZ_DEFECT=D9 (or D2, D3, D8, D8-unwrapped, D13) runs a known broken kernel instead, to show the target finds
 // it.
-#include <fuzzer/FuzzedDataProvider.h>
-
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include <fuzzer/FuzzedDataProvider.h>
 
 #include "emulated/defect_injection.h"
 #include "tools/fuzz/fuzz_batch.h"

@@ -3,11 +3,12 @@
 #ifndef HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 #define HPSF_TOOLS_HPSF_BACKEND_OPTIONS_H
 
-#include <CLI/CLI.hpp>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/backend.h"
 #include "core/filter_config.h"

@@ -1,8 +1,8 @@
 #include "tools/hpsf/channel_image_file.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <filesystem>
+
+#include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"

@@ -1,14 +1,14 @@
 // Fills check.tpl's ctemplate dictionary from a gate run's report (see check_html_report.h).
 #include "tools/hpsf/check_html_report.h"
 
-#include <ctemplate/template.h>
-
 #include <array>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
+
+#include <ctemplate/template.h>
 
 #include "tools/hpsf/report_assets.h"
 #include "tools/hpsf/version.h"

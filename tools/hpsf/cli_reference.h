@@ -4,8 +4,9 @@
 #ifndef HPSF_TOOLS_HPSF_CLI_REFERENCE_H
 #define HPSF_TOOLS_HPSF_CLI_REFERENCE_H
 
-#include <CLI/CLI.hpp>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 namespace hpsf {
 

@@ -1,13 +1,13 @@
 // Every option of every command the command line registers, swept with every edge and compound value
 // (command_options_testing.h): about 25,000 lines, labelled slow because ASan makes it the longest test of its
 // run (100 s against 7 s); fuzz_cli covers the option groups under the sanitizers.
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <typeinfo>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "tools/hpsf/command_options_testing.h"
 

@@ -4,7 +4,6 @@
 // is written. The libFuzzer target fuzz_cli covers the shared option groups with coverage guidance; these tests
 // cover every command, diff, golden, fuzz and device included, in every build (the asan one too).
 // command_option_sweep_test.cpp sweeps every option with every edge value.
-#include <gtest/gtest.h>
 #include <rapidcheck.h>
 
 #include <cstdio>
@@ -12,6 +11,8 @@
 #include <string>
 #include <typeinfo>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "tools/hpsf/command_options_testing.h"
 

@@ -3,11 +3,11 @@
 // and command paths the lines are made of.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hpsf::command_options {
 

@@ -3,11 +3,11 @@
 // every core, and traced twice; a scene's digest follows its content, not its name.
 #include "tools/hpsf/converged_reference.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <utility>
+
+#include <gtest/gtest.h>
 
 #include "tracer/scene_digest.h"
 #include "tracer/scene_file.h"

@@ -2,6 +2,7 @@
 
 #include <iostream>
 #include <memory>
+
 #include <nlohmann/json.hpp>
 
 #include "vulkan/vulkan_device.h"

@@ -3,9 +3,10 @@
 #ifndef HPSF_TOOLS_HPSF_EFFECT_REPORT_H
 #define HPSF_TOOLS_HPSF_EFFECT_REPORT_H
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/effect_plan.h"
 #include "tracer/scene.h"

@@ -4,8 +4,9 @@
 #ifndef HPSF_TOOLS_HPSF_EMULATOR_OPTIONS_H
 #define HPSF_TOOLS_HPSF_EMULATOR_OPTIONS_H
 
-#include <CLI/CLI.hpp>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 #include "emulated/emulated_filter.h"
 #include "verifier/contract/crosscheck.h"

@@ -3,11 +3,12 @@
 #ifndef HPSF_TOOLS_HPSF_FILTER_OPTIONS_H
 #define HPSF_TOOLS_HPSF_FILTER_OPTIONS_H
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/filter_config.h"
 #include "core/filter_result.h"

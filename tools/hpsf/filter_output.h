@@ -3,8 +3,9 @@
 #ifndef HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
 #define HPSF_TOOLS_HPSF_FILTER_OUTPUT_H
 
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "core/record.h"
 #include "tools/hpsf/backend_options.h"

@@ -2,10 +2,6 @@
 // page shows and why it is one self-contained file).
 #include "tools/hpsf/html_report.h"
 
-#include <Imath/half.h>
-#include <OpenImageIO/strutil.h>
-#include <ctemplate/template.h>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -17,6 +13,10 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+
+#include <Imath/half.h>
+#include <OpenImageIO/strutil.h>
+#include <ctemplate/template.h>
 
 #include "core/error.h"
 #include "tools/hpsf/heatmap.h"

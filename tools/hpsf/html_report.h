@@ -9,10 +9,11 @@
 #define HPSF_TOOLS_HPSF_HTML_REPORT_H
 
 #include <cstddef>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "verifier/metrics/channel_image.h"
 #include "verifier/metrics/image_comparison.h"

@@ -5,10 +5,10 @@
 // tools/testing/html_report_chromium.cmake's test.
 #include "tools/hpsf/html_report.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 

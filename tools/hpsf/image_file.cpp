@@ -1,7 +1,5 @@
 #include "tools/hpsf/image_file.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +7,8 @@
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
+
+#include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
 #include "verifier/metrics/srgb.h"

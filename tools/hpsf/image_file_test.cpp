@@ -2,11 +2,11 @@
 // ToNoisyImage): by name, exactly, and with a clear error naming the file and what is missing when a file has none.
 #include "tools/hpsf/image_file.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <map>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "tools/hpsf/channel_image_file.h"

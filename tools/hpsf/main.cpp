@@ -1,9 +1,10 @@
 // hpsf: a verification harness for hashed path space filtering. Exit codes: 0 pass, 1 warn, 2 a failed check,
 // 3 bad input (a bad option or file, or no usable Vulkan device), 4 hpsf failed internally (an exception escaped:
 // never an abort, so a gate tells hpsf's own failure from a verdict).
-#include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+
+#include <CLI/CLI.hpp>
 
 #include "core/error.h"
 #include "core/read_back_check.h"

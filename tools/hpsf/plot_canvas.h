@@ -4,10 +4,10 @@
 #ifndef HPSF_TOOLS_HPSF_PLOT_CANVAS_H
 #define HPSF_TOOLS_HPSF_PLOT_CANVAS_H
 
+#include <string>
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
-
-#include <string>
 
 #include "tools/hpsf/heatmap.h"
 

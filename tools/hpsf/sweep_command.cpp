@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+
 #include <nlohmann/json.hpp>
 
 #include "core/hashed_run.h"

@@ -1,11 +1,11 @@
 // Fills sweep.tpl's ctemplate dictionary from a sweep's results (see sweep_html_report.h).
 #include "tools/hpsf/sweep_html_report.h"
 
-#include <ctemplate/template.h>
-
 #include <cstdio>
 #include <mutex>
 #include <stdexcept>
+
+#include <ctemplate/template.h>
 
 #include "tools/hpsf/report_assets.h"
 #include "tools/hpsf/version.h"

@@ -4,8 +4,9 @@
 #ifndef HPSF_TOOLS_HPSF_SWEEP_HTML_REPORT_H
 #define HPSF_TOOLS_HPSF_SWEEP_HTML_REPORT_H
 
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace hpsf {
 

@@ -1,13 +1,13 @@
 // schema_check SCHEMA.json FILE: whether FILE (JSON, or YAML when it ends in .yml or .yaml) conforms to the JSON
 // Schema SCHEMA.json. Exit 0 it does, 2 it does not (each violation printed with its place), 3 a file could not be
 // read. CI configurations, which no runner here can run, are checked against their services' published schemas.
-#include <yaml-cpp/yaml.h>
-
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.h"
 #include "verifier/gate/json_schema.h"

@@ -2,17 +2,17 @@
 // rejects division, transcendental and fused instructions, float arithmetic without NoContraction, and a
 // module that does not declare RTE rounding and signed-zero/Inf/NaN preservation for 32-bit floats.
 // Reading the binary (not spirv-dis's text) keeps the check exact; messages name instructions as spirv-dis does.
-#include <glslang/SPIRV/GLSL.std.450.h>
-
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <glslang/SPIRV/spirv.hpp>
 #include <iterator>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <glslang/SPIRV/GLSL.std.450.h>
+#include <glslang/SPIRV/spirv.hpp>
 
 namespace {
 

@@ -3,9 +3,9 @@
 // such differences for real (property_tests/crosscheck_repeat_test.cpp runs those).
 #include "verifier/contract/rerun_check.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "core/hash_table.h"
 

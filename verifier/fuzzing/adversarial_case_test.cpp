@@ -2,8 +2,6 @@
 // family reaching what it is built for in nearly every case (else the fuzzer's power is luck).
 #include "verifier/fuzzing/adversarial_case.h"
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cstring>
 #include <map>
@@ -11,6 +9,8 @@
 #include <string>
 #include <tuple>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/footprint.h"
 #include "core/input_check.h"

@@ -2,11 +2,11 @@
 // that still fail, leaves a kept accumulation alone and stops at its check limit.
 #include "verifier/fuzzing/case_shrinker.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/eviction.h"
 #include "core/temporal.h"

@@ -6,9 +6,10 @@
 #ifndef HPSF_VERIFIER_GATE_CASE_JUDGEMENT_H
 #define HPSF_VERIFIER_GATE_CASE_JUDGEMENT_H
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "verifier/gate/junit_report.h"
 

@@ -6,9 +6,10 @@
 #define HPSF_VERIFIER_GATE_CHECK_REPORT_H
 
 #include <cstddef>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "verifier/gate/junit_report.h"
 

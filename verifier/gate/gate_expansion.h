@@ -6,10 +6,11 @@
 #define HPSF_VERIFIER_GATE_GATE_EXPANSION_H
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace hpsf::gate {
 

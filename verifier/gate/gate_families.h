@@ -12,8 +12,9 @@
 #ifndef HPSF_VERIFIER_GATE_GATE_FAMILIES_H
 #define HPSF_VERIFIER_GATE_GATE_FAMILIES_H
 
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "verifier/gate/gate_expansion.h"
 #include "verifier/gate/gate_file.h"

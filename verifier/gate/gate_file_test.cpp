@@ -1,9 +1,9 @@
 // The gate file's option words that CI matrices feed: --shard.
 #include "verifier/gate/gate_file.h"
 
-#include <gtest/gtest.h>
-
 #include <utility>
+
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 

@@ -2,12 +2,12 @@
 // ships conforms, each bad gate below is refused by both, and the schema's backends are the registry's.
 #include "verifier/gate/gate_schema.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/backend_registry.h"
 #include "core/error.h"

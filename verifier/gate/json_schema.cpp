@@ -1,6 +1,7 @@
 #include "verifier/gate/json_schema.h"
 
 #include <exception>
+
 #include <valijson/adapters/nlohmann_json_adapter.hpp>
 #include <valijson/schema.hpp>
 #include <valijson/schema_parser.hpp>

@@ -4,9 +4,10 @@
 #ifndef HPSF_VERIFIER_GATE_JSON_SCHEMA_H
 #define HPSF_VERIFIER_GATE_JSON_SCHEMA_H
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace hpsf {
 

@@ -1,9 +1,9 @@
 // The JUnit report CI systems read: each outcome as the element they count.
 #include "verifier/gate/junit_report.h"
 
-#include <gtest/gtest.h>
-
 #include <string>
+
+#include <gtest/gtest.h>
 
 namespace hpsf {
 namespace {

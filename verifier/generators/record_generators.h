@@ -7,9 +7,10 @@
 #define HPSF_VERIFIER_GENERATORS_RECORD_GENERATORS_H
 
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/filter_config.h"
 #include "core/record.h"

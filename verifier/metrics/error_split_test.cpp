@@ -5,11 +5,11 @@
 // taken out of the bias.
 #include "verifier/metrics/error_split.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/shared/rng.h"
 

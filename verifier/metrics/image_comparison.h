@@ -4,10 +4,11 @@
 #ifndef HPSF_VERIFIER_METRICS_IMAGE_COMPARISON_H
 #define HPSF_VERIFIER_METRICS_IMAGE_COMPARISON_H
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "verifier/metrics/channel_image.h"
 #include "verifier/metrics/diff_verdict.h"

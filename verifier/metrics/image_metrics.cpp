@@ -1,8 +1,5 @@
 #include "verifier/metrics/image_metrics.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -10,6 +7,9 @@
 #include <limits>
 #include <sstream>
 #include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 

@@ -13,8 +13,9 @@
 #define HPSF_VERIFIER_METRICS_IMAGE_METRICS_H
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "verifier/metrics/channel_image.h"
 

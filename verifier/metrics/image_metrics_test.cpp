@@ -3,10 +3,6 @@
 // behind `idiff` and `oiiotool --diff`, on two real renders.
 #include "verifier/metrics/image_metrics.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -15,6 +11,11 @@
 #include <limits>
 #include <regex>
 #include <string>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "property_tests/traced_batch.h"

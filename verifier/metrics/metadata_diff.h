@@ -4,10 +4,11 @@
 #define HPSF_VERIFIER_METRICS_METADATA_DIFF_H
 
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace hpsf {
 

@@ -34,9 +34,10 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <glm/vec3.hpp>
 #include <span>
 #include <string>
+
+#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "core/record.h"

@@ -25,9 +25,10 @@
 #define HPSF_VERIFIER_METRICS_STATISTICAL_COMPARE_H
 
 #include <cstdint>
+#include <string>
+
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
-#include <string>
 
 #include "core/image.h"
 #include "verifier/metrics/channel_image.h"

@@ -1,12 +1,13 @@
 #include "verifier/theory/chi_square.h"
 
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
-#include <boost/math/distributions/non_central_chi_squared.hpp>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numeric>
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/non_central_chi_squared.hpp>
 
 namespace hpsf {
 namespace {

@@ -1,9 +1,10 @@
 #include "verifier/theory/jitter_statistics.h"
 
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <stdexcept>
+
+#include <boost/math/distributions/chi_squared.hpp>
 
 #include "core/filter_config.h"
 

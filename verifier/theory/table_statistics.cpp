@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <boost/math/distributions/binomial.hpp>
 #include <cmath>
 #include <map>
+
+#include <boost/math/distributions/binomial.hpp>
 
 #include "verifier/theory/alias_theory.h"
 #include "verifier/theory/probe_theory.h"

@@ -8,9 +8,10 @@
 #define HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <span>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/filter_config.h"
 #include "core/key_batch.h"

@@ -2,9 +2,9 @@
 // (probe failures above the theory); the distinct keys and records per cell counted.
 #include "verifier/theory/table_statistics.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "core/key_batch.h"
 
