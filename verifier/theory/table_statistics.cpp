@@ -30,18 +30,19 @@ RateFigure Rate(std::uint64_t events, std::uint64_t trials, double theory, doubl
 }
 
 // A key inserted while the table fills from 0 to `keys` meets, on average over the fill, a full window of
-// `window` slots with this probability (the mean at kFills evenly spaced loads). Memoized by window: the
-// histogram and the probe limits ask for the same ones.
+// `window` slots with this probability (the mean at kFills evenly spaced loads). Once the keys fill every slot, every
+// window is full; before, a window of the whole table still holds an empty slot. Memoized by window: the histogram
+// and the probe limits ask for the same ones.
 class WindowFullOverTheFill {
  public:
   WindowFullOverTheFill(std::uint64_t slots, std::uint64_t keys) : slots_(slots), keys_(keys) {}
   double operator()(std::uint64_t window) {
     if (window == 0) return 1.0;
-    if (window >= slots_) return 0.0;
     const auto [it, added] = known_.emplace(window, 0.0);
     if (!added) return it->second;
     for (int fill = 0; fill < kFills; ++fill) {
-      it->second += ProbabilityWindowFull(slots_, std::uint64_t((fill + 0.5) / kFills * double(keys_)), window);
+      const auto keys = std::uint64_t((fill + 0.5) / kFills * double(keys_));
+      it->second += keys >= slots_ ? 1.0 : window >= slots_ ? 0.0 : ProbabilityWindowFull(slots_, keys, window);
     }
     return it->second /= kFills;
   }
