@@ -379,3 +379,9 @@ add_test(NAME Style.ClangFormat15LeavesEverySourceUnchanged
   COMMAND ${CMAKE_COMMAND} -DSOURCE=${PROJECT_SOURCE_DIR} -DCLANG_FORMAT=${HPSF_CLANG_FORMAT}
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/clang_format.cmake)
 set_tests_properties(Style.ClangFormat15LeavesEverySourceUnchanged PROPERTIES LABELS unit)
+
+# Every JSON report against its published schema (docs/reference/schemas/), over its variants.
+add_test(NAME Docs.EveryReportFollowsItsSchema
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DCHECK=$<TARGET_FILE:schema_check> -DSOURCE=${PROJECT_SOURCE_DIR}
+    -DOUT=${CMAKE_CURRENT_BINARY_DIR}/report_schemas -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/report_schemas.cmake)
+set_tests_properties(Docs.EveryReportFollowsItsSchema PROPERTIES LABELS "slow;vulkan")

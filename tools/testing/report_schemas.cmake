@@ -1,0 +1,66 @@
+# Every JSON report hpsf prints conforms to its published schema (docs/reference/schemas/), on runs that reach each
+# report's variants: passing and failing, each backend, frames with eviction, a faithful emulator, identical images
+# (PSNR infinite: null), a cached converged image.
+# -DHPSF=<hpsf> -DCHECK=<schema_check> -DSOURCE=<hpsf source tree> -DOUT=<scratch folder>
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+set(schemas ${SOURCE}/docs/reference/schemas)
+set(failures "")
+set(number 0)
+# report(SCHEMA EXPECTED-EXIT ARGS...): runs hpsf ARGS, which prints a JSON report, and checks it against SCHEMA.
+function(report schema expected)
+  math(EXPR n "${number} + 1")
+  set(number ${n} PARENT_SCOPE)
+  set(json ${OUT}/report-${n}.json)
+  execute_process(COMMAND ${HPSF} ${ARGN} OUTPUT_FILE ${json} ERROR_VARIABLE err RESULT_VARIABLE code
+    WORKING_DIRECTORY ${OUT})
+  if(NOT code EQUAL expected)
+    set(failures "${failures}hpsf ${ARGN}: exit ${code}, expected ${expected}: ${err}\n" PARENT_SCOPE)
+    return()
+  endif()
+  execute_process(COMMAND ${CHECK} ${schemas}/${schema}.schema.json ${json} OUTPUT_VARIABLE out ERROR_VARIABLE out
+    RESULT_VARIABLE code)
+  if(NOT code EQUAL 0)
+    set(failures "${failures}hpsf ${ARGN}:\n${out}\n" PARENT_SCOPE)
+  endif()
+endfunction()
+
+set(small --size 16x16 --spp 2)
+report(render 0 render cornell ${small} -o r.exr --json)
+report(render 0 render cornell ${small} --backend emulated --mode faithful --warp-size 8 --frames 3 --eviction strict
+  --temporal ema:0.5 --variance --capacity 4096 -o r1.exr --json)
+report(render 0 render cornell ${small} --backend vulkan --level-change seed --frames 2 -o r2.exr --json)
+report(render 0 render cornell ${small} --seed 2 --no-filter -o r3.exr --json)
+report(replay 0 replay ${SOURCE}/tools/testing/data/seed_lookup_alias.hpsfv --backend vulkan -o p.exr --json)
+report(crosscheck 0 crosscheck cornell ${small} --backends reference,emulated,vulkan --frames 2 --eviction priority
+  --fingerprint-bits 24 --capacity 4096 --json)
+report(crosscheck 2 crosscheck cornell ${small} --backends reference,emulated --inject-defect D9 --mode faithful
+  --capacity 4096 --repro-dir bundle --json)
+report(stats 0 stats cornell ${small} --json)
+report(stats 0 stats cornell ${small} --capacity 64 --probe-limit 2 --fingerprint-bits 8 --json)
+report(diff 0 diff r.exr r.exr --json)
+report(diff 2 diff r.exr r3.exr --json)
+report(diff 0 diff r.exr r3.exr --metric ssim --warn 0.1 --fail 0.05 --json)
+report(fuzz 0 fuzz --backend emulated --runs 20 --seed 1 --json)
+report(fuzz 2 fuzz --backend emulated --inject-defect D9 --runs 50 --seed 1 --repro-dir fuzz-bundle --json)
+report(device 0 device --json)
+report(golden-check 0 golden check --manifest ${SOURCE}/golden/manifest.json cornell-tiny/float32 --json)
+file(WRITE ${OUT}/gate.json "{\"hpsf_gate\": 1, \"fuzz\": {\"runs\": 20, \"backends\": {\"d9\": {\"backend\": \"emulated\", \
+\"inject-defect\": \"D9\"}}}, \"statistics\": {\"scenes\": [\"cornell\"], \"size\": \"16x16\", \"spp\": 1}}")
+report(check 2 check gate.json --out gate-out --json)
+report(reference 0 reference cornell --size 16x16 --spp 32 --cache cache --json)
+report(reference 0 reference cornell --size 16x16 --spp 32 --cache cache --json)
+# The grid's semicolons would split report()'s arguments: the sweep runs here, its report checked the same way.
+execute_process(COMMAND ${HPSF} sweep cornell --grid "spp=1,2; method=pt,hpsf; backend=emulated,vulkan" --seeds 2
+  --size 16x16 --reference-spp 32 --cache cache --out sweep --json OUTPUT_FILE ${OUT}/sweep.json ERROR_VARIABLE err
+  RESULT_VARIABLE code WORKING_DIRECTORY ${OUT})
+execute_process(COMMAND ${CHECK} ${schemas}/sweep.schema.json ${OUT}/sweep.json OUTPUT_VARIABLE out ERROR_VARIABLE out
+  RESULT_VARIABLE check)
+if(NOT code EQUAL 0 OR NOT check EQUAL 0)
+  string(APPEND failures "hpsf sweep: exit ${code}: ${err}${out}\n")
+endif()
+math(EXPR number "${number} + 1")
+if(failures)
+  message(FATAL_ERROR "${failures}")
+endif()
+message(STATUS "${number} reports conform to their schemas")
