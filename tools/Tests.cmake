@@ -311,8 +311,9 @@ add_test(NAME ReadBackFuzz.CorpusAndGeneratedInputsGiveAVerdict
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(ReadBackFuzz.CorpusAndGeneratedInputsGiveAVerdict PROPERTIES LABELS "unit;untrusted")
 
-# The consumer project (examples/consumer) against the installed package and through add_subdirectory.
-foreach(mode installed subdirectory)
+# The consumer project (examples/consumer) against the installed package, through add_subdirectory and through
+# FetchContent of the commit checked out.
+foreach(mode installed subdirectory fetchcontent)
   add_test(NAME Consumer.BuildsAndChecksItsTable_${mode}
     COMMAND ${CMAKE_COMMAND} -DSOURCE=${PROJECT_SOURCE_DIR} -DBUILD=${PROJECT_BINARY_DIR}
       -DOUT=${CMAKE_CURRENT_BINARY_DIR}/consumer_${mode} -DMODE=${mode}

@@ -1,8 +1,10 @@
 # examples/consumer built as a team would build it, then run: against hpsf installed into a scratch prefix
-# (MODE installed: cmake --install, then find_package(hpsf)), or against hpsf's sources (MODE subdirectory:
-# add_subdirectory, as FetchContent does). The consumer compiles with -ffp-contract=fast and checks its keys
-# against hpsf::core's, its table with the checker, and that a planted lost update is named.
-# -DSOURCE=<hpsf source tree> -DBUILD=<hpsf build tree> -DOUT=<scratch folder> -DMODE=installed|subdirectory
+# (MODE installed: cmake --install, then find_package(hpsf)), against hpsf's sources (MODE subdirectory:
+# add_subdirectory), or fetched from its repository at the commit checked out (MODE fetchcontent: FetchContent).
+# The consumer compiles with -ffp-contract=fast and checks its keys against hpsf::core's, its table with the
+# checker, and that a planted lost update is named.
+# -DSOURCE=<hpsf source tree> -DBUILD=<hpsf build tree> -DOUT=<scratch folder>
+# -DMODE=installed|subdirectory|fetchcontent
 file(REMOVE_RECURSE ${OUT})
 set(consumer_args)
 if(MODE STREQUAL "installed")
@@ -24,20 +26,30 @@ if(MODE STREQUAL "installed")
   set(consumer_args -DCMAKE_PREFIX_PATH=${OUT}/prefix)
 elseif(MODE STREQUAL "subdirectory")
   set(consumer_args -DHPSF_SOURCE_DIR=${SOURCE})
+elseif(MODE STREQUAL "fetchcontent")  # the commit checked out in SOURCE, fetched from its repository
+  execute_process(COMMAND git -C ${SOURCE} rev-parse HEAD OUTPUT_VARIABLE commit OUTPUT_STRIP_TRAILING_WHITESPACE
+    RESULT_VARIABLE code)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${SOURCE} is not a git repository")
+  endif()
+  set(consumer_args -DHPSF_GIT_REPOSITORY=${SOURCE} -DHPSF_GIT_TAG=${commit})
 else()
-  message(FATAL_ERROR "MODE must be installed or subdirectory")
+  message(FATAL_ERROR "MODE must be installed, subdirectory or fetchcontent")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE}/examples/consumer -B ${OUT}/build -G Ninja
   -DCMAKE_BUILD_TYPE=Release ${consumer_args} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "configuring the consumer failed:\n${out}")
 endif()
-if(MODE STREQUAL "subdirectory" AND EXISTS ${OUT}/build/hpsf/CTestTestfile.cmake)
-  file(READ ${OUT}/build/hpsf/CTestTestfile.cmake ctest_file)
+foreach(hpsf_build ${OUT}/build/hpsf ${OUT}/build/_deps/hpsf-build)
+  if(NOT EXISTS ${hpsf_build}/CTestTestfile.cmake)
+    continue()
+  endif()
+  file(READ ${hpsf_build}/CTestTestfile.cmake ctest_file)
   if(ctest_file MATCHES "add_test")
     message(FATAL_ERROR "hpsf added its own tests to the consumer's project")
   endif()
-endif()
+endforeach()
 execute_process(COMMAND ${CMAKE_COMMAND} --build ${OUT}/build RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "building the consumer failed:\n${out}")
