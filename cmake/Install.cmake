@@ -39,8 +39,11 @@ foreach(folder core emulated reference tracer vulkan verifier)
     FILES_MATCHING PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.comp" PATTERN "*_test.h" EXCLUDE)
 endforeach()
 
-# The gate file's JSON Schema, for editors and CI linters (hpsf check --schema prints the same), and the reports'.
-install(FILES ${PROJECT_SOURCE_DIR}/verifier/gate/gate_schema.json DESTINATION ${CMAKE_INSTALL_DATADIR}/hpsf
+# The gate file's and the table declaration's JSON Schemas, for editors and CI linters (hpsf check --schema prints
+# the gate's), the reports', and the example table declarations.
+install(FILES ${PROJECT_SOURCE_DIR}/verifier/gate/gate_schema.json ${PROJECT_SOURCE_DIR}/verifier/gate/table_schema.json
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/hpsf COMPONENT runtime)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/tables/ DESTINATION ${CMAKE_INSTALL_DATADIR}/hpsf/tables
   COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/reference/schemas/ DESTINATION ${CMAKE_INSTALL_DATADIR}/hpsf/schemas
   COMPONENT runtime)

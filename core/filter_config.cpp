@@ -91,6 +91,10 @@ void FilterConfig::Validate() const {
     throw ConfigError("--probe-limit", "must lie in [1, capacity = " + std::to_string(capacity) + "]; got " +
                                            std::to_string(probe_limit));
   }
+  if (probing == ProbeKind::kBucket && !std::has_single_bit(probe_limit)) {
+    throw ConfigError("--probing", "bucket:B aligns its buckets to B, which must be a power of two; got B = " +
+                                       std::to_string(probe_limit));
+  }
   if (fingerprint_bits < 8 || fingerprint_bits > 32) {
     throw ConfigError("--fingerprint-bits", "must lie in [8, 32]; got " + std::to_string(fingerprint_bits));
   }
@@ -141,6 +145,8 @@ std::string FilterConfig::ToString() const {
          " cell_size: " + FormatFloat(cell_size) + " level: [" + std::to_string(level_min) + ", " +
          std::to_string(level_max) + "] accum: " + hpsf::ToString(accumulation) +
          " capacity: " + std::to_string(capacity) + " probe_limit: " + std::to_string(probe_limit) +
+         // Only when not linear, so configs of hpsf's own table read as they always have (golden metadata).
+         (probing != ProbeKind::kLinear ? " probing: " + hpsf::ToString(probing) : std::string()) +
          " fingerprint_bits: " + std::to_string(fingerprint_bits) + " seed: " + std::to_string(seed) +
          " frame: " + std::to_string(frame) +
          // Only when set, so single-frame configs read as they always have (golden metadata holds them).

@@ -9,6 +9,7 @@
 #include "core/effect_plan.h"
 #include "core/eviction.h"
 #include "core/level_seed.h"
+#include "core/probing.h"
 #include "core/shared/key_params.h"
 #include "core/temporal.h"
 
@@ -42,6 +43,7 @@ struct FilterConfig {
   Accumulation accumulation = Accumulation::kFixed64;  // --accum
   std::uint32_t capacity = 1u << 22;                   // --capacity: slots, a power of two
   std::uint32_t probe_limit = 16;                      // --probe-limit: slots tried before a probe failure
+  ProbeKind probing = ProbeKind::kLinear;              // --probing: the order of the slots tried
   std::uint32_t fingerprint_bits = 32;                 // --fingerprint-bits: 8..32
   std::uint32_t seed = 1;                              // --seed
   std::uint32_t frame = 0;                             // in every random number of the key path (the jitter)
@@ -61,6 +63,10 @@ struct FilterConfig {
 
 // The key path's view of a validated config. footprint_scale comes from the camera (core/footprint.h).
 shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scale, std::uint32_t record_count);
+
+inline shared::ProbeScheme ProbeSchemeOf(const FilterConfig& config) {
+  return MakeProbeScheme(config.probing, config.capacity, config.probe_limit);
+}
 
 }  // namespace hpsf
 

@@ -24,6 +24,7 @@ inline constexpr std::uint32_t kProbeFailure = shared::kPlacementProbeFailure;  
 struct HashTableDump {
   std::uint32_t capacity = 0;
   std::uint32_t probe_limit = 0;
+  ProbeKind probing = ProbeKind::kLinear;
   std::uint32_t fingerprint_bits = 32;
   Accumulation accumulation = Accumulation::kFixed64;
   int fixed_point_bits = 0;
@@ -36,6 +37,10 @@ struct HashTableDump {
   // it never stops at a hole (docs/design/defects.md, D7). Empty without eviction.
   std::vector<std::uint32_t> last_seen;
 };
+
+inline shared::ProbeScheme ProbeSchemeOf(const HashTableDump& table) {
+  return MakeProbeScheme(table.probing, table.capacity, table.probe_limit);
+}
 
 }  // namespace hpsf
 

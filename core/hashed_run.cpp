@@ -27,8 +27,8 @@ void CountProbes(HashedRun& run) {
     if (slot == kProbeFailure) ++run.probe_failures;
     if (slot >= run.table.capacity) continue;
     // A placement outside its window is the checker's to name (kSlotOutsideWindow); it has no probe length.
-    const std::uint32_t distance = (slot - run.keys[i].slot0) & (run.table.capacity - 1u);
-    if (distance < run.table.probe_limit) ++run.probe_lengths[distance];
+    const std::uint32_t index = shared::ProbeIndex(ProbeSchemeOf(run.table), run.keys[i].slot0, slot);
+    if (index != shared::kNoCandidate) ++run.probe_lengths[index];
   }
 }
 

@@ -60,8 +60,9 @@ std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const s
   const std::uint32_t mask = table.capacity - 1u;
   const std::uint32_t slot0 = shared::IndexHash(words, normal_in_index ? 1u : 0u) & mask;
   const SlotTag fingerprint = shared::Fingerprint(words, table.fingerprint_bits);
+  const shared::ProbeScheme scheme = ProbeSchemeOf(table);
   for (std::uint32_t probe = 0; probe < table.probe_limit; ++probe) {
-    const std::uint32_t s = (slot0 + probe) & mask;
+    const std::uint32_t s = shared::CandidateSlot(scheme, slot0, probe);
     if (table.tags[s] == kEmptyTag) break;
     if (table.tags[s] == fingerprint && table.counts[s] != 0) return s;
   }

@@ -33,11 +33,11 @@ class ShaderOutputError : public std::runtime_error {
 // - a record's key status is none of kKeyed, kKeyNoVertex, kKeyUnkeyable; a keyed record's slot0 is not below
 //   the capacity;
 // - a placement is neither a slot below the capacity nor kProbeFailure nor kNotPlaced, or a slot outside its
-//   record's probe window (probe_limit slots from slot0, wrapping);
+//   record's candidates (core/shared/probe_scheme.h);
 // - with last-seen frames tracked, a slot last seen after this frame;
 // - a counter of the stats words larger than the run can produce: fixed64 wraps above 3 per placed record, count
 //   wraps above one per placed record, evictions or seeds above the capacity.
-// The table's shape (capacity, probe limit) and the array sizes are the host's own, not read back.
+// The table's shape (capacity, probe limit, scheme) and the array sizes are the host's own, not read back.
 std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t frame, std::size_t limit = 20);
 
 // The host's work on a run read back from a device: ReadBackFaults (throws ShaderOutputError naming `shader`),

@@ -53,8 +53,21 @@ TEST(ReadBackCheck, PlacementOutsideItsWindowIsNamed) {
   HashedRun run = CleanRun();
   run.placements[0] = 0;  // slot0 6, limit 2: slots 6 and 7 only
   EXPECT_EQ(Faults(run),
-            "record 0: placed in slot 0, outside its probe window (the 2 slots from slot0 6, wrapping at "
-            "the capacity 8)\n");
+            "record 0: placed in slot 0, which is not one of its candidates (linear:2 from slot0 6, capacity 8)\n");
+}
+
+TEST(ReadBackCheck, PlacementOutsideItsBucketIsNamed) {
+  HashedRun run = CleanRun();
+  run.table.probing = ProbeKind::kBucket;  // slot0 6, buckets of 2: slots 6 and 7 only; linear would allow 0 too
+  run.placements[0] = 7;
+  run.placements[1] = 6;  // slot0 7 wrapped to 0 linearly; its bucket is slots 6 and 7
+  EXPECT_EQ(Faults(run), "");
+  run.table.probe_limit = 4;  // the bucket of slot0 6 is now slots 4 to 7
+  run.placements[0] = 4;
+  EXPECT_EQ(Faults(run), "");
+  run.placements[0] = 0;  // linear:4 from 6 would reach 0 by wrapping; the bucket never wraps
+  EXPECT_EQ(Faults(run),
+            "record 0: placed in slot 0, which is not one of its candidates (bucket:4 from slot0 6, capacity 8)\n");
 }
 
 TEST(ReadBackCheck, KeyWordsUsedAsIndicesAreChecked) {

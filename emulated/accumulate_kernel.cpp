@@ -17,12 +17,13 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     co_return;
   }
   const Record& r = args.records[i];
+  const shared::ProbeScheme scheme = args.scheme();
   std::uint32_t slot = kProbeFailure;
   if (args.claim_tombstones) {
     // Priority eviction's tombstones may be claimed, so the cell may lie past one: look for it first, up to the
     // first empty slot (no live cell lies past a hole, D7) ...
     for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
-      const std::uint32_t s = (key.slot0 + probe) & (args.capacity - 1u);
+      const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       const std::uint64_t tag = co_await ctx.Load(b.tags, s);
       if (tag == key.fingerprint) slot = s;
       if (tag == kEmptyTag) break;
@@ -30,7 +31,7 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     // ... then claim the first empty or tombstone slot; one that another record of this cell claimed meanwhile is
     // joined. Claimable slots only get fewer during the pass, so every record of a cell ends in the same slot.
     for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
-      const std::uint32_t s = (key.slot0 + probe) & (args.capacity - 1u);
+      const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       std::uint64_t tag = co_await ctx.Load(b.tags, s);
       if (tag == kEmptyTag || tag == shared::kTombstoneTag) {
         const std::uint64_t seen = co_await ctx.AtomicCas(b.tags, s, tag, key.fingerprint);
@@ -40,7 +41,7 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     }
   } else {
     for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
-      const std::uint32_t s = (key.slot0 + probe) & (args.capacity - 1u);
+      const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       std::uint64_t tag = co_await ctx.Load(b.tags, s);
       if (tag == kEmptyTag) tag = co_await ctx.AtomicCas(b.tags, s, kEmptyTag, key.fingerprint);
       // An empty slot we just claimed (CAS returned 0) or a slot that holds our fingerprint: add here, once.
@@ -67,7 +68,7 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
 }
 
 void PrefetchAccumulate(const simt::DeviceMemory& memory, const AccumulateArgs& args, std::uint32_t i) {
-  const std::uint32_t slot = args.keys[i].slot0;
+  const std::uint32_t slot = shared::FirstCandidate(args.scheme(), args.keys[i].slot0);
   const TableBuffers& b = args.buffers;
   memory.Prefetch({b.tags, slot});
   memory.Prefetch({b.sums, std::uint64_t(slot) * 3});

@@ -37,6 +37,7 @@ struct AccumulateArgs {
   std::span<const std::uint8_t> accepted;  // CheckRecordInputs passed
   std::uint32_t capacity = 0;
   std::uint32_t probe_limit = 0;
+  ProbeKind probing = ProbeKind::kLinear;
   std::uint32_t fingerprint_bits = 32;  // the keys' fingerprints are reduced already; broken kernels reduce their own
   Accumulation accumulation = Accumulation::kFixed64;
   float fixed_point_scale = 1.0f;  // 2^F
@@ -47,6 +48,7 @@ struct AccumulateArgs {
   // With a blending --temporal and a table before the frame: the temporal pass's arguments. The correct kernel
   // never reads them (the blend is a pass of its own, after this one); D10's variant blends inside this pass.
   const TemporalArgs* temporal = nullptr;
+  shared::ProbeScheme scheme() const { return MakeProbeScheme(probing, capacity, probe_limit); }
   // With eviction: the eviction pass's arguments. The correct kernel never reads them (eviction is a pass of its
   // own, after this one); the variant that evicts while records are inserted does.
   const EvictionArgs* eviction = nullptr;

@@ -43,11 +43,12 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
   const Record& r = args.records[i];
   const bool fixed = args.accumulation == Accumulation::kFixed64;
   bool placed = false;
+  const shared::ProbeScheme scheme = args.scheme();
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
     // D8: the probe index clamped to the last slot, or not wrapped at all, instead of wrapped.
     const std::uint32_t slot = defect == Defect::kD8ClampedProbe     ? std::min(key.slot0 + probe, args.capacity - 1u)
                                : defect == Defect::kD8UnwrappedProbe ? key.slot0 + probe
-                                                                     : (key.slot0 + probe) & (args.capacity - 1u);
+                                                                     : shared::CandidateSlot(scheme, key.slot0, probe);
     std::uint64_t tag = co_await ctx.Load(b.tags, slot);
     bool claimed = false;
     if (tag == kEmptyTag) {
@@ -194,8 +195,9 @@ simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const Eviction
   bool found = false;
   std::uint32_t victim = 0, victim_tag = 0;
   std::uint64_t victim_priority = 0;
+  const shared::ProbeScheme scheme = args.scheme();
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
-    const std::uint32_t slot = (args.keys[i].slot0 + probe) & (args.capacity - 1u);
+    const std::uint32_t slot = shared::CandidateSlot(scheme, args.keys[i].slot0, probe);
     const auto tag = static_cast<std::uint32_t>(co_await ctx.Load(b.tags, slot));
     if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
     const std::uint64_t count = co_await ctx.Load(b.counts, slot);

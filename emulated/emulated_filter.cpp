@@ -83,6 +83,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   HashTableDump& table = run.table;
   table.capacity = config.capacity;
   table.probe_limit = config.probe_limit;
+  table.probing = config.probing;
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
   table.fixed_point_bits = previous                  ? previous->fixed_point_bits
@@ -99,6 +100,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   args.accepted = accepted;
   args.capacity = config.capacity;
   args.probe_limit = config.probe_limit;
+  args.probing = config.probing;
   args.fingerprint_bits = config.fingerprint_bits;
   args.accumulation = config.accumulation;
   args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
@@ -151,7 +153,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     }
   }
 
-  EvictionArgs eviction{config.capacity, config.probe_limit, config.frame, config.eviction, b, 0, {}, 0};
+  EvictionArgs eviction{
+      config.capacity, config.probe_limit, config.probing, config.frame, config.eviction, b, 0, {}, 0};
   if (evicting) {
     eviction.evicted = memory.Allocate64("evicted", 1);
     if (config.eviction.by_priority()) {
@@ -200,6 +203,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   if (seeding && !previous) {
     empty_table.capacity = config.capacity;
     empty_table.probe_limit = config.probe_limit;
+    empty_table.probing = config.probing;
     empty_table.fingerprint_bits = config.fingerprint_bits;
     empty_table.accumulation = config.accumulation;
     empty_table.tags.resize(config.capacity);
@@ -294,6 +298,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     }
     PrefetchLine(&table.counts[slot]);
   };
+  const shared::ProbeScheme scheme = ProbeSchemeOf(config);
   const Tally tally = ParallelReduce(
       run.image.pixels.size(), 2048, Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0)},
       [&](std::size_t begin, std::size_t end, Tally tally) {
@@ -306,7 +311,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
             if (slot == kProbeFailure) ++tally.probe_failures;
             glm::dvec3 average;
             if (slot < config.capacity) {
-              ++tally.probe_lengths[(slot - run.keys[i].slot0) & (config.capacity - 1u)];
+              const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, slot);
+              if (index != shared::kNoCandidate) ++tally.probe_lengths[index];
               for (int c = 0; c < 3; ++c) {
                 const double channel_sum =
                     fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);

@@ -14,8 +14,9 @@ simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArg
   bool found = false;
   std::uint32_t victim = 0, victim_tag = 0;
   std::uint64_t victim_priority = 0;
+  const shared::ProbeScheme scheme = args.scheme();
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
-    const std::uint32_t slot = (args.keys[i].slot0 + probe) & (args.capacity - 1u);
+    const std::uint32_t slot = shared::CandidateSlot(scheme, args.keys[i].slot0, probe);
     const auto tag = static_cast<std::uint32_t>(co_await ctx.Load(b.tags, slot));
     if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
     const std::uint64_t count = co_await ctx.Load(b.counts, slot);
@@ -54,9 +55,10 @@ simt::KernelTask ReclaimKernel(simt::ThreadContext& ctx, const EvictionArgs& arg
   const TableBuffers& b = args.buffers;
   if (co_await ctx.Load(b.tags, slot) == kEmptyTag) co_return;
   if (co_await ctx.Load(b.counts, slot) != 0) co_return;  // live
-  const std::uint32_t reach = std::min(args.probe_limit, args.capacity);
-  for (std::uint32_t distance = 1; distance < reach; ++distance) {
-    const std::uint32_t next = (slot + distance) & (args.capacity - 1u);
+  const shared::ProbeScheme scheme = args.scheme();
+  for (std::uint32_t distance = 1;; ++distance) {
+    const std::uint32_t next = shared::SlotAfter(scheme, slot, distance);
+    if (next == shared::kNoCandidate) break;
     if (co_await ctx.Load(b.tags, next) == kEmptyTag) break;
     if (co_await ctx.Load(b.counts, next) != 0) co_return;  // a live slot may have probed past this one: keep
   }

@@ -1,8 +1,9 @@
 // The eviction pass after a frame's accumulate (core/eviction.h), as two emulator launches of one thread per slot.
 // Evict: a live slot the policy evicts keeps its tag and becomes a tombstone (count and sums zeroed). Reclaim: a
-// tombstone becomes empty (tag 0) unless a live slot lies after it within probe_limit - 1 slots with no empty slot
-// between: such a live slot may have been placed by probing past the tombstone, and a hole there would make its
-// key claim the hole next frame and split its cell (docs/design/defects.md, D7).
+// tombstone becomes empty (tag 0) unless a live slot lies after it in some key's candidate order (within
+// probe_limit - 1 slots, and in its bucket under bucket:B) with no empty slot between: such a live slot may have been
+// placed by probing past the tombstone, and a hole there would make its key claim the hole next frame and split its
+// cell (docs/design/defects.md, D7).
 //
 // Tombstones, not compaction or rehashing: backward-shift compaction needs each slot's home (slot0), and a
 // rehash the full key, neither of which the table stores; a tombstone needs nothing new and no slot moves, so
@@ -31,6 +32,7 @@ namespace hpsf {
 struct EvictionArgs {
   std::uint32_t capacity = 0;
   std::uint32_t probe_limit = 0;
+  ProbeKind probing = ProbeKind::kLinear;
   std::uint32_t frame = 0;
   Eviction eviction;
   TableBuffers buffers{};
@@ -38,6 +40,7 @@ struct EvictionArgs {
   // With priority: the frame's keys (slot0 per record) and a 32-bit mark per slot, 1 for a victim.
   std::span<const KeyResult> keys;
   std::uint32_t victims = 0;
+  shared::ProbeScheme scheme() const { return MakeProbeScheme(probing, capacity, probe_limit); }
 };
 
 simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArgs& args);  // per record

@@ -6,6 +6,7 @@
 #include "verifier/checker/table_checker.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -61,6 +62,9 @@ RC_GTEST_PROP(TableChecker, AcceptsEveryTableOfTheCorrectKernels, ()) {
   FilterConfig config;
   config.capacity = 1u << *rc::gen::inRange(2, 11);
   config.probe_limit = *rc::gen::inRange(1u, std::min(config.capacity, 16u) + 1u);
+  config.probing = *rc::gen::element(ProbeKind::kLinear, ProbeKind::kBucket, ProbeKind::kBucketWindow);
+  if (config.probing == ProbeKind::kBucket) config.probe_limit = std::bit_floor(config.probe_limit);
+  RC_TAG(ToString(config.probing));
   config.fingerprint_bits = *rc::gen::inRange(8u, 33u);
   config.accumulation = *rc::gen::element(Accumulation::kFixed64, Accumulation::kFloat32);
   config.normal_in_index = *rc::gen::arbitrary<bool>();

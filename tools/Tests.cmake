@@ -71,6 +71,22 @@ add_test(NAME HpsfRender.SameSeedSameExrAndReplayReproducesIt
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out}
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/render_determinism.cmake)
 set_tests_properties(HpsfRender.SameSeedSameExrAndReplayReproducesIt PROPERTIES LABELS unit)
+# Table declarations (label schemes): hpsf's own table declared gives the same bits; a declaration runs on every
+# backend under the contract; a bad one, or one that an option contradicts, exits 3 naming the file and place.
+add_test(NAME HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DTABLES=${PROJECT_SOURCE_DIR}/examples/tables
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/table_declaration.cmake)
+set_tests_properties(HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits PROPERTIES LABELS "unit;schemes")
+hpsf_add_cli_test(HpsfCrosscheck.TheSharcBucketsDeclarationPassesOnEveryBackend "vulkan;schemes" 0
+  "level 2 tables: PASS" "" $<TARGET_FILE:hpsf> crosscheck cornell --size 32x32 --spp 2
+  --table ${PROJECT_SOURCE_DIR}/examples/tables/sharc-buckets.json --repro-dir ${hpsf_out}/sharc-repro)
+hpsf_add_cli_test(HpsfCrosscheck.ABadTableDeclarationExits3 "unit;schemes" 3
+  "bad-bucket-table.json: /probing: bucket:B aligns its buckets to B" "" $<TARGET_FILE:hpsf> crosscheck cornell
+  --table ${hpsf_data}/bad-bucket-table.json)
+hpsf_add_cli_test(HpsfRender.ATableDeclarationAndAnOptionGivingOneSettingExit3 "unit;schemes" 3
+  "--table: .*sharc-buckets.json declares /probing, which --probe-limit gives too" "" $<TARGET_FILE:hpsf> render
+  cornell -o ${hpsf_out}/table_conflict.exr --table ${PROJECT_SOURCE_DIR}/examples/tables/sharc-buckets.json
+  --probe-limit 8 ABSENT ${hpsf_out}/table_conflict.exr)
 add_test(NAME HpsfRender.FramesGoThroughOneTableOnEveryBackend
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DSCENE=${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/render_frames.cmake)
@@ -253,7 +269,7 @@ add_test(NAME HpsfCheck.GateFileShardsJUnitAndBadInput
     -DSCHEMA=${PROJECT_SOURCE_DIR}/verifier/gate/junit.xsd -DGOLDEN=${PROJECT_SOURCE_DIR}/golden
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/check_gate.cmake)
 set_tests_properties(HpsfCheck.GateFileShardsJUnitAndBadInput PROPERTIES LABELS "unit;slow;gate-cli")
-hpsf_add_cli_test(HpsfCheck.TheDefaultGatePassesOnMain "slow;vulkan" 0 "check: 42 of 42 cases passed" ""
+hpsf_add_cli_test(HpsfCheck.TheDefaultGatePassesOnMain "slow;vulkan" 0 "check: 66 of 66 cases passed" ""
   $<TARGET_FILE:hpsf> check --out ${hpsf_out}/default_gate)
 hpsf_add_cli_test(HpsfCrosscheck.UnknownDefectExits3 unit 3 "--inject-defect: expected none, D2" ""
   $<TARGET_FILE:hpsf> crosscheck cornell --inject-defect D7)

@@ -53,7 +53,7 @@ struct AccumulatePush {
   shared::TableParams table;
   shared::TemporalParams temporal;
 };
-static_assert(sizeof(AccumulatePush) == 120, "push constants of table_interface.glsl");
+static_assert(sizeof(AccumulatePush) == 128, "push constants of table_interface.glsl");
 
 struct EvictionPush {
   std::uint32_t capacity;
@@ -64,8 +64,10 @@ struct EvictionPush {
   std::uint32_t pass;  // 0 evict, 1 reclaim, 2 select (priority, dispatched first, per record)
   std::uint32_t record_count;
   std::uint32_t by_priority;
+  std::uint32_t probe_scheme;
+  std::uint32_t reserved;
 };
-static_assert(sizeof(EvictionPush) == 32, "push constants of eviction.comp");
+static_assert(sizeof(EvictionPush) == 40, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct TemporalPush {
@@ -84,7 +86,7 @@ struct LevelSeedPush {
   std::uint32_t shift;
   std::uint32_t fixed64;
   std::uint32_t record_count;
-  std::uint32_t reserved;
+  std::uint32_t probe_scheme;
 };
 static_assert(sizeof(LevelSeedPush) == 32, "push constants of level_seed.comp");
 constexpr std::uint32_t kLevelSeedRecordsPerWorkgroup = 64;
@@ -332,6 +334,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   HashTableDump& table = run.table;
   table.capacity = config.capacity;
   table.probe_limit = config.probe_limit;
+  table.probing = config.probing;
   table.fingerprint_bits = config.fingerprint_bits;
   table.accumulation = config.accumulation;
 
@@ -402,7 +405,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
       {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
        fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, tracking ? 1u : 0u,
-       blending ? 1u : 0u, by_priority ? 1u : 0u},
+       blending ? 1u : 0u, by_priority ? 1u : 0u, SharedProbeKind(config.probing), 0},
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -453,7 +456,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                   config.level_seed.shift,
                                   fixed ? 1u : 0u,
                                   n,
-                                  0};
+                                  SharedProbeKind(config.probing)};
     run.timings.level_seed_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -493,9 +496,16 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     DeviceBuffer* const eviction_buffers[] = {&p.tags,    &p.sums, &p.counts,     &p.last_seen,
                                               &p.evicted, &p.keys, &p.placements, &p.victims};
     vulkan_internal::BindBuffers(p.device, eviction, eviction_buffers);
-    EvictionPush eviction_push{
-        config.capacity,      config.probe_limit, config.frame, config.eviction.unseen_frames, fixed ? 6u : 3u, 0, n,
-        by_priority ? 1u : 0u};
+    EvictionPush eviction_push{config.capacity,
+                               config.probe_limit,
+                               config.frame,
+                               config.eviction.unseen_frames,
+                               fixed ? 6u : 3u,
+                               0,
+                               n,
+                               by_priority ? 1u : 0u,
+                               SharedProbeKind(config.probing),
+                               0};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);

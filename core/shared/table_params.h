@@ -5,6 +5,7 @@
 #define HPSF_CORE_SHARED_TABLE_PARAMS_H
 
 #include "prelude.h"
+#include "probe_scheme.h"
 
 HPSF_SHARED_BEGIN
 
@@ -17,7 +18,7 @@ const uint kPlacementProbeFailure = 0xFFFFFFFEu;  // probed its whole window wit
 
 struct TableParams {
   uint capacity;            // a power of two
-  uint probe_limit;         // slots probed from slot0, wrapping at capacity
+  uint probe_limit;         // the scheme's size: how many candidates a key has (core/shared/probe_scheme.h)
   float fixed_point_scale;  // 2^F, fixed64 only
   uint accumulation;        // kAccumulateFixed64 or kAccumulateFloat32
   // The frame state: with eviction, a slot a record is added to stores `frame` as its last-seen frame.
@@ -31,7 +32,11 @@ struct TableParams {
   // insertion first looks for its cell in the whole window up to the first empty slot, then claims the first empty
   // or tombstone slot (accumulate.glsl).
   uint claim_tombstones;
+  uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow: the order of a key's candidates
+  uint reserved;      // 0; keeps TemporalParams after it 8-byte aligned
 };
+
+HPSF_FN ProbeScheme ProbeSchemeOf(TableParams t) { return MakeProbeScheme(t.probe_scheme, t.capacity, t.probe_limit); }
 
 HPSF_SHARED_END
 

@@ -1,5 +1,6 @@
 #version 450
-// Our accumulate shader, against hpsf's stable buffer interface: fixed64 sums, every eviction policy.
+// Our accumulate shader, against hpsf's stable buffer interface: fixed64 sums, every eviction policy, every probing
+// scheme (CandidateSlot walks the declared scheme's candidates).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
 #define HPSF_SUMS_TYPE uint64_t
@@ -13,11 +14,11 @@
 
 layout(local_size_x = 128) in;
 
-// The first slot of the window that holds the fingerprint or that this record claims empty; compare-and-swap,
+// The first candidate that holds the fingerprint or that this record claims empty; compare-and-swap,
 // never a load then a store.
 uint FindOrClaimEmpty(uint slot0, uint fingerprint, TableParams t) {
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
-    uint slot = (slot0 + probe) & (t.capacity - 1u);
+    uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
     uint tag = tags[slot];
     if (tag == 0u) tag = atomicCompSwap(tags[slot], 0u, fingerprint);  // returns 0: this record claimed it
     if (tag == 0u || tag == fingerprint) return slot;
@@ -29,12 +30,13 @@ uint FindOrClaimEmpty(uint slot0, uint fingerprint, TableParams t) {
 // empty or tombstone slot, or join the cell a record of it claimed meanwhile.
 uint FindOrClaim(uint slot0, uint fingerprint, TableParams t) {
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
-    uint tag = tags[(slot0 + probe) & (t.capacity - 1u)];
-    if (tag == fingerprint) return (slot0 + probe) & (t.capacity - 1u);
+    uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
+    uint tag = tags[slot];
+    if (tag == fingerprint) return slot;
     if (tag == 0u) break;
   }
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
-    uint slot = (slot0 + probe) & (t.capacity - 1u);
+    uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
     uint tag = tags[slot];
     if (tag == 0u || tag == kTombstoneTag) {
       uint seen = atomicCompSwap(tags[slot], tag, fingerprint);

@@ -83,7 +83,8 @@ const std::vector<std::string>& EdgeValues() {
       "octahedral:24", "on", "off", "D2", "D3", "D8", "D8-unwrapped", "D9", "D13", "D1", "reference", "emulated",
       "vulkan", "reference,emulated", "emulated,,vulkan", ",", "always", "never", "auto", "mse", "psnr", "ssim",
       "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help", "integrate", "adaptive",
-      "strict", "2/3", "spp=1,2; method=pt,radius", "animation", "temporal"};
+      "strict", "2/3", "spp=1,2; method=pt,radius", "animation", "temporal", "linear", "bucket", "bucket-window",
+      "any"};
   // clang-format on
   return values;
 }
@@ -97,8 +98,9 @@ const std::vector<std::string>& CompoundValues() {
     // clang-format on
     std::vector<std::string> v;
     for (const std::string& n : numbers) {
-      for (const std::string& s : {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2",
-                                   "pct:1:" + n, "ema:" + n, "ema:0.5:" + n, "stale:" + n}) {
+      for (const std::string& s :
+           {n + "x1", "1x" + n, n + "x" + n, "octahedral:" + n, "random:" + n, "pct:" + n + ":2", "pct:1:" + n,
+            "ema:" + n, "ema:0.5:" + n, "stale:" + n, "bucket:" + n, "bucket-window:" + n, "linear:" + n}) {
         v.push_back(s);
       }
     }

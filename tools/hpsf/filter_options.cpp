@@ -4,11 +4,13 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "verifier/gate/table_declaration.h"
 
 namespace hpsf {
 
 void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   FilterConfig& c = o.config;
+  o.command = &command;
   command.add_flag("--no-filter", o.no_filter, "Plain path tracing: each sample keeps its own contribution");
   command.add_flag("--variance", o.variance,
                    "Also write each pixel's variance (channels variance.R/G/B), each 8x8 tile's (tile_variance.R/G/B) "
@@ -25,7 +27,18 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command.add_option("--accum", o.accumulation, "Accumulation: fixed64 or float32")->capture_default_str();
   command.add_option("--seed", c.seed, "Seed of every random number")->capture_default_str();
   command.add_option("--capacity", c.capacity, "Hash table slots (a power of two)")->capture_default_str();
-  command.add_option("--probe-limit", c.probe_limit, "Slots probed before a probe failure")->capture_default_str();
+  o.probe_limit_option =
+      command.add_option("--probe-limit", c.probe_limit, "Slots a key may occupy: W of linear, B of the buckets")
+          ->capture_default_str();
+  command
+      .add_option("--probing", o.probing,
+                  "The order of a key's slots: linear (from its home slot, wrapping), bucket (the aligned bucket of "
+                  "--probe-limit slots that holds it; a power of two) or bucket-window (--probe-limit slots from "
+                  "min(home, capacity - size), never wrapping); KIND:N sets the size too")
+      ->capture_default_str();
+  command.add_option("--table", o.table,
+                     "A table declaration (JSON): its probing, key identity, sums and passes, each in place of the "
+                     "option it stands for (docs/reference/table-declaration.md)");
   command.add_option("--fingerprint-bits", c.fingerprint_bits, "Fingerprint width, 8..32")->capture_default_str();
   command
       .add_option("--fixed-point-bits", o.fixed_point_bits,
@@ -68,10 +81,31 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     }
     config.fixed_point_bits = bits;
   }
+  const Probing probing = ParseProbing(o.probing);
+  config.probing = probing.kind;
+  if (probing.size) {
+    if (o.probe_limit_option != nullptr && o.probe_limit_option->count() > 0 && *probing.size != config.probe_limit) {
+      throw ConfigError("--probing", "gives the size " + std::to_string(*probing.size) + " and --probe-limit gives " +
+                                         std::to_string(config.probe_limit) + ": give it once");
+    }
+    config.probe_limit = *probing.size;
+  }
   config.eviction = ParseEviction(o.eviction);
   config.level_seed = ParseLevelSeed(o.level_change);
   config.temporal = ParseTemporal(o.temporal);
   for (const std::string& name : o.force_effects) config.forced.Add(ParseEffect(name));
+  if (!o.table.empty()) {
+    for (const DeclaredSetting& d : ApplyTableDeclaration(o.table, config)) {
+      for (const std::string& option : d.option == "--probing" ? std::vector<std::string>{"--probing", "--probe-limit"}
+                                                               : std::vector<std::string>{d.option}) {
+        const CLI::Option* given = o.command != nullptr ? o.command->get_option_no_throw(option) : nullptr;
+        if (given != nullptr && given->count() > 0) {
+          throw ConfigError(
+              "--table", o.table + " declares " + d.pointer + ", which " + option + " gives too: give it in one place");
+        }
+      }
+    }
+  }
   config.Validate();
   return config;
 }
@@ -95,6 +129,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"accum", ToString(c.accumulation)},
           {"capacity", c.capacity},
           {"probe_limit", c.probe_limit},
+          {"probing", ToString(c.probing)},
           {"fingerprint_bits", c.fingerprint_bits},
           {"seed", c.seed},
           {"frame", c.frame},

@@ -24,7 +24,11 @@ struct FilterOptions {
   std::string eviction = "none";
   std::string level_change = "none";
   std::string temporal = "integrate";
-  std::vector<std::string> force_effects;  // --force-effect, repeatable
+  std::string probing = "linear";
+  std::string table;                                // --table: a table declaration (verifier/gate/table_declaration.h)
+  const CLI::Option* probe_limit_option = nullptr;  // to tell --probe-limit given from its default
+  CLI::App* command = nullptr;                      // to tell the options given from their defaults
+  std::vector<std::string> force_effects;           // --force-effect, repeatable
   bool no_filter = false;
   bool variance = false;  // also write each pixel's variance (verifier/metrics/pixel_variance.h)
 };

@@ -31,6 +31,7 @@ struct FuzzOptions {
   std::string backend = "emulated";
   std::string defect = "none";
   std::string accumulation;  // empty: both for the built-in kernels; a user's shader must name its mode
+  std::string probing;       // empty: any for the built-in kernels, linear for a user's shader
   VulkanBackendOptions vulkan;
   std::optional<double> seconds;
   std::optional<std::uint64_t> runs;
@@ -94,6 +95,7 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds,
                       {"defect", o.defect},
                       {"accumulate_spv", o.vulkan.accumulate_spv},
                       {"accum", o.accumulation.empty() ? "both" : o.accumulation},
+                      {"probing", o.probing.empty() ? (o.vulkan.accumulate_spv.empty() ? "any" : "linear") : o.probing},
                       {"seed", o.seed},
                       {"runs", runs},
                       {"seconds", seconds},
@@ -142,6 +144,13 @@ int Run(FuzzOptions& o, bool options_only) {
   }
   std::optional<Accumulation> accumulation;
   if (!o.accumulation.empty() && o.accumulation != "both") accumulation = ParseAccumulation(o.accumulation);
+  std::optional<ProbeKind> probing;
+  if (o.probing.empty() && !o.vulkan.accumulate_spv.empty()) probing = ProbeKind::kLinear;
+  if (!o.probing.empty() && o.probing != "any") {
+    const Probing parsed = ParseProbing(o.probing);
+    if (parsed.size) throw ConfigError("--probing", "names a scheme only; each case draws its size");
+    probing = parsed.kind;
+  }
   if (o.max_records < 2 || o.max_records > 4096) throw ConfigError("--max-records", "must lie in [2, 4096]");
   if (o.seconds && !(*o.seconds > 0)) throw ConfigError("--time", "must be a positive number of seconds");
   if (!o.seconds && !o.runs) o.seconds = 60.0;
@@ -150,7 +159,7 @@ int Run(FuzzOptions& o, bool options_only) {
   const std::vector<std::string> backends = {"reference", o.backend};
   Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
   // A broken kernel's races must replay from the schedule, which the emulator's fast mode does not promise.
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device};
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();
@@ -190,7 +199,7 @@ int Run(FuzzOptions& o, bool options_only) {
     if (!failure->timing_dependent) {
       failure->shrink = ShrinkCase(
           failure->found, [&](const AdversarialCase& c) { return !CheckUntilFails(checker, c, tries).Passed(); },
-          accumulation.has_value());
+          {.accumulation = accumulation.has_value(), .probing = generate.probing.has_value()});
       failure->report = CheckUntilFails(checker, failure->shrink.shrunk, 3 * tries);
       failure->timing_dependent = failure->report.Passed();  // the shrunk case lost the timing it needs
     }
@@ -246,6 +255,9 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
                 "Vulkan: your accumulate shader (SPIR-V) through the stable buffer interface");
   c->add_option("--accum", o->accumulation,
                 "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
+  c->add_option("--probing", o->probing,
+                "linear, bucket, bucket-window or any: the probing scheme of every case (default any, drawn per case; "
+                "linear with --accumulate-spv, whose shader may walk no other)");
   c->add_option("--inject-defect", o->defect,
                 "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
                 "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")

@@ -101,6 +101,8 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 std::to_string(c.capacity),
                                 "--probe-limit",
                                 std::to_string(c.probe_limit),
+                                "--probing",
+                                ToString(c.probing),
                                 "--fingerprint-bits",
                                 std::to_string(c.fingerprint_bits),
                                 "--eviction",

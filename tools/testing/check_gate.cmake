@@ -1,4 +1,4 @@
-# `hpsf check`, the CI gate: the default gate lists its 42 cases and its shards split them exactly; a gate with a
+# `hpsf check`, the CI gate: the default gate lists its 66 cases and its shards split them exactly; a gate with a
 # defective emulator backend fails with exit 2, its JUnit report validates against verifier/gate/junit.xsd (and a
 # report broken on purpose does not), names the level in the failure, and the failing case's bundle reproduces it;
 # its two shards, run apart and merged (--merge), give the unsharded report, JUnit and HTML page, and bad merges
@@ -23,8 +23,8 @@ hpsf_run(0 check --list)
 string(STRIP "${out}" all)
 string(REPLACE "\n" ";" all "${all}")
 list(LENGTH all cases)
-if(NOT cases EQUAL 42)
-  message(FATAL_ERROR "the default gate lists ${cases} cases, expected 42")
+if(NOT cases EQUAL 66)
+  message(FATAL_ERROR "the default gate lists ${cases} cases, expected 66")
 endif()
 set(sharded)
 foreach(shard 1 2 3)

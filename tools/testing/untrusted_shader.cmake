@@ -16,7 +16,7 @@ set(named_GARBAGE_COUNTS "level 2 tables: FAIL")
 set(named_GARBAGE_PLACEMENTS "invalid shader output: record [0-9]+: placement [0-9]+ is neither a slot below the capacity")
 set(named_GARBAGE_STATS "invalid shader output: stats: fixed64 wraps [0-9]+ is more than the run can produce")
 set(named_GARBAGE_LAST_SEEN "invalid shader output: slot [0-9]+: last seen in frame [0-9]+, after this frame")
-set(named_SLOT0_FOR_FAILURE "invalid shader output: record [0-9]+: placed in slot 0, outside its probe window")
+set(named_SLOT0_FOR_FAILURE "invalid shader output: record [0-9]+: placed in slot 0, which is not one of its candidates")
 
 set(cases "")
 foreach(shader IN LISTS SHADERS)

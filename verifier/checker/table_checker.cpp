@@ -146,7 +146,7 @@ std::string TableViolation::ToString() const {
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   const HashTableDump& t = in.table;
-  const std::uint32_t mask = t.capacity - 1u;
+  const shared::ProbeScheme scheme = ProbeSchemeOf(t);
   const bool fixed = t.accumulation == Accumulation::kFixed64;
   const float scale = shared::PowerOfTwo(t.fixed_point_bits);
   std::vector<TableViolation> violations;
@@ -185,7 +185,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     }
     if (slot == kProbeFailure) {
       for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
-        const std::uint32_t s = (key.slot0 + probe) & mask;
+        const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
         if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint || tombstone_tag(window_tag(s))) {
           violate(TableInvariant::kFailureWindowNotFull, s, {i},
                   "tag " + std::to_string(window_tag(s)) + " at probe " + std::to_string(probe));
@@ -198,10 +198,11 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       violate(TableInvariant::kSlotOutsideWindow, slot, {i}, "slot beyond capacity " + std::to_string(t.capacity));
       continue;
     }
-    const std::uint32_t distance = (slot - key.slot0) & mask;
-    if (distance >= t.probe_limit) {
+    const std::uint32_t distance = shared::ProbeIndex(scheme, key.slot0, slot);
+    if (distance == shared::kNoCandidate) {
       violate(TableInvariant::kSlotOutsideWindow, slot, {i},
-              "slot0 " + std::to_string(key.slot0) + ", probe " + std::to_string(distance));
+              "slot0 " + std::to_string(key.slot0) + ", not among its " + ToString(t.probing) + ":" +
+                  std::to_string(t.probe_limit) + " candidates");
     }
     if (t.tags[slot] != key.fingerprint) {
       violate(TableInvariant::kTagIsNotTheFingerprint, slot, {i},
@@ -214,7 +215,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     // the record belongs (its cell, or an alias): a record that claimed another slot split it (past a priority
     // tombstone). Past an empty slot it may be an alias from another slot0 (D7's hole the reclaim check catches).
     for (std::uint32_t probe = 0; new_cell && probe < t.probe_limit; ++probe) {
-      const std::uint32_t s = (key.slot0 + probe) & mask;
+      const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       if (tag_before(s) == kEmptyTag) break;
       if (s != slot && tag_before(s) == key.fingerprint && count_before(s) > 0) {
         violate(TableInvariant::kCellSplit, slot, {i}, "the fingerprint lived at slot " + std::to_string(s));
@@ -222,7 +223,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       }
     }
     for (std::uint32_t probe = 0; probe < std::min(distance, t.probe_limit); ++probe) {
-      const std::uint32_t s = (key.slot0 + probe) & mask;
+      const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       const SlotTag seen = window_tag(s);
       if (seen == kEmptyTag || seen == key.fingerprint || (new_cell && tombstone_tag(seen))) {
         violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
@@ -247,7 +248,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (in.placements[i] != kProbeFailure) continue;
     std::optional<std::uint32_t> victim;
     for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
-      const std::uint32_t s = (in.keys[i].slot0 + probe) & mask;
+      const std::uint32_t s = shared::CandidateSlot(scheme, in.keys[i].slot0, probe);
       if (!placed[s].empty() || tag_before(s) == kEmptyTag || tombstone_tag(tag_before(s)) || count_before(s) == 0)
         continue;
       auto priority_of = [&](std::uint32_t slot) {
@@ -266,10 +267,11 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   auto snapshot_live = [&](std::uint32_t s) {
     return snapshot_tag(s) != kEmptyTag && (!placed[s].empty() || (count_before(s) > 0 && !evicted_now(s)));
   };
-  // A tombstone is kept exactly when a live slot follows it within the probe limit with no empty slot between.
+  // A tombstone is kept exactly when a live slot follows it in some key's candidate order with no empty slot between.
   auto live_slot_after = [&](std::uint32_t s) -> std::uint32_t {
-    for (std::uint32_t distance = 1; distance < std::min(t.probe_limit, t.capacity); ++distance) {
-      const std::uint32_t next = (s + distance) & mask;
+    for (std::uint32_t distance = 1;; ++distance) {
+      const std::uint32_t next = shared::SlotAfter(scheme, s, distance);
+      if (next == shared::kNoCandidate) break;
       if (snapshot_tag(next) == kEmptyTag) break;
       if (snapshot_live(next)) return next;
     }

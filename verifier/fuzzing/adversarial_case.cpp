@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -341,6 +342,14 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   }
   // After the family, whose key-path configuration replaces the whole config: a user's shader handles its mode only.
   a.config.accumulation = options.accumulation ? *options.accumulation : accumulation;
+  // The scheme from a generator of its own, so that every other draw of a seed's cases stays what it was.
+  RecordGenerator scheme(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 1u, 0u}, 0xADF1u));
+  const std::uint32_t draw = scheme.Bits() % 4u;
+  a.config.probing = options.probing ? *options.probing
+                     : draw == 2u    ? ProbeKind::kBucket
+                     : draw == 3u    ? ProbeKind::kBucketWindow
+                                     : ProbeKind::kLinear;
+  if (a.config.probing == ProbeKind::kBucket) a.config.probe_limit = std::bit_floor(a.config.probe_limit);
   if (a.family != AdversarialFamily::kKeyPath && a.family != AdversarialFamily::kSpread) {
     if (cells.empty()) cells.push_back(RandomCell(g, 8));  // a search that found nothing still gives a batch
     a.batch.records = RecordsOverCells(g, cells, count);

@@ -51,6 +51,9 @@ struct AdversarialOptions {
   // The spread family's thousands of records are for a device whose workgroups run at once (Vulkan); the emulator
   // interleaves a race by its schedule in a few records, and skips the family.
   bool spread = true;
+  // The probing scheme of every case; unset, each case draws one (half linear, a quarter each bucket and
+  // bucket-window), its size from the family (a bucket's rounded down to a power of two).
+  std::optional<ProbeKind> probing = std::nullopt;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -11,8 +11,8 @@ namespace {
 
 class Shrinker {
  public:
-  Shrinker(const CaseFailsFn& fails, bool keep_accumulation, std::uint64_t max_checks)
-      : fails_(fails), keep_accumulation_(keep_accumulation), max_checks_(max_checks) {}
+  Shrinker(const CaseFailsFn& fails, ShrinkKeeps keep, std::uint64_t max_checks)
+      : fails_(fails), keep_(keep), max_checks_(max_checks) {}
 
   bool Fails(const AdversarialCase& candidate) {
     if (checks_ >= max_checks_) {
@@ -99,7 +99,9 @@ class Shrinker {
     if (c.config.temporal.mode != TemporalMode::kIntegrate) attempt([](AdversarialCase& a) { a.config.temporal = {}; });
     if (c.config.fixed_point_bits) attempt([](AdversarialCase& a) { a.config.fixed_point_bits.reset(); });
     if (c.config.fingerprint_bits != 32) attempt([](AdversarialCase& a) { a.config.fingerprint_bits = 32; });
-    if (!keep_accumulation_ && c.config.accumulation != Accumulation::kFixed64)
+    if (!keep_.probing && c.config.probing != ProbeKind::kLinear)
+      attempt([](AdversarialCase& a) { a.config.probing = ProbeKind::kLinear; });
+    if (!keep_.accumulation && c.config.accumulation != Accumulation::kFixed64)
       attempt([](AdversarialCase& a) { a.config.accumulation = Accumulation::kFixed64; });
     if (c.emulator.mode == simt::Mode::kFaithful && c.emulator.schedule != "round-robin") {
       attempt([](AdversarialCase& a) { a.emulator.schedule = "round-robin"; });
@@ -132,7 +134,7 @@ class Shrinker {
   }
 
   const CaseFailsFn& fails_;
-  bool keep_accumulation_;
+  ShrinkKeeps keep_;
   std::uint64_t max_checks_;
   std::uint64_t checks_ = 0;
   bool exhausted_ = false;
@@ -140,9 +142,9 @@ class Shrinker {
 
 }  // namespace
 
-ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, bool keep_accumulation,
+ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, ShrinkKeeps keep,
                         std::uint64_t max_checks) {
-  Shrinker shrinker(fails, keep_accumulation, max_checks);
+  Shrinker shrinker(fails, keep, max_checks);
   AdversarialCase c = failing;
   shrinker.ShrinkFrames(c);
   shrinker.ShrinkAllRecords(c);

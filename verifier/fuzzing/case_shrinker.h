@@ -23,8 +23,14 @@ struct ShrinkResult {
   bool exhausted = false;    // stopped at max_checks: smaller, but maybe not 1-minimal
 };
 
-// keep_accumulation: the mode was the user's choice (a shader may handle one mode only), so it is not simplified.
-ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, bool keep_accumulation = false,
+// What was the user's choice and is not simplified: a shader may handle one accumulation mode or one probing
+// scheme only.
+struct ShrinkKeeps {
+  bool accumulation = false;
+  bool probing = false;
+};
+
+ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, ShrinkKeeps keep = {},
                         std::uint64_t max_checks = 4000);
 
 }  // namespace hpsf

@@ -121,14 +121,23 @@ TEST(ShrinkCase, KeepsWhatTheFailureNeeds) {
 
 TEST(ShrinkCase, LeavesAKeptAccumulationAlone) {
   const auto always = [](const AdversarialCase&) { return true; };
-  EXPECT_EQ(ShrinkCase(LargeCase(), always, true).shrunk.config.accumulation, Accumulation::kFloat32);
-  EXPECT_EQ(ShrinkCase(LargeCase(), always, false).shrunk.config.accumulation, Accumulation::kFixed64);
+  EXPECT_EQ(ShrinkCase(LargeCase(), always, {.accumulation = true}).shrunk.config.accumulation, Accumulation::kFloat32);
+  EXPECT_EQ(ShrinkCase(LargeCase(), always, {}).shrunk.config.accumulation, Accumulation::kFixed64);
+}
+
+TEST(ShrinkCase, LeavesAKeptProbingSchemeAlone) {
+  const auto always = [](const AdversarialCase&) { return true; };
+  AdversarialCase bucket = LargeCase();
+  bucket.config.probing = ProbeKind::kBucket;
+  bucket.config.probe_limit = 4;
+  EXPECT_EQ(ShrinkCase(bucket, always, {.probing = true}).shrunk.config.probing, ProbeKind::kBucket);
+  EXPECT_EQ(ShrinkCase(bucket, always, {}).shrunk.config.probing, ProbeKind::kLinear);
 }
 
 TEST(ShrinkCase, StopsAtTheCheckLimit) {
   const AdversarialCase large = LargeCase();
   const auto fails = [](const AdversarialCase& c) { return HasPixel(c, 5) && HasPixel(c, 41); };
-  const ShrinkResult result = ShrinkCase(large, fails, false, 3);
+  const ShrinkResult result = ShrinkCase(large, fails, {}, 3);
   EXPECT_TRUE(result.exhausted);
   EXPECT_EQ(result.checks, 3u);
   EXPECT_TRUE(fails(result.shrunk)) << "whatever the limit, the result still fails";

@@ -17,10 +17,10 @@ namespace {
 
 using nlohmann::json;
 
-// The built-in gate: every built-in backend, both accumulation modes, a crowded table, one frame and a sequence
-// with eviction and a blending temporal mode, on the Cornell box and the furnace; their statistics in a roomy and
-// a small table; and a fuzz budget for each backend. Tables of 8192 slots: the faithful emulator steps every slot
-// of the passes after the accumulate (a 2^22-slot table takes minutes there). No goldens: they live in a project's
+// The built-in gate: every built-in backend, both accumulation modes, every probing scheme, crowded tables, one frame
+// and a sequence with eviction and a blending temporal mode, on the Cornell box and the furnace; their statistics in a
+// roomy and a small table; and a fuzz budget for each backend. Tables of 8192 slots: the faithful emulator steps every
+// slot of the passes after the accumulate (a 2^22-slot table takes minutes there). No goldens: they live in a project's
 // manifest, which a gate file names.
 constexpr const char* kDefaultGate = R"({
   "hpsf_gate": 1,
@@ -32,7 +32,9 @@ constexpr const char* kDefaultGate = R"({
     "configs": {
       "default": {"capacity": 8192},
       "crowded": {"capacity": 512, "probe-limit": 4, "fingerprint-bits": 8},
-      "float32": {"capacity": 8192, "accum": "float32"}
+      "float32": {"capacity": 8192, "accum": "float32"},
+      "buckets": {"capacity": 8192, "probing": "bucket:16"},
+      "window-crowded": {"capacity": 512, "probing": "bucket-window:4", "fingerprint-bits": 8}
     },
     "backends": {
       "emulated-fast": {"backend": "emulated"},

@@ -1,5 +1,5 @@
 // The accumulate pass of docs/design/algorithm.md, record by record: the key from core/shared, then
-// bounded linear probing from slot0; a slot whose tag is the fingerprint is joined, an empty one claimed with
+// bounded probing of slot0's candidates (core/shared/probe_scheme.h); a slot whose tag is the fingerprint is joined, an empty one claimed with
 // atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
 // reports wrap from the add's return value. With eviction, the slot's last-seen frame is stored after the adds;
 // a tombstone (an evicted slot that keeps its tag) is joined or passed like any slot, never claimed; with priority
@@ -145,13 +145,13 @@ void BlendDuringAccumulate(uint slot, TableParams t) {
 // joined. Returns the slot, or kPlacementProbeFailure.
 uint FindOrClaim(uint slot0, uint fingerprint, TableParams t) {
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
-    uint slot = (slot0 + probe) & (t.capacity - 1u);
+    uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
     uint tag = tags[slot];
     if (tag == fingerprint) return slot;
     if (tag == 0u) break;
   }
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
-    uint slot = (slot0 + probe) & (t.capacity - 1u);
+    uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
     uint tag = tags[slot];
     if (tag == 0u || tag == kTombstoneTag) {
       uint seen = atomicCompSwap(tags[slot], tag, fingerprint);
@@ -193,7 +193,7 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #if defined(HPSF_DEFECT_D8)  // the probe index clamped to the last slot instead of wrapped
       uint slot = min(k.slot0 + probe, t.capacity - 1u);
 #else
-      uint slot = (k.slot0 + probe) & (t.capacity - 1u);
+      uint slot = CandidateSlot(ProbeSchemeOf(t), k.slot0, probe);
 #endif
       uint tag = tags[slot];
       bool claimed = false;

@@ -2,8 +2,8 @@
 // The eviction pass after a frame's accumulate (core/eviction.h; the emulator's emulated/eviction_kernels.h holds
 // the rule and why tombstones): one invocation per slot, dispatched twice with a barrier between. Pass 0, evict:
 // a live slot last seen `unseen_frames` or more frames ago keeps its tag and becomes a tombstone (count and sums
-// zeroed). Pass 1, reclaim: a tombstone is emptied unless a live slot follows it within probe_limit - 1 slots with
-// no empty slot between. Priority eviction (by_priority) dispatches pass 2, select, first: one invocation per record;
+// zeroed). Pass 1, reclaim: a tombstone is emptied unless a live slot follows it in some key's candidate order
+// (core/shared/probe_scheme.h's SlotAfter) with no empty slot between. Priority eviction (by_priority) dispatches pass 2, select, first: one invocation per record;
 // a record that found no slot marks the untouched live slot of lowest priority in its window as a victim
 // (core/shared/eviction_priority.h; the table is only read, so the victims do not depend on the invocations'
 // order), and pass 0 evicts exactly the victims, tagging them kTombstoneTag, which an insertion may claim.
@@ -36,7 +36,11 @@ layout(push_constant) uniform Params {
   uint pass;                // 0 evict, 1 reclaim, 2 select (priority only, first)
   uint record_count;
   uint by_priority;         // 1 with --eviction priority
+  uint probe_scheme;        // kProbeLinear, kProbeBucket or kProbeBucketWindow
+  uint reserved;
 };
+
+ProbeScheme Scheme() { return MakeProbeScheme(probe_scheme, capacity, probe_limit); }
 
 void SelectVictim(uint i) {
   if (placements[i] != kPlacementProbeFailure) return;
@@ -45,7 +49,7 @@ void SelectVictim(uint i) {
   uint victim = 0u, victim_tag = 0u;
   uint64_t victim_priority = 0ul;
   for (uint probe = 0u; probe < probe_limit; ++probe) {
-    uint slot = (slot0 + probe) & (capacity - 1u);
+    uint slot = CandidateSlot(Scheme(), slot0, probe);
     uint tag = tags[slot];
     if (tag == 0u || tag == kTombstoneTag) continue;
     uint64_t count = counts[slot];
@@ -81,10 +85,9 @@ void Evict(uint slot) {
 void Reclaim(uint slot) {
   if (tags[slot] == 0u || counts[slot] != 0ul) return;
 #if !defined(HPSF_DEFECT_D7)  // D7 empties every tombstone: a hole on a live slot's probe path
-  uint reach = min(probe_limit, capacity);
-  for (uint distance = 1u; distance < reach; ++distance) {
-    uint next = (slot + distance) & (capacity - 1u);
-    if (tags[next] == 0u) break;
+  for (uint distance = 1u; distance < probe_limit; ++distance) {
+    uint next = SlotAfter(Scheme(), slot, distance);
+    if (next == kNoCandidate || tags[next] == 0u) break;
     if (counts[next] != 0ul) return;  // a live slot may have probed past this one: keep the tombstone
   }
 #endif

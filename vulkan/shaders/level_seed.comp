@@ -12,6 +12,7 @@
 #include "float_controls.glsl"
 #include "../../core/shared/key_words.h"
 #include "../../core/shared/level_seed.h"
+#include "../../core/shared/probe_scheme.h"
 
 layout(local_size_x = 64) in;
 
@@ -32,7 +33,7 @@ layout(push_constant) uniform Params {  // vulkan_filter.cpp's LevelSeedPush
   uint shift;    // S of seed:S
   uint fixed64;  // 1: sums are 64-bit fixed point (two words per channel); 0: float32
   uint record_count;
-  uint reserved;
+  uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow
 };
 
 struct Neighbour {
@@ -50,8 +51,9 @@ Neighbour Find(KeyWords words) {
   n.count = 0ul;
   uint slot0 = IndexHash(words, normal_in_index) & (capacity - 1u);
   uint fingerprint = Fingerprint(words, fingerprint_bits);
+  ProbeScheme scheme = MakeProbeScheme(probe_scheme, capacity, probe_limit);
   for (uint probe = 0u; probe < probe_limit; ++probe) {
-    uint slot = (slot0 + probe) & (capacity - 1u);
+    uint slot = CandidateSlot(scheme, slot0, probe);
     uint tag = previous_tags[slot];
     if (tag == 0u) break;
     if (tag != fingerprint || previous_counts[slot] == 0ul) continue;
