@@ -44,12 +44,20 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
   const bool fixed = args.accumulation == Accumulation::kFixed64;
   bool placed = false;
   const shared::ProbeScheme scheme = args.scheme();
-  for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+  // SHaRC #4: a record whose candidates are all taken is given the "invalid" index masked into a slot, and adds
+  // there: one step past its candidates.
+  const bool masked_failure = defect == Defect::kFullBucketMasked;
+  // SHaRC #5: bucket-window's window not clamped to the table, so a home slot near the end probes past it.
+  const bool unclamped_window = defect == Defect::kWindowPastTheEnd && scheme.kind == shared::kProbeBucketWindow;
+  for (std::uint32_t probe = 0; probe < args.probe_limit + (masked_failure ? 1u : 0u); ++probe) {
+    const bool past_the_candidates = probe == args.probe_limit;
     // D8: the probe index clamped to the last slot, or not wrapped at all, instead of wrapped.
-    const std::uint32_t slot = defect == Defect::kD8ClampedProbe     ? std::min(key.slot0 + probe, args.capacity - 1u)
+    const std::uint32_t slot = past_the_candidates                   ? 0xFFFFFFFFu & (args.capacity - 1u)
+                               : defect == Defect::kD8ClampedProbe   ? std::min(key.slot0 + probe, args.capacity - 1u)
                                : defect == Defect::kD8UnwrappedProbe ? key.slot0 + probe
+                               : unclamped_window                    ? key.slot0 + probe
                                                                      : shared::CandidateSlot(scheme, key.slot0, probe);
-    std::uint64_t tag = co_await ctx.Load(b.tags, slot);
+    std::uint64_t tag = past_the_candidates ? fingerprint : co_await ctx.Load(b.tags, slot);
     bool claimed = false;
     if (tag == kEmptyTag) {
       if (defect == Defect::kD13LoadThenStoreClaim) {  // D13: claim by a plain store after the load
@@ -166,6 +174,12 @@ simt::KernelTask CountStoreJoinFirst(simt::ThreadContext& c, const AccumulateArg
 simt::KernelTask LastSeenClaimerOnly(simt::ThreadContext& c, const AccumulateArgs& a) {
   return Mutant(c, a, Defect::kLastSeenClaimerOnly);
 }
+simt::KernelTask FullBucketMasked(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kFullBucketMasked);
+}
+simt::KernelTask WindowPastTheEnd(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kWindowPastTheEnd);
+}
 
 }  // namespace
 
@@ -227,9 +241,11 @@ Defect ParseDefect(const std::string& text) {
   if (text == "count-store-claim-first") return Defect::kCountStoreClaimFirst;
   if (text == "count-store-join-first") return Defect::kCountStoreJoinFirst;
   if (text == "last-seen-claimer-only") return Defect::kLastSeenClaimerOnly;
+  if (text == "full-bucket-masked") return Defect::kFullBucketMasked;
+  if (text == "window-past-the-end") return Defect::kWindowPastTheEnd;
   throw ConfigError("--inject-defect",
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
-                    "count-store-join-first or last-seen-claimer-only; got '" +
+                    "count-store-join-first, last-seen-claimer-only, full-bucket-masked or window-past-the-end; got '" +
                         text + "'");
 }
 
@@ -257,6 +273,10 @@ std::string ToString(Defect defect) {
       return "count-store-join-first";
     case Defect::kLastSeenClaimerOnly:
       return "last-seen-claimer-only";
+    case Defect::kFullBucketMasked:
+      return "full-bucket-masked";
+    case Defect::kWindowPastTheEnd:
+      return "window-past-the-end";
   }
   return "?";
 }
@@ -285,6 +305,10 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
       return CountStoreJoinFirst;
     case Defect::kLastSeenClaimerOnly:
       return LastSeenClaimerOnly;
+    case Defect::kFullBucketMasked:
+      return FullBucketMasked;
+    case Defect::kWindowPastTheEnd:
+      return WindowPastTheEnd;
   }
   return AccumulateKernel;
 }

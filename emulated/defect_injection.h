@@ -23,10 +23,14 @@ enum class Defect {
   kCountStoreClaimFirst,    // the claimer sets the count with a plain store of 1, others add atomically (claim
   kCountStoreJoinFirst,     // branch written first, or the joiners' branch first): a race on the count
   kLastSeenClaimerOnly,     // the last-seen frame stored by the claiming record only: a slot joined later looks stale
+  // Bugs production caches shipped (docs/design/defects.md, "Shipped bugs"):
+  kFullBucketMasked,  // SHaRC #4: a full bucket's "invalid" index masked into slot capacity - 1, and added there
+  kWindowPastTheEnd,  // SHaRC #5: bucket-window's window not clamped to the table: probes run past its end
 };
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
-// "count-store-join-first", "last-seen-claimer-only"; a ConfigError naming --inject-defect otherwise.
+// "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end"; a ConfigError
+// naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);

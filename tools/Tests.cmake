@@ -231,6 +231,39 @@ foreach(defect D11 last-seen-claimer-only count-store-claim-first count-store-jo
       -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
   set_tests_properties(HpsfFuzz.FindsEmulatorClass${defect}Unaided PROPERTIES LABELS "unit;untrusted")
 endforeach()
+# Bugs production caches shipped (docs/design/defects.md, "Shipped bugs"), as emulator kernels and as shaders: each
+# named by the cross-check, found by hpsf fuzz within 200 runs (each found by run 6 over seeds 1 to 5: results.md),
+# shrunk and reproduced by its bundle. A team's shader runs under the scheme it declares (--probing).
+set(shipped_run crosscheck cornell --size 32x32 --spp 2 --capacity 256 --fingerprint-bits 8 --repro-dir ${hpsf_out}/shipped)
+hpsf_add_cli_test(HpsfCrosscheck.AFullBucketMaskedIntoTheLastSlotIsNamed "vulkan;schemes;untrusted" 2
+  "vulkan: invalid shader output: record [0-9]+: placed in slot 255, which is not one of its candidates \\(bucket:4" ""
+  $<TARGET_FILE:hpsf> ${shipped_run} --probing bucket:4 --backends reference,vulkan
+  --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/accumulate_FULL_BUCKET_MASKED.spv)
+hpsf_add_cli_test(HpsfCrosscheck.AWindowPastTheTablesEndIsNamed "vulkan;schemes;untrusted" 2
+  "vulkan: invalid shader output: record [0-9]+: placement 25[6-9] is neither a slot below the capacity 256" ""
+  $<TARGET_FILE:hpsf> ${shipped_run} --probing bucket-window:4 --backends reference,vulkan
+  --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/accumulate_WINDOW_PAST_THE_END.spv)
+hpsf_add_cli_test(HpsfCrosscheck.AWindowPastTheTablesEndFaultsTheEmulator "unit;schemes" 2
+  "emulated: the kernel faulted: thread [0-9]+: out-of-bounds access to buffer 'tags' at index 25[6-9] of 256" ""
+  $<TARGET_FILE:hpsf> ${shipped_run} --probing bucket-window:4 --backends reference,emulated
+  --inject-defect window-past-the-end)
+foreach(bug full-bucket-masked window-past-the-end)
+  add_test(NAME HpsfFuzz.FindsShippedBug${bug}InTheEmulator
+    COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_${bug} -DMAX_RECORDS=2
+      "-DARGS=--backend;emulated;--inject-defect;${bug};--runs;200;--seed;1"
+      -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+  set_tests_properties(HpsfFuzz.FindsShippedBug${bug}InTheEmulator PROPERTIES LABELS "unit;schemes;untrusted")
+endforeach()
+foreach(bug FULL_BUCKET_MASKED:bucket WINDOW_PAST_THE_END:bucket-window)
+  string(REPLACE ":" ";" bug ${bug})
+  list(GET bug 0 shader)
+  list(GET bug 1 probing)
+  add_test(NAME HpsfFuzz.FindsShippedBug${shader}InAShader
+    COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_vulkan_${shader} -DMAX_RECORDS=2
+      "-DARGS=--backend;vulkan;--accumulate-spv;${HPSF_SHADER_VARIANT_DIR}/accumulate_${shader}.spv;--accum;fixed64;--probing;${probing};--runs;200;--seed;1"
+      -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+  set_tests_properties(HpsfFuzz.FindsShippedBug${shader}InAShader PROPERTIES LABELS "vulkan;schemes;untrusted")
+endforeach()
 # Found by hpsf fuzz's sequences (seed 13): in float32 the adaptive blend's count follows the order of float adds,
 # so a faithful schedule gave a slot count 17 where the reference's was 16. Level 3 holds such a slot to level 2's
 # bounds; this 3-frame sequence under that schedule passes.

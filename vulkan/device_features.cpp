@@ -16,6 +16,9 @@ std::vector<std::string> MissingRequiredFeatures(const DeviceFeatures& f) {
     missing.push_back("shaderSignedZeroInfNanPreserveFloat32 (fp32 signed zeros in keys and normal buckets)");
   }
   if (!f.shader_int64) missing.push_back("shaderInt64 (fixed64 accumulation)");
+  if (!f.robust_buffer_access) {
+    missing.push_back("robustBufferAccess (a team's shader indexing past a buffer must not write the host's memory)");
+  }
   if (!f.buffer_int64_atomics) missing.push_back("shaderBufferInt64Atomics (fixed64 accumulation)");
   if (!f.buffer_float32_atomic_add) missing.push_back("shaderBufferFloat32AtomicAdd (float32 accumulation)");
   if (!f.shader_float64) missing.push_back("shaderFloat64 (the resolve pass in double, as the reference)");

@@ -12,6 +12,7 @@ namespace hpsf {
 struct DeviceFeatures {
   std::uint32_t api_version = 0;
   bool shader_int64 = false;
+  bool robust_buffer_access = false;
   bool buffer_int64_atomics = false;
   bool buffer_float32_atomic_add = false;
   bool rounding_mode_rte_float32 = false;

@@ -8,7 +8,7 @@ namespace {
 DeviceFeatures Complete() {
   DeviceFeatures f;
   f.api_version = (1u << 22) | (3u << 12);
-  f.shader_int64 = f.buffer_int64_atomics = f.buffer_float32_atomic_add = true;
+  f.shader_int64 = f.buffer_int64_atomics = f.buffer_float32_atomic_add = f.robust_buffer_access = true;
   f.rounding_mode_rte_float32 = f.signed_zero_inf_nan_preserve_float32 = f.timestamp_compute = true;
   f.shader_float64 = f.rounding_mode_rte_float64 = f.signed_zero_inf_nan_preserve_float64 = true;
   return f;
@@ -19,6 +19,7 @@ TEST(DeviceFeatures, ACompleteDeviceQualifies) { EXPECT_TRUE(MissingRequiredFeat
 TEST(DeviceFeatures, EachMissingFeatureIsNamed) {
   const std::pair<bool DeviceFeatures::*, const char*> cases[] = {
       {&DeviceFeatures::shader_int64, "shaderInt64"},
+      {&DeviceFeatures::robust_buffer_access, "robustBufferAccess"},
       {&DeviceFeatures::buffer_int64_atomics, "shaderBufferInt64Atomics"},
       {&DeviceFeatures::buffer_float32_atomic_add, "shaderBufferFloat32AtomicAdd"},
       {&DeviceFeatures::rounding_mode_rte_float32, "shaderRoundingModeRTEFloat32"},

@@ -83,6 +83,7 @@ VulkanDeviceInfo Describe(const vk::raii::PhysicalDevice& physical) {
 
   auto features = physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features>();
   f.shader_int64 = features.get<vk::PhysicalDeviceFeatures2>().features.shaderInt64;
+  f.robust_buffer_access = features.get<vk::PhysicalDeviceFeatures2>().features.robustBufferAccess;
   f.shader_float64 = features.get<vk::PhysicalDeviceFeatures2>().features.shaderFloat64;
   f.buffer_int64_atomics = features.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics;
   if (HasExtension(physical, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) {
@@ -223,6 +224,9 @@ VulkanDevice::VulkanDevice(const std::string& name_filter, StagingPolicy staging
         chain;
     chain.get<vk::DeviceCreateInfo>().setQueueCreateInfos(queue_info).setPEnabledExtensionNames(extensions);
     chain.get<vk::PhysicalDeviceFeatures2>().features.shaderInt64 = true;
+    // A team's shader that indexes past a buffer reads 0 and writes nowhere, instead of into the host's memory
+    // (lavapipe's buffers are host memory): its placement past the table is then a named failure, not a crash.
+    chain.get<vk::PhysicalDeviceFeatures2>().features.robustBufferAccess = true;
     chain.get<vk::PhysicalDeviceFeatures2>().features.shaderFloat64 = true;
     chain.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics = true;
     chain.get<vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT>().shaderBufferFloat32AtomicAdd = true;

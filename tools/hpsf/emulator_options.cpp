@@ -31,7 +31,8 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command
       .add_option("--inject-defect", flags.defect,
                   "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
-                  "count-store-claim-first, count-store-join-first, last-seen-claimer-only)")
+                  "count-store-claim-first, count-store-join-first, last-seen-claimer-only, and the shipped bugs "
+                  "full-bucket-masked and window-past-the-end)")
       ->capture_default_str();
 }
 

@@ -25,7 +25,9 @@ struct StatsOptions {
 };
 
 void PrintRate(std::uint32_t value, const RateFigure& f) {
-  std::printf("  %-9u %12.4g %12.4g   [%.3g, %.3g]%s\n", value, f.Rate(), f.theory, f.low, f.high,
+  char theory[32] = "-";
+  if (f.judged) std::snprintf(theory, sizeof theory, "%.4g", f.theory);
+  std::printf("  %-9u %12.4g %12s   [%.3g, %.3g]%s\n", value, f.Rate(), theory, f.low, f.high,
               f.ExceedsTheory() ? "   EXCEEDS THEORY" : "");
 }
 
@@ -34,7 +36,7 @@ void PrintText(const TableStatistics& s, const std::string& input) {
               (unsigned long long)s.records, (unsigned long long)s.keyed_records, (unsigned long long)s.distinct_keys,
               s.capacity, s.load);
   if (!s.probe_histogram.empty()) {
-    std::printf("probes of a successful search (no limit): mean %.4f, theory %.4f\n", s.mean_probes,
+    std::printf("probes of a successful search (linear probing, no limit): mean %.4f, theory %.4f\n", s.mean_probes,
                 s.mean_probes_theory);
     for (std::size_t k = 0; k < s.probe_histogram.size(); ++k) {
       if (s.probe_histogram[k] == 0.0 && s.probe_histogram_theory[k] < 1e-6) continue;
@@ -43,8 +45,9 @@ void PrintText(const TableStatistics& s, const std::string& input) {
     }
   }
   std::printf(
-      "probe failures per probe limit (keys in the batch's order; the bound counts failed keys as "
-      "inserted):\n  %-9s %12s %12s   %s\n",
+      "probe failures per probe limit under %s probing (keys in the batch's order; the bound counts failed keys as "
+      "inserted%s):\n  %-9s %12s %12s   %s\n",
+      ToString(s.probing).c_str(), s.probing == ProbeKind::kBucketWindow ? "; bucket-window has none, not judged" : "",
       "limit", "rate", "bound", "interval");
   for (const ProbeLimitFigure& f : s.probe_limits) PrintRate(f.probe_limit, f.failures);
   std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits", "rate",

@@ -16,10 +16,14 @@ double FingerprintProbability(std::uint32_t tag, std::uint32_t bits) {
 }
 
 AliasTally InsertAndCountAliases(std::span<const KeyResult> keys, std::uint32_t capacity, std::uint32_t probe_limit,
-                                 std::uint32_t fingerprint_bits) {
+                                 std::uint32_t fingerprint_bits, ProbeKind probing) {
   if (capacity == 0 || (capacity & (capacity - 1u)) != 0 || probe_limit == 0 || probe_limit > capacity) {
     throw std::invalid_argument("InsertAndCountAliases: needs a power-of-two capacity and 0 < probe_limit <= capacity");
   }
+  if (probing == ProbeKind::kBucket && (probe_limit & (probe_limit - 1u)) != 0) {
+    throw std::invalid_argument("InsertAndCountAliases: buckets need a power-of-two size");
+  }
+  const shared::ProbeScheme scheme = MakeProbeScheme(probing, capacity, probe_limit);
   std::vector<std::uint32_t> tags(capacity, kEmptyTag);
   std::vector<std::uint32_t> met;  // the distinct tags a key compares, before seeing its own fingerprint
   AliasTally tally;
@@ -29,7 +33,7 @@ AliasTally InsertAndCountAliases(std::span<const KeyResult> keys, std::uint32_t 
     met.clear();
     std::uint32_t empty = capacity;  // the first empty slot of the window, if any
     for (std::uint32_t probe = 0; probe < probe_limit; ++probe) {
-      const std::uint32_t slot = (key.slot0 + probe) & (capacity - 1u);
+      const std::uint32_t slot = shared::CandidateSlot(scheme, key.slot0, probe);
       if (tags[slot] == kEmptyTag) {
         empty = slot;
         break;

@@ -10,6 +10,7 @@
 #include <span>
 
 #include "core/key_batch.h"
+#include "core/probing.h"
 
 namespace hpsf {
 
@@ -29,9 +30,10 @@ struct AliasTally {
 };
 
 // Inserts `keys` (distinct full keys, in this order; their slot0 and fingerprint from the key path, unkeyed
-// results skipped) one at a time into a table of `capacity` slots (a power of two) with bounded linear probing.
+// results skipped) one at a time into a table of `capacity` slots (a power of two), each trying the probe_limit
+// candidates its scheme gives (core/shared/probe_scheme.h; bounded linear probing by default).
 AliasTally InsertAndCountAliases(std::span<const KeyResult> keys, std::uint32_t capacity, std::uint32_t probe_limit,
-                                 std::uint32_t fingerprint_bits);
+                                 std::uint32_t fingerprint_bits, ProbeKind probing = ProbeKind::kLinear);
 
 }  // namespace hpsf
 

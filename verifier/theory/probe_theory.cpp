@@ -1,8 +1,11 @@
 #include "verifier/theory/probe_theory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
+
+#include <boost/math/distributions/binomial.hpp>
 
 namespace hpsf {
 namespace {
@@ -93,6 +96,20 @@ double MeasuredWindowFullShare(std::span<const std::uint32_t> slot0s, std::uint3
     if (i >= capacity && run >= window) ++full;  // the window that ends here, starting window - 1 slots back
   }
   return double(full) / double(capacity);
+}
+
+double ExpectedBucketOverflowShare(std::uint64_t slots, std::uint64_t keys, std::uint64_t bucket) {
+  if (keys == 0 || bucket == 0 || bucket > slots || slots % bucket != 0) {
+    throw std::invalid_argument("ExpectedBucketOverflowShare: needs keys > 0 and buckets that tile the table");
+  }
+  // E[max(0, X - B)] = E[X] - B + E[max(0, B - X)]: a sum over x < B only, so exact for any N.
+  const boost::math::binomial_distribution<> per_bucket(double(keys), double(bucket) / double(slots));
+  double short_of_full = 0.0;
+  for (std::uint64_t x = 0; x < bucket && x <= keys; ++x) {
+    short_of_full += double(bucket - x) * boost::math::pdf(per_bucket, double(x));
+  }
+  const double overflow = double(keys) * double(bucket) / double(slots) - double(bucket) + short_of_full;
+  return std::max(0.0, overflow) * double(slots / bucket) / double(keys);
 }
 
 }  // namespace hpsf

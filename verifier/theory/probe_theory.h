@@ -34,6 +34,11 @@ double ProbabilityWindowFull(std::uint64_t slots, std::uint64_t keys, std::uint6
 // are `slot0s` were inserted by linear probing without a limit: the measured ProbabilityWindowFull.
 double MeasuredWindowFullShare(std::span<const std::uint32_t> slot0s, std::uint32_t capacity, std::uint32_t window);
 
+// Aligned buckets (bucket:B): the expected share of N keys that find their bucket of B slots full, in a table of M
+// slots under uniform hashing. A bucket's keys are Binomial(N, B / M), and every key past the B-th of its bucket
+// fails, so the share is (M / B) E[max(0, X - B)] / N, exact by linearity whatever the order of insertion.
+double ExpectedBucketOverflowShare(std::uint64_t slots, std::uint64_t keys, std::uint64_t bucket);
+
 }  // namespace hpsf
 
 #endif  // HPSF_VERIFIER_THEORY_PROBE_THEORY_H

@@ -61,8 +61,12 @@ std::vector<std::uint32_t> SortedWith(std::span<const std::uint32_t> values, std
 }
 
 nlohmann::json RateJson(const RateFigure& f) {
-  return {{"events", f.events}, {"trials", f.trials},          {"rate", f.Rate()},
-          {"theory", f.theory}, {"interval", {f.low, f.high}}, {"exceeds_theory", f.ExceedsTheory()}};
+  return {{"events", f.events},
+          {"trials", f.trials},
+          {"rate", f.Rate()},
+          {"theory", f.judged ? nlohmann::json(f.theory) : nlohmann::json(nullptr)},
+          {"interval", {f.low, f.high}},
+          {"exceeds_theory", f.ExceedsTheory()}};
 }
 
 }  // namespace
@@ -105,6 +109,7 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
   s.records = records.size();
   s.capacity = config.capacity;
   s.probe_limit = config.probe_limit;
+  s.probing = config.probing;
   s.fingerprint_bits = config.fingerprint_bits;
 
   std::vector<std::uint64_t> per_key;
@@ -143,16 +148,27 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
     s.mean_probes_theory = ExpectedProbesOnHit(s.capacity, s.distinct_keys);
   }
 
+  // Failures under the table's own scheme. Linear probing and aligned buckets have exact theories (upper bounds,
+  // since an aliasing key takes no slot); bucket-window's windows pile up against the table's end, which no closed
+  // form here follows, so its rates are reported and not judged.
   for (const std::uint32_t limit : limits) {
-    const AliasTally t = InsertAndCountAliases(distinct, s.capacity, limit, config.fingerprint_bits);
-    s.probe_limits.push_back({limit, Rate(t.failed, t.keys, std::min(1.0, window_full(limit)), alpha)});
+    const AliasTally t = InsertAndCountAliases(distinct, s.capacity, limit, config.fingerprint_bits, config.probing);
+    RateFigure failures = Rate(t.failed, t.keys, 0.0, alpha);
+    if (config.probing == ProbeKind::kLinear) {
+      failures.theory = std::min(1.0, window_full(limit));
+    } else if (config.probing == ProbeKind::kBucket) {
+      failures.theory = std::min(1.0, ExpectedBucketOverflowShare(s.capacity, s.distinct_keys, limit));
+    } else {
+      failures.judged = false;
+    }
+    s.probe_limits.push_back({limit, failures});
   }
 
   double observed = 0.0, predicted = 0.0, compared_per_key = 0.0;
   for (const std::uint32_t bits : widths) {
     std::vector<KeyResult> at_width = distinct;
     for (KeyResult& k : at_width) k.fingerprint = shared::Fingerprint(k.words, bits);
-    const AliasTally t = InsertAndCountAliases(at_width, s.capacity, config.probe_limit, bits);
+    const AliasTally t = InsertAndCountAliases(at_width, s.capacity, config.probe_limit, bits, config.probing);
     s.fingerprints.push_back({bits, Rate(t.aliased, t.keys, t.PredictedRate(), alpha)});
     observed += double(t.aliased);
     predicted += t.predicted;
@@ -177,6 +193,7 @@ nlohmann::json TableStatistics::ToJson() const {
                       {"distinct_keys", distinct_keys},
                       {"capacity", capacity},
                       {"probe_limit", probe_limit},
+                      {"probing", ToString(probing)},
                       {"fingerprint_bits", fingerprint_bits},
                       {"load", load},
                       {"probes_on_hit",

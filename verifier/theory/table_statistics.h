@@ -1,8 +1,8 @@
 // The figures a team needs to size a table for its scene (`hpsf stats`): the load the batch's distinct keys put
-// on the configured capacity, their probe lengths and probe failures per probe limit beside linear probing's
-// theory (probe_theory), fingerprint aliases per width beside the prediction from the windows (alias_theory),
-// records per cell, and the jitter tests' p-values (jitter_statistics). Each measured rate is held to its
-// theory: it exceeds it when the theory lies below the rate's Clopper-Pearson interval, whose level is
+// on the configured capacity, their probe lengths beside linear probing's theory (probe_theory), probe failures per
+// probe limit under the table's scheme beside its theory, fingerprint aliases per width beside the prediction from the
+// windows (alias_theory), records per cell, and the jitter tests' p-values (jitter_statistics). Each measured rate is
+// held to its theory: it exceeds it when the theory lies below the rate's Clopper-Pearson interval, whose level is
 // Sidak-corrected so that all the rates together hold at 0.001.
 #ifndef HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
 #define HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
@@ -25,14 +25,16 @@ struct RateFigure {
   std::uint64_t events = 0, trials = 0;
   double theory = 0.0;
   double low = 0.0, high = 1.0;  // the measured rate's Clopper-Pearson interval (family level 0.001)
+  bool judged = true;            // false where no theory is known: the rate is reported, never held to one
   double Rate() const { return trials == 0 ? 0.0 : double(events) / double(trials); }
-  bool ExceedsTheory() const { return theory < low; }
+  bool ExceedsTheory() const { return judged && theory < low; }
 };
 
 struct ProbeLimitFigure {
   std::uint32_t probe_limit = 0;
-  // Keys inserted in the batch's order that found their window full. The theory is an upper bound: it counts
-  // failed keys as inserted, so the table it assumes is fuller.
+  // Keys inserted in the batch's order, under the table's probing scheme, that found their candidates full. The
+  // theory is an upper bound: it counts failed keys as inserted, so the table it assumes is fuller. Linear probing's
+  // is Knuth's (probe_theory), aligned buckets' the binomial overflow; bucket-window has none (not judged).
   RateFigure failures;
 };
 
@@ -44,6 +46,7 @@ struct AliasFigure {
 struct TableStatistics {
   std::uint64_t records = 0, keyed_records = 0, distinct_keys = 0;
   std::uint32_t capacity = 0, probe_limit = 0, fingerprint_bits = 0;
+  ProbeKind probing = ProbeKind::kLinear;
   double load = 0.0;  // distinct keys / capacity
   // Probes of a successful search per key, inserted without a limit (empty when the keys fill the table).
   std::vector<double> probe_histogram, probe_histogram_theory;  // [k]: share of keys found after k + 1 probes

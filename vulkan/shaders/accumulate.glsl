@@ -26,7 +26,8 @@ const uint kRecordsPerInvocation = 16u;
 layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of docs/design/defects.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
-// _D12, _D13, each exactly one change) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
+// _D12, _D13, each exactly one change), per bug a production cache shipped (_FULL_BUCKET_MASKED, SHaRC #4;
+// _WINDOW_PAST_THE_END, SHaRC #5) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
 // --accumulate-spv: the gate must catch each. HPSF_DEFECT_D11, _COUNT_STORE_CLAIM_FIRST, _COUNT_STORE_JOIN_FIRST
 // and _LAST_SEEN_CLAIMER_ONLY are the classes `hpsf fuzz` must find unaided (a rounding defect the automatic F
 // hides, a race one execution order hides, a frame-state defect one frame hides). HPSF_DEFECT_SLOT0_FOR_FAILURE and HPSF_DEFECT_GARBAGE_* write words
@@ -192,6 +193,8 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
     for (uint probe = 0u; probe < t.probe_limit && t.claim_tombstones == 0u; ++probe) {
 #if defined(HPSF_DEFECT_D8)  // the probe index clamped to the last slot instead of wrapped
       uint slot = min(k.slot0 + probe, t.capacity - 1u);
+#elif defined(HPSF_DEFECT_WINDOW_PAST_THE_END)  // SHaRC #5: bucket-window's window not clamped to the table
+      uint slot = t.probe_scheme == kProbeBucketWindow ? k.slot0 + probe : CandidateSlot(ProbeSchemeOf(t), k.slot0, probe);
 #else
       uint slot = CandidateSlot(ProbeSchemeOf(t), k.slot0, probe);
 #endif
@@ -224,6 +227,13 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
   }
 #if defined(HPSF_DEFECT_SLOT0_FOR_FAILURE)  // a failed insert stored as slot 0, as NVIDIA SHaRC's once was
   if (placement == kPlacementProbeFailure) placement = 0u;
+#endif
+#if defined(HPSF_DEFECT_FULL_BUCKET_MASKED)  // SHaRC #4: the "invalid" index masked into a slot, and added there
+  if (placement == kPlacementProbeFailure) {
+    placement = 0xFFFFFFFFu & (t.capacity - 1u);
+    AddToSlot(placement, r, t.fixed_point_scale, false);
+    if (t.track_last_seen != 0u) last_seen[placement] = t.frame;
+  }
 #endif
   placements[i] = placement;
 #if defined(HPSF_GARBAGE_OUTPUT)
