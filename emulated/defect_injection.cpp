@@ -15,9 +15,10 @@ namespace {
 
 // The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes; count32
 // is D12's, which needs a sequence of frames (D12Count32Bit).
-// blend_in_pass is D10's (D10BlendDuringAccumulate); evict_in_pass EvictDuringAccumulate's.
+// blend_in_pass is D10's (D10BlendDuringAccumulate); evict_in_pass EvictDuringAccumulate's; weak_claim the correct
+// claim by a weak compare-and-swap (AccumulateWithWeakCas).
 simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, bool count32 = false,
-                        bool blend_in_pass = false, bool evict_in_pass = false) {
+                        bool blend_in_pass = false, bool evict_in_pass = false, bool weak_claim = false) {
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
   const TableBuffers& b = args.buffers;
@@ -62,6 +63,18 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     if (tag == kEmptyTag) {
       if (defect == Defect::kD13LoadThenStoreClaim) {  // D13: claim by a plain store after the load
         co_await ctx.Store(b.tags, slot, fingerprint);
+      } else if (defect == Defect::kWeakCasOldValue || weak_claim) {
+        // A weak compare-and-swap. Bevy #24767 read its verdict from the old value alone, so a spurious failure (the
+        // word still 0) counts as a claim while the slot stays empty; the correct loop retries until the swap wrote
+        // or the word holds a tag.
+        for (;;) {
+          const simt::ThreadContext::CasResult swap = co_await ctx.AtomicCasWeak(b.tags, slot, kEmptyTag, fingerprint);
+          if (defect == Defect::kWeakCasOldValue || swap.exchanged || swap.old != kEmptyTag) {
+            tag = swap.old;
+            claimed = defect == Defect::kWeakCasOldValue ? swap.old == kEmptyTag : swap.exchanged;
+            break;
+          }
+        }
       } else {
         tag = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, fingerprint);
         claimed = tag == kEmptyTag;
@@ -180,6 +193,9 @@ simt::KernelTask FullBucketMasked(simt::ThreadContext& c, const AccumulateArgs& 
 simt::KernelTask WindowPastTheEnd(simt::ThreadContext& c, const AccumulateArgs& a) {
   return Mutant(c, a, Defect::kWindowPastTheEnd);
 }
+simt::KernelTask WeakCasOldValue(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kWeakCasOldValue);
+}
 
 }  // namespace
 
@@ -193,6 +209,10 @@ simt::KernelTask EvictDuringAccumulate(simt::ThreadContext& ctx, const Accumulat
 
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args) {
   return Mutant(ctx, args, Defect::kNone, true);
+}
+
+simt::KernelTask AccumulateWithWeakCas(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return Mutant(ctx, args, Defect::kNone, false, false, false, true);
 }
 
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args) {
@@ -243,9 +263,11 @@ Defect ParseDefect(const std::string& text) {
   if (text == "last-seen-claimer-only") return Defect::kLastSeenClaimerOnly;
   if (text == "full-bucket-masked") return Defect::kFullBucketMasked;
   if (text == "window-past-the-end") return Defect::kWindowPastTheEnd;
+  if (text == "weak-cas-old-value") return Defect::kWeakCasOldValue;
   throw ConfigError("--inject-defect",
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
-                    "count-store-join-first, last-seen-claimer-only, full-bucket-masked or window-past-the-end; got '" +
+                    "count-store-join-first, last-seen-claimer-only, full-bucket-masked, window-past-the-end or "
+                    "weak-cas-old-value; got '" +
                         text + "'");
 }
 
@@ -277,6 +299,8 @@ std::string ToString(Defect defect) {
       return "full-bucket-masked";
     case Defect::kWindowPastTheEnd:
       return "window-past-the-end";
+    case Defect::kWeakCasOldValue:
+      return "weak-cas-old-value";
   }
   return "?";
 }
@@ -309,6 +333,8 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
       return FullBucketMasked;
     case Defect::kWindowPastTheEnd:
       return WindowPastTheEnd;
+    case Defect::kWeakCasOldValue:
+      return WeakCasOldValue;
   }
   return AccumulateKernel;
 }

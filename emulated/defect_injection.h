@@ -26,11 +26,12 @@ enum class Defect {
   // Bugs production caches shipped (docs/design/defects.md, "Shipped bugs"):
   kFullBucketMasked,  // SHaRC #4: a full bucket's "invalid" index masked into slot capacity - 1, and added there
   kWindowPastTheEnd,  // SHaRC #5: bucket-window's window not clamped to the table: probes run past its end
+  kWeakCasOldValue,   // Bevy #24767: a weak CAS's claim read from the old value alone: a spurious failure "claims"
 };
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
-// "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end"; a ConfigError
-// naming --inject-defect otherwise.
+// "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end",
+// "weak-cas-old-value"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);
@@ -59,6 +60,10 @@ simt::KernelTask EvictDuringAccumulate(simt::ThreadContext& ctx, const Accumulat
 // D12: the accumulate with a 32-bit sample counter that wraps silently at 2^32 adds to one cell. Not a Defect value
 // either: only a long sequence of frames (or a table loaded with a large count) reaches it.
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
+// Not a defect: the accumulate whose claim is a weak compare-and-swap in a retry loop, as a CPU or WGSL cache writes
+// it. Correct under any --spurious-cas; weak-cas-old-value is it with the loop's verdict read from the old value.
+simt::KernelTask AccumulateWithWeakCas(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
 }  // namespace hpsf
 

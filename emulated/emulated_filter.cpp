@@ -47,6 +47,14 @@ void EmulatorOptions::Validate() const {
     throw ConfigError("--warp-size", "must lie in [1, 1024]; got " + std::to_string(warp_size));
   if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
   if (mode == simt::Mode::kFaithful) simt::MakeSchedule(schedule, 1, 1);  // parses, or names --schedule
+  if (!(spurious_cas >= 0.0 && spurious_cas < 1.0)) {
+    throw ConfigError("--spurious-cas", "must lie in [0, 1); got " + std::to_string(spurious_cas));
+  }
+  if (spurious_cas > 0.0 && mode != simt::Mode::kFaithful) {
+    throw ConfigError("--spurious-cas",
+                      "needs --mode faithful: fast mode runs the CPU's compare-and-swap, which never "
+                      "fails spuriously on x86");
+  }
 }
 
 EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
@@ -183,7 +191,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
           run.float_add_order[op.address.index].push_back(thread);
       };
     }
-    run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule, observer);
+    run.launch = simt::LaunchFaithful(memory, n, options.warp_size, kernel, *schedule, observer,
+                                      simt::WeakCasPolicy{options.spurious_cas});
     run.trace_hash = run.launch.trace_hash;
   }
 
@@ -195,7 +204,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     const std::uint32_t warps = (threads + options.warp_size - 1) / options.warp_size;
     const std::string policy = options.schedule_instance ? "round-robin" : options.schedule;
     const auto schedule = simt::MakeSchedule(policy, warps, std::uint64_t(warps) * (2 * config.probe_limit + 8));
-    simt::LaunchFaithful(memory, threads, options.warp_size, kernel, *schedule, {});
+    simt::LaunchFaithful(memory, threads, options.warp_size, kernel, *schedule, {},
+                         simt::WeakCasPolicy{options.spurious_cas});
   };
   const auto launch_per_slot = [&](const simt::Kernel& kernel) { launch(config.capacity, kernel); };
   const bool seeding = planned.level_seed;

@@ -26,6 +26,9 @@ struct EmulatorOptions {
   std::uint32_t warp_size = 32;          // 8 (lavapipe), 32 (NVIDIA), 64 (AMD wave64)
   std::string schedule = "round-robin";  // faithful mode: round-robin | random:SEED | pct:SEED:DEPTH
   int threads = 0;                       // fast mode workers; 0: all cores
+  // Faithful mode: the share of weak compare-and-swaps that fail spuriously (simt::WeakCasPolicy), in [0, 1). Only
+  // kernels that use one see it (hpsf's own claim with a strong one; --inject-defect weak-cas-old-value a weak one).
+  double spurious_cas = 0.0;
   // Faithful mode: a schedule object to use instead of parsing `schedule`, kept by the caller across runs;
   // exhaustive search advances one ExhaustiveSchedule from run to run.
   simt::Schedule* schedule_instance = nullptr;

@@ -231,9 +231,10 @@ foreach(defect D11 last-seen-claimer-only count-store-claim-first count-store-jo
       -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
   set_tests_properties(HpsfFuzz.FindsEmulatorClass${defect}Unaided PROPERTIES LABELS "unit;untrusted")
 endforeach()
-# Bugs production caches shipped (docs/design/defects.md, "Shipped bugs"), as emulator kernels and as shaders: each
-# named by the cross-check, found by hpsf fuzz within 200 runs (each found by run 6 over seeds 1 to 5: results.md),
-# shrunk and reproduced by its bundle. A team's shader runs under the scheme it declares (--probing).
+# Bugs production caches shipped (docs/design/defects.md, "Shipped bugs"), as emulator kernels and as shaders (Bevy's
+# weak compare-and-swap has no GLSL form: emulator only): each named by the cross-check, found by hpsf fuzz within
+# 200 runs (each found by run 6 over seeds 1 to 5: results.md), shrunk and reproduced by its bundle. A team's shader
+# runs under the scheme it declares (--probing).
 set(shipped_run crosscheck cornell --size 32x32 --spp 2 --capacity 256 --fingerprint-bits 8 --repro-dir ${hpsf_out}/shipped)
 hpsf_add_cli_test(HpsfCrosscheck.AFullBucketMaskedIntoTheLastSlotIsNamed "vulkan;schemes;untrusted" 2
   "vulkan: invalid shader output: record [0-9]+: placed in slot 255, which is not one of its candidates \\(bucket:4" ""
@@ -247,7 +248,15 @@ hpsf_add_cli_test(HpsfCrosscheck.AWindowPastTheTablesEndFaultsTheEmulator "unit;
   "emulated: the kernel faulted: thread [0-9]+: out-of-bounds access to buffer 'tags' at index 25[6-9] of 256" ""
   $<TARGET_FILE:hpsf> ${shipped_run} --probing bucket-window:4 --backends reference,emulated
   --inject-defect window-past-the-end)
-foreach(bug full-bucket-masked window-past-the-end)
+hpsf_add_cli_test(HpsfCrosscheck.AWeakCasReadFromItsOldValueIsNamed "unit;schemes" 2
+  "emulated: tag is not the record's fingerprint at slot [0-9]+, records [0-9, ]+: tag 0, fingerprint" ""
+  $<TARGET_FILE:hpsf> ${shipped_run} --probing bucket:4 --backends reference,emulated --mode faithful --warp-size 8
+  --schedule random:1 --spurious-cas 0.25 --inject-defect weak-cas-old-value)
+hpsf_add_cli_test(HpsfCrosscheck.SpuriousCasInFastModeExits3 "unit;schemes" 3
+  "--spurious-cas: needs --mode faithful" "" $<TARGET_FILE:hpsf> crosscheck cornell --spurious-cas 0.25)
+hpsf_add_cli_test(HpsfCrosscheck.SpuriousCasOfOneExits3 "unit;schemes" 3
+  "--spurious-cas: must lie in \\[0, 1\\)" "" $<TARGET_FILE:hpsf> crosscheck cornell --mode faithful --spurious-cas 1)
+foreach(bug full-bucket-masked window-past-the-end weak-cas-old-value)
   add_test(NAME HpsfFuzz.FindsShippedBug${bug}InTheEmulator
     COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_${bug} -DMAX_RECORDS=2
       "-DARGS=--backend;emulated;--inject-defect;${bug};--runs;200;--seed;1"

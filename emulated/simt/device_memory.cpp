@@ -29,6 +29,9 @@ void DeviceMemory::ApplyTo(Word& word, MemoryOp& op) {
     case OpKind::kAtomicCas:
       if (old == static_cast<Word>(op.compare)) word = static_cast<Word>(op.value);
       break;
+    case OpKind::kAtomicCasWeak:
+      if (!op.spurious && old == static_cast<Word>(op.compare)) word = static_cast<Word>(op.value);
+      break;
     case OpKind::kAtomicMin:
       if (static_cast<Word>(op.value) < old) word = static_cast<Word>(op.value);
       break;
@@ -49,6 +52,8 @@ const char* ToString(OpKind kind) {
       return "atomic_cas";
     case OpKind::kAtomicMin:
       return "atomic_min";
+    case OpKind::kAtomicCasWeak:
+      return "atomic_cas_weak";
   }
   return "?";
 }
@@ -126,6 +131,8 @@ void DeviceMemory::ApplyConcurrently(MemoryOp& op) {
       return ApplyConcurrently<OpKind::kAtomicCas>(op);
     case OpKind::kAtomicMin:
       return ApplyConcurrently<OpKind::kAtomicMin>(op);
+    case OpKind::kAtomicCasWeak:
+      return ApplyConcurrently<OpKind::kAtomicCasWeak>(op);
   }
 }
 

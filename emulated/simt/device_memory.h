@@ -109,7 +109,7 @@ template <OpKind kKind, typename Word>
     while (!ref.compare_exchange_weak(old, AddFloatBits(old, op.value), std::memory_order_relaxed)) {
     }
     op.result = old;
-  } else if constexpr (kKind == OpKind::kAtomicCas) {
+  } else if constexpr (kKind == OpKind::kAtomicCas || kKind == OpKind::kAtomicCasWeak) {
     Word expected = static_cast<Word>(op.compare);
     ref.compare_exchange_strong(expected, static_cast<Word>(op.value), std::memory_order_relaxed);
     op.result = expected;  // the old value, whether or not the swap happened

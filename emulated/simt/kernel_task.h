@@ -80,6 +80,7 @@ class ThreadContext {
     }
     void await_suspend(std::coroutine_handle<>) { context_.pending_ = &op_; }
     std::uint64_t await_resume() const { return op_.result; }
+    const MemoryOp& op() const { return op_; }
 
    private:
     ThreadContext& context_;
@@ -103,6 +104,30 @@ class ThreadContext {
   }
   Operation<OpKind::kAtomicMin> AtomicMin(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
     return {*this, {buffer, index}, value};
+  }
+
+  // A weak compare-and-swap's outcome: the old value, and whether it wrote. A spurious failure reads the word equal
+  // to `compare` and still did not write: a kernel that takes the old value alone for its verdict is wrong.
+  struct CasResult {
+    std::uint64_t old = 0;
+    bool exchanged = false;
+  };
+  class WeakCas {
+   public:
+    WeakCas(ThreadContext& context, Address address, std::uint64_t compare, std::uint64_t value)
+        : operation_(context, address, value, compare) {}
+    bool await_ready() { return operation_.await_ready(); }
+    void await_suspend(std::coroutine_handle<> handle) { operation_.await_suspend(handle); }
+    CasResult await_resume() const {
+      const MemoryOp& op = operation_.op();
+      return {op.result, op.result == op.compare && !op.spurious};
+    }
+
+   private:
+    Operation<OpKind::kAtomicCasWeak> operation_;
+  };
+  WeakCas AtomicCasWeak(std::uint32_t buffer, std::uint64_t index, std::uint64_t compare, std::uint64_t value) {
+    return {*this, {buffer, index}, compare, value};
   }
 
   // Faithful mode: the operation the suspended kernel waits on, or null once it finished. The launcher takes it

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/parallel_for.h"
+#include "core/shared/rng.h"
 #include "emulated/simt/kernel_fault.h"
 
 namespace hpsf::simt {
@@ -46,8 +47,15 @@ void KernelTask::promise_type::operator delete(void* frame, std::size_t size) no
   ::operator delete(frame);
 }
 
+bool WeakCasPolicy::Fails(std::uint64_t step, std::uint32_t lane) const {
+  if (probability <= 0.0) return false;
+  // A stream of its own (0x3EAC), apart from the schedules' (0x5C4ED).
+  const std::uint32_t bits =
+      shared::RandomBits(shared::RngCounter{0x3EACu, std::uint32_t(step), std::uint32_t(step >> 32), lane, 0u}, 0u);
+  return double(bits) < probability * 4294967296.0;
+}
 LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
-                            Schedule& schedule, const OperationObserver& observer) {
+                            Schedule& schedule, const OperationObserver& observer, const WeakCasPolicy& weak_cas) {
   if (warp_size == 0) throw std::invalid_argument("warp size must be at least 1");
   std::deque<ThreadContext> contexts;  // stable addresses: kernels keep a reference
   std::vector<KernelTask> tasks;
@@ -99,17 +107,24 @@ LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::ui
     }
     for (std::uint32_t lane : order) {
       MemoryOp& op = *contexts[lane].Pending();
+      if (op.kind == OpKind::kAtomicCasWeak && weak_cas.Fails(report.stats.steps, lane)) {
+        op.spurious = true;
+        ++report.stats.spurious_cas_failures;
+      }
       try {
         memory.Apply(op);
       } catch (const KernelFault& fault) {
         throw KernelFault("thread " + std::to_string(lane) + ": " + fault.what());
       }
       if (observer) observer(lane, op);
-      if (op.kind == OpKind::kAtomicCas && op.result != op.compare) ++report.stats.cas_failures;
+      if ((op.kind == OpKind::kAtomicCas || op.kind == OpKind::kAtomicCasWeak) && op.result != op.compare) {
+        ++report.stats.cas_failures;
+      }
       for (std::uint64_t word : {std::uint64_t(warp), std::uint64_t(lane), std::uint64_t(op.kind),
                                  std::uint64_t(op.address.buffer), op.address.index, op.value, op.compare, op.result}) {
         trace.Add(word);
       }
+      if (op.spurious) trace.Add(1);
     }
     for (std::uint32_t lane : lanes) {
       contexts[lane].ClearPending();

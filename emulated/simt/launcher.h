@@ -22,6 +22,7 @@ struct LaunchStats {
   std::uint64_t steps = 0;
   std::uint64_t operations = 0;
   std::uint64_t cas_failures = 0;                             // CAS operations whose comparison failed
+  std::uint64_t spurious_cas_failures = 0;                    // weak CAS operations the policy failed
   std::uint64_t conflict_groups = 0;                          // same-address groups with a write, summed over steps
   std::map<std::uint32_t, std::uint64_t> active_lanes;        // lanes with an operation in a step -> steps
   std::map<std::uint32_t, std::uint64_t> conflicts_per_step;  // conflict groups in a step -> steps
@@ -35,8 +36,16 @@ struct LaunchReport {
 // Sees every operation of a faithful launch as it is applied, in order (a hook, as in Oclgrind's plugins).
 using OperationObserver = std::function<void(std::uint32_t thread, const MemoryOp& op)>;
 
+// Which weak compare-and-swaps of a faithful launch fail spuriously: each with `probability`, decided by the counter
+// RNG from the launch's step and the lane, so a run replays its failures as it replays its schedule.
+struct WeakCasPolicy {
+  double probability = 0.0;  // in [0, 1)
+  bool Fails(std::uint64_t step, std::uint32_t lane) const;
+};
+
 LaunchReport LaunchFaithful(DeviceMemory& memory, std::uint32_t threads, std::uint32_t warp_size, const Kernel& kernel,
-                            Schedule& schedule, const OperationObserver& observer = {});
+                            Schedule& schedule, const OperationObserver& observer = {},
+                            const WeakCasPolicy& weak_cas = {});
 // Fast mode's stand-in for a GPU's latency hiding: where a GPU runs other warps while one waits on memory, a core
 // runs one emulated thread after another, each stalling on its first random access. A prefetch, called for
 // thread t + kPrefetchDistance before thread t runs, asks for the lines that thread will touch first (what the

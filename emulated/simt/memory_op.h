@@ -15,6 +15,10 @@ enum class OpKind : std::uint8_t {
   kAtomicAddFloat,  // 32-bit float add on the bits, returns the old bits
   kAtomicCas,       // compare-and-swap: writes `value` if the word equals `compare`; returns the old value
   kAtomicMin,       // unsigned minimum, returns the old value
+  // Weak compare-and-swap (WGSL's atomicCompareExchangeWeak, C++'s compare_exchange_weak): as kAtomicCas, but it
+  // may fail spuriously, writing nothing where the word equals `compare`; `spurious` says it did. Faithful mode fails
+  // it as the launch's WeakCasPolicy decides; fast mode runs the CPU's, which on x86 never fails spuriously.
+  kAtomicCasWeak,
 };
 
 const char* ToString(OpKind kind);
@@ -32,6 +36,7 @@ struct MemoryOp {
   std::uint64_t value = 0;    // store / add operand / CAS desired value
   std::uint64_t compare = 0;  // CAS expected value
   std::uint64_t result = 0;   // the value the operation read (old value for read-modify-writes)
+  bool spurious = false;      // kAtomicCasWeak: failed spuriously (set by the launcher before it is applied)
   std::string ToString() const;
 };
 

@@ -14,6 +14,12 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
       .add_option("--schedule", flags.options.schedule,
                   "Faithful mode: round-robin, random:SEED or pct:SEED:DEPTH (exhaustive: tests only, up to 2 threads)")
       ->capture_default_str();
+  command
+      .add_option(
+          "--spurious-cas", flags.options.spurious_cas,
+          "Faithful mode: the share of weak compare-and-swaps that fail spuriously, in [0, 1) (kernels with one "
+          "only, such as --inject-defect weak-cas-old-value)")
+      ->capture_default_str();
   command.add_option("--vk-device", flags.vulkan.device_filter,
                      "Vulkan backend: the device whose name contains this text");
   command
@@ -32,7 +38,7 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
       .add_option("--inject-defect", flags.defect,
                   "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
                   "count-store-claim-first, count-store-join-first, last-seen-claimer-only, and the shipped bugs "
-                  "full-bucket-masked and window-past-the-end)")
+                  "full-bucket-masked, window-past-the-end and weak-cas-old-value)")
       ->capture_default_str();
 }
 

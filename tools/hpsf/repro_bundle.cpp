@@ -17,6 +17,13 @@ std::string ExactFloat(float value) {
   return text;
 }
 
+// Seventeen give back every double.
+std::string ExactDouble(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
 std::string Quoted(const std::string& word) {
   std::string quoted = "'";
   for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -117,6 +124,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   const bool faithful = emulator.mode == simt::Mode::kFaithful;
   a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});
   if (faithful) a.insert(a.end(), {"--warp-size", std::to_string(emulator.warp_size), "--schedule", emulator.schedule});
+  if (emulator.spurious_cas > 0.0) a.insert(a.end(), {"--spurious-cas", ExactDouble(emulator.spurious_cas)});
   if (defect != Defect::kNone) a.insert(a.end(), {"--inject-defect", ToString(defect)});
   if (!vulkan.device_filter.empty()) a.insert(a.end(), {"--vk-device", vulkan.device_filter});
   if (vulkan.staging != StagingPolicy::kAuto) a.insert(a.end(), {"--vk-staging", ToString(vulkan.staging)});

@@ -305,6 +305,7 @@ std::string AdversarialCase::ToString() const {
         .append(std::to_string(emulator.warp_size))
         .append(" schedule ")
         .append(emulator.schedule);
+    if (emulator.spurious_cas > 0.0) s.append(" spurious-cas ").append(std::to_string(emulator.spurious_cas));
   } else {
     s.append(", fast");
   }
@@ -342,9 +343,10 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   }
   // After the family, whose key-path configuration replaces the whole config: a user's shader handles its mode only.
   a.config.accumulation = options.accumulation ? *options.accumulation : accumulation;
-  // The scheme from a generator of its own, so that every other draw of a seed's cases stays what it was.
-  RecordGenerator scheme(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 1u, 0u}, 0xADF1u));
-  const std::uint32_t draw = scheme.Bits() % 4u;
+  // The probing scheme and the weak CAS from a generator of their own, added after the others, so that every draw of
+  // a seed's cases made before them stays what it was.
+  RecordGenerator late_draws(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 1u, 0u}, 0xADF1u));
+  const std::uint32_t draw = late_draws.Bits() % 4u;
   a.config.probing = options.probing ? *options.probing
                      : draw == 2u    ? ProbeKind::kBucket
                      : draw == 3u    ? ProbeKind::kBucketWindow
@@ -377,6 +379,8 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
         a.emulator.schedule = "pct:" + std::to_string(schedule_seed) + ":" + std::to_string(g.UniformInt(1, 4));
         break;
     }
+    // Half the faithful cases fail a quarter of their weak compare-and-swaps spuriously.
+    if (late_draws.Bits() % 2u == 0u) a.emulator.spurious_cas = 0.25;
   }
   // Rounding: a small F of the case's own, where truncation and rounding differ.
   if (a.config.accumulation == Accumulation::kFixed64 && g.Bits() % 4u == 0u) {

@@ -106,6 +106,7 @@ class Shrinker {
     if (c.emulator.mode == simt::Mode::kFaithful && c.emulator.schedule != "round-robin") {
       attempt([](AdversarialCase& a) { a.emulator.schedule = "round-robin"; });
     }
+    if (c.emulator.spurious_cas > 0.0) attempt([](AdversarialCase& a) { a.emulator.spurious_cas = 0.0; });
     if (c.emulator.mode == simt::Mode::kFaithful && c.emulator.warp_size != 8)
       attempt([](AdversarialCase& a) { a.emulator.warp_size = 8; });
     for (std::uint32_t limit = 1; limit < c.config.probe_limit; ++limit) {
