@@ -142,6 +142,20 @@ TEST(ProbingSchemes, TheCheckerJudgesATableByItsDeclaredScheme) {
   ASSERT_GT(wrapping, 0u);
   EXPECT_TRUE(Invariants(CheckTable({as_window, batch.records, wrapped.keys, wrapped.placements}))
                   .contains(TableInvariant::kSlotOutsideWindow));
+
+  // A home slot past the table (a key a shader or a corruption left) is named, never walked: under buckets no mask
+  // brings it back into the table (fuzz_checker found the checker reading past its arrays).
+  std::vector<KeyResult> keys = run.keys;
+  for (std::uint32_t i = 0; i < keys.size(); ++i) {
+    if (run.placements[i] == kProbeFailure) {
+      keys[i].slot0 = bucket.capacity + 4;
+      const std::vector<TableViolation> v = CheckTable({run.table, batch.records, keys, run.placements});
+      ASSERT_FALSE(v.empty());
+      EXPECT_NE(v.front().ToString().find("slot0 260 is not below the capacity 256"), std::string::npos)
+          << v.front().ToString();
+      break;
+    }
+  }
 }
 
 // Four cells share home slot 0 and fill slots 0 to 3 (in the order their atomics land), B's home is slot 4. Frame 1

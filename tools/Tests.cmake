@@ -37,6 +37,14 @@ set(hpsf_out ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
 file(MAKE_DIRECTORY ${hpsf_out})
 hpsf_add_cli_test(HpsfRender.MalformedSceneExits3 unit 3 "malformed.json: not valid JSON at byte" ""
   $<TARGET_FILE:hpsf> render ${hpsf_data}/malformed.json -o ${hpsf_out}/malformed.exr ABSENT ${hpsf_out}/malformed.exr)
+# A number beyond double's range is bad JSON too (nlohmann's out_of_range, not a parse_error; found by fuzz_declaration
+# in the table declaration, then here): exit 3, never an internal error.
+hpsf_add_cli_test(HpsfCheck.AGateFileNumberBeyondDoubleExits3 "unit;untrusted" 3
+  "number-overflow-gate.json: not valid JSON: .*number overflow" "" $<TARGET_FILE:hpsf> check
+  ${hpsf_data}/number-overflow-gate.json)
+hpsf_add_cli_test(HpsfGolden.AManifestNumberBeyondDoubleExits3 "unit;untrusted" 3
+  "number-overflow-manifest.json: not valid JSON: .*number overflow" "" $<TARGET_FILE:hpsf> golden check
+  --manifest ${hpsf_data}/number-overflow-manifest.json)
 hpsf_add_cli_test(HpsfRender.NanVertexExits3 unit 3 "nan_vertex.obj:3: vertex coordinate 2 is not a finite number" ""
   $<TARGET_FILE:hpsf> render ${hpsf_data}/nan_mesh.json -o ${hpsf_out}/nan.exr ABSENT ${hpsf_out}/nan.exr)
 hpsf_add_cli_test(HpsfRender.MissingMeshExits3 unit 3 "does_not_exist.obj: cannot open the mesh file" ""

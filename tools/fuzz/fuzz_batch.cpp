@@ -1,6 +1,7 @@
 #include "tools/fuzz/fuzz_batch.h"
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -77,6 +78,10 @@ FilterConfig DecodeConfig(FuzzedDataProvider& input, bool& constructed_keys) {
   c.lod = !constructed_keys;
   c.jitter_scale = constructed_keys ? 0.0f : 1.0f;
   c.cell_size = 1.0f;
+  // The probing scheme, a bucket's size rounded down to a power of two.
+  const std::uint8_t scheme = input.ConsumeIntegralInRange<std::uint8_t>(0, 2);
+  c.probing = scheme == 0 ? ProbeKind::kLinear : scheme == 1 ? ProbeKind::kBucket : ProbeKind::kBucketWindow;
+  if (c.probing == ProbeKind::kBucket) c.probe_limit = std::bit_floor(c.probe_limit);
   return c;
 }
 

@@ -183,6 +183,13 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                 keyed ? "keyed but never probed" : "placed without a key");
       continue;
     }
+    // Candidates are walked from slot0: one past the table names no slot (a scheme other than linear does not
+    // mask it back in), so it is the violation, and nothing else of the record is judged.
+    if (key.slot0 >= t.capacity) {
+      violate(TableInvariant::kSlotOutsideWindow, slot, {i},
+              "slot0 " + std::to_string(key.slot0) + " is not below the capacity " + std::to_string(t.capacity));
+      continue;
+    }
     if (slot == kProbeFailure) {
       for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
         const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
@@ -245,7 +252,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Priority: in the window of each record that found no slot, the untouched live slot of lowest priority.
   std::vector<std::uint32_t> victim_of(priority ? t.capacity : 0, kNotPlaced);  // per slot, a record choosing it
   for (std::uint32_t i = 0; priority && i < in.records.size(); ++i) {
-    if (in.placements[i] != kProbeFailure) continue;
+    if (in.placements[i] != kProbeFailure || in.keys[i].slot0 >= t.capacity) continue;
     std::optional<std::uint32_t> victim;
     for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
       const std::uint32_t s = shared::CandidateSlot(scheme, in.keys[i].slot0, probe);

@@ -73,6 +73,8 @@ Gate ExpandGate(const std::string& text, const std::string& source, const std::s
     document = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(source + ": not valid JSON at byte " + std::to_string(e.byte));
+  } catch (const json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
+    throw InputError(source + ": not valid JSON: " + e.what());
   }
   if (!document.is_object()) error.At("", "expected an object");
   if (!document.contains("hpsf_gate") || document["hpsf_gate"] != kGateFileVersion) {

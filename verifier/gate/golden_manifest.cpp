@@ -42,6 +42,8 @@ GoldenManifest ReadGoldenManifest(const std::string& path) {
     json = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path + ": not valid JSON at byte " + std::to_string(e.byte));
+  } catch (const nlohmann::json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
+    throw InputError(path + ": not valid JSON: " + e.what());
   }
   if (!json.is_object() || json.value("hpsf_golden", 0) != 1 || !json.contains("cases") || !json["cases"].is_array()) {
     throw InputError(path + ": expected {\"hpsf_golden\": 1, \"cases\": [...]}");

@@ -73,6 +73,8 @@ std::vector<DeclaredSetting> ApplyTableDeclarationText(const std::string& text, 
     document = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(source + ": not valid JSON at byte " + std::to_string(e.byte));
+  } catch (const json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
+    throw InputError(source + ": not valid JSON: " + e.what());
   }
   if (!document.is_object() || !document.contains("hpsf_table") || document["hpsf_table"] != kTableDeclarationVersion) {
     throw InputError(source + ": /hpsf_table: expected 1, the table declaration's version");

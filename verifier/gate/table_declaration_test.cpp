@@ -46,6 +46,7 @@ TEST(TableDeclaration, SetsWhatItNamesAndKeepsTheRest) {
 TEST(TableDeclaration, EveryBadDeclarationNamesTheFileAndThePlace) {
   const std::pair<const char*, const char*> cases[] = {
       {R"({"hpsf_table": 1,)", "t.json: not valid JSON at byte"},
+      {R"({"hpsf_table": 1, "capacity": 1E+400})", "t.json: not valid JSON: "},  // found by fuzz_declaration
       {R"([1, 2])", "t.json: /hpsf_table: expected 1"},
       {R"({"hpsf_table": 2})", "t.json: /hpsf_table: expected 1"},
       {R"({"hpsf_table": 1, "probe_limit": 4})", "t.json: "},
