@@ -88,6 +88,8 @@ set_tests_properties(HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits PROPERTI
 hpsf_add_cli_test(HpsfCrosscheck.TheSharcBucketsDeclarationPassesOnEveryBackend "vulkan;schemes" 0
   "level 2 tables: PASS" "" $<TARGET_FILE:hpsf> crosscheck cornell --size 32x32 --spp 2
   --table ${PROJECT_SOURCE_DIR}/examples/tables/sharc-buckets.json --repro-dir ${hpsf_out}/sharc-repro)
+hpsf_add_cli_test(HpsfCheck.AGateFileNamesTableDeclarationsBesideIt "vulkan;schemes" 0 "check: 4 of 4 cases passed" ""
+  $<TARGET_FILE:hpsf> check ${hpsf_data}/tables-gate.json)
 hpsf_add_cli_test(HpsfCrosscheck.ABadTableDeclarationExits3 "unit;schemes" 3
   "bad-bucket-table.json: /probing: bucket:B aligns its buckets to B" "" $<TARGET_FILE:hpsf> crosscheck cornell
   --table ${hpsf_data}/bad-bucket-table.json)
@@ -139,6 +141,14 @@ set_tests_properties(HpsfGolden.AChangedPixelFailsAndBlessMendsIt PROPERTIES LAB
 hpsf_add_cli_test(HpsfStats.CornellIsWithinTheory unit 0 "load 0.0060.*probe failures per probe limit.*fingerprint aliases per width.*jitter tests.*every rate within its theory" ""
   $<TARGET_FILE:hpsf> stats cornell)
 hpsf_add_cli_test(HpsfStats.BadCapacityExits3 unit 3 "--capacity" "" $<TARGET_FILE:hpsf> stats cornell --capacity 1000)
+# Under a scheme, the failures are counted under it: aligned buckets held to their binomial overflow, bucket-window
+# reported and not judged.
+hpsf_add_cli_test(HpsfStats.BucketsAreHeldToTheirOwnTheory "unit;schemes" 0
+  "probe failures per probe limit under bucket probing.*every rate within its theory" ""
+  $<TARGET_FILE:hpsf> stats cornell --probing bucket:16 --capacity 4096)
+hpsf_add_cli_test(HpsfStats.BucketWindowRatesAreNotJudged "unit;schemes" 0
+  "under bucket-window probing .*bucket-window has none, not judged.*\n  16 +[0-9.e-]+ +- " ""
+  $<TARGET_FILE:hpsf> stats cornell --probing bucket-window:16 --capacity 4096)
 hpsf_add_cli_test(HpsfCrosscheck.PassesOnTheCornellBox "unit;vulkan" 0 "level 2 tables: PASS.*level 3 agreement with the reference: PASS" ""
   $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --mode faithful --warp-size 8 --schedule random:3 --capacity 512)
 add_test(NAME HpsfCrosscheck.InjectedDefectFailsAndItsBundleReproducesIt

@@ -31,7 +31,9 @@ std::vector<std::string> OptionArguments(const std::string& name, const json& va
   error.At(pointer, "an option's value is a string, a number or a boolean");
 }
 
-bool IsPathOption(const std::string& name) { return name == "accumulate-spv" || name == "eviction-spv"; }
+bool IsPathOption(const std::string& name) {
+  return name == "accumulate-spv" || name == "eviction-spv" || name == "table";
+}
 
 bool IsFile(const std::string& scene) {
   return scene.find('/') != std::string::npos || scene.find('.') != std::string::npos;
