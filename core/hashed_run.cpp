@@ -22,12 +22,13 @@ std::vector<bool> AliasedSlots(const HashedRun& run) {
 void CountProbes(HashedRun& run) {
   run.probe_failures = 0;
   run.probe_lengths.assign(run.table.probe_limit, 0);
+  const shared::ProbeScheme scheme = ProbeSchemeOf(run.table);
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     const std::uint32_t slot = run.placements[i];
     if (slot == kProbeFailure) ++run.probe_failures;
     if (slot >= run.table.capacity) continue;
     // A placement outside its window is the checker's to name (kSlotOutsideWindow); it has no probe length.
-    const std::uint32_t index = shared::ProbeIndex(ProbeSchemeOf(run.table), run.keys[i].slot0, slot);
+    const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, slot);
     if (index != shared::kNoCandidate) ++run.probe_lengths[index];
   }
 }

@@ -25,6 +25,7 @@ std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t fram
     if (faults.size() < limit) faults.push_back(std::move(text));
   };
   const HashTableDump& t = run.table;
+  const shared::ProbeScheme scheme = ProbeSchemeOf(t);
   std::uint64_t placed = 0;
   for (std::size_t i = 0; i < run.placements.size() && faults.size() < limit; ++i) {
     const KeyResult& key = run.keys[i];
@@ -47,7 +48,7 @@ std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t fram
       continue;
     }
     ++placed;
-    if (key.slot0 >= t.capacity || shared::ProbeIndex(ProbeSchemeOf(t), key.slot0, slot) == shared::kNoCandidate) {
+    if (key.slot0 >= t.capacity || shared::ProbeIndex(scheme, key.slot0, slot) == shared::kNoCandidate) {
       fault(RecordPrefix(i) + "placed in slot " + std::to_string(slot) + ", which is not one of its candidates (" +
             ToString(t.probing) + ":" + std::to_string(t.probe_limit) + " from slot0 " + std::to_string(key.slot0) +
             ", capacity " + std::to_string(t.capacity) + ")");

@@ -11,6 +11,7 @@
 #include "verifier/gate/gate_families.h"
 #include "verifier/gate/gate_schema.h"
 #include "verifier/gate/json_schema.h"
+#include "verifier/gate/json_text.h"
 
 namespace hpsf {
 namespace {
@@ -68,14 +69,7 @@ constexpr const char* kDefaultGate = R"({
 
 Gate ExpandGate(const std::string& text, const std::string& source, const std::string& folder) {
   const gate::GateError error(source);
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(source + ": not valid JSON at byte " + std::to_string(e.byte));
-  } catch (const json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
+  json document = ParseJsonText(text, source);
   if (!document.is_object()) error.At("", "expected an object");
   if (!document.contains("hpsf_gate") || document["hpsf_gate"] != kGateFileVersion) {
     error.At("/hpsf_gate", "expected 1, the gate file's version");

@@ -2,11 +2,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "verifier/gate/json_text.h"
 
 namespace hpsf {
 namespace {
@@ -37,14 +39,7 @@ std::vector<std::string> GoldenCase::Command(const std::string& backend, const s
 GoldenManifest ReadGoldenManifest(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the golden manifest");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path + ": not valid JSON at byte " + std::to_string(e.byte));
-  } catch (const nlohmann::json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
-    throw InputError(path + ": not valid JSON: " + e.what());
-  }
+  nlohmann::json json = ParseJsonText(std::string(std::istreambuf_iterator<char>(in), {}), path);
   if (!json.is_object() || json.value("hpsf_golden", 0) != 1 || !json.contains("cases") || !json["cases"].is_array()) {
     throw InputError(path + ": expected {\"hpsf_golden\": 1, \"cases\": [...]}");
   }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "verifier/gate/json_schema.h"
+#include "verifier/gate/json_text.h"
 
 namespace hpsf {
 namespace {
@@ -68,14 +69,7 @@ std::string Problem(const ConfigError& e, const std::string& option) {
 
 std::vector<DeclaredSetting> ApplyTableDeclarationText(const std::string& text, const std::string& source,
                                                        FilterConfig& config) {
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(source + ": not valid JSON at byte " + std::to_string(e.byte));
-  } catch (const json::exception& e) {  // out_of_range.406: a number beyond double's range, e.g. 1e400
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
+  const json document = ParseJsonText(text, source);
   if (!document.is_object() || !document.contains("hpsf_table") || document["hpsf_table"] != kTableDeclarationVersion) {
     throw InputError(source + ": /hpsf_table: expected 1, the table declaration's version");
   }
