@@ -6,6 +6,7 @@
 #include "tools/hpsf/diff_command.h"
 #include "tools/hpsf/fuzz_command.h"
 #include "tools/hpsf/golden_command.h"
+#include "tools/hpsf/judge_command.h"
 #include "tools/hpsf/reference_command.h"
 #include "tools/hpsf/render_command.h"
 #include "tools/hpsf/stats_command.h"
@@ -24,6 +25,7 @@ void AddCommands(CLI::App& app, CommandContext& context) {
   AddGoldenCommand(app, context);
   AddFuzzCommand(app, context);
   AddCheckCommand(app, context);
+  AddJudgeCommand(app, context);
   AddReferenceCommand(app, context);
   AddSweepCommand(app, context);
 }

@@ -1,5 +1,6 @@
 #include "tools/hpsf/crosscheck_command.h"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -14,6 +15,8 @@
 #include "tools/hpsf/repro_bundle.h"
 #include "tracer/path_tracer.h"
 #include "verifier/contract/crosscheck.h"
+#include "verifier/contract/run_capture.h"
+#include "verifier/gate/table_declaration.h"
 
 namespace hpsf {
 namespace {
@@ -23,6 +26,7 @@ struct CrosscheckOptions {
   std::string backends = "reference,emulated,vulkan";
   std::string repro_dir = "hpsf-repro";
   std::string report_file;
+  std::string capture_dir;
   std::string size = "128x128";
   std::uint32_t frames = 1;  // a scene's; a record file's are all it holds
   bool frames_given = false, frame_given = false;
@@ -46,7 +50,8 @@ std::vector<std::string> SplitList(const std::string& text) {
 void WriteBundle(const CrosscheckOptions& o, std::span<const RecordBatch> frames, const CrosscheckReport& report) {
   std::vector<std::string> arguments;
   for (std::size_t i = 0; i < o.arguments.size(); ++i) {
-    if (o.arguments[i] == "--repro-dir" || o.arguments[i] == "--frame" || o.arguments[i] == "--report") {
+    if (o.arguments[i] == "--repro-dir" || o.arguments[i] == "--frame" || o.arguments[i] == "--report" ||
+        o.arguments[i] == "--capture") {
       ++i;
       continue;
     }
@@ -69,6 +74,19 @@ void CheckFrameOptions(const CrosscheckOptions& o) {
   }
 }
 
+// Every hashed backend's frames as captures, DIR/BACKEND-frame-N.hpsfc, through the writer a team's engine calls.
+void ObserveIntoCaptures(Crosschecker& checker, const std::string& dir, const FilterConfig& config) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw ConfigError("--capture", dir + ": " + error.message());
+  checker.ObserveFrames([dir, declaration = TableDeclarationText(config)](
+                            const std::string& backend, const RecordBatch& batch, std::uint32_t frame,
+                            const HashedRun& run, const HashTableDump* before) {
+    const std::string path = dir + "/" + backend + "-frame-" + std::to_string(frame) + ".hpsfc";
+    WriteRunCapture(path, declaration, batch, frame, run, before);
+  });
+}
+
 int Run(CrosscheckOptions& o, bool options_only) {
   o.filter.config.frames = o.frames;
   FilterConfig config = ResolveFilterConfig(o.filter);
@@ -84,27 +102,13 @@ int Run(CrosscheckOptions& o, bool options_only) {
                       o.input + " holds " + std::to_string(frames.size()) + " frames, not " + std::to_string(o.frames));
   }
   config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
+  if (!o.capture_dir.empty()) ObserveIntoCaptures(checker, o.capture_dir, config);
   const CrosscheckReport report = checker.CheckFrames(frames, config, emulator);
   if (!o.report_file.empty()) std::ofstream(o.report_file) << report.ToJson().dump(2) << "\n";
   if (o.json) {
     std::cout << report.ToJson().dump(2) << "\n";
   } else {
-    for (const LevelVerdict& v : report.levels) {
-      std::cout << "level " << v.level << " " << v.name << ": "
-                << (!v.applicable ? "n/a"
-                    : v.passed    ? "PASS"
-                                  : "FAIL")
-                << " (" << v.note << ")\n";
-      for (const std::string& f : v.failures) std::cout << "  " << f << "\n";
-    }
-    if (report.frames > 1) std::cout << "frames: " << report.frames << ", each judged from the table before it\n";
-    std::cout << "accumulation: " << ToString(report.accumulation) << ", F " << report.fixed_point_bits
-              << " fraction bits\n";
-    if (!report.vulkan_device.empty()) std::cout << "vulkan device: " << report.vulkan_device << "\n";
-    for (const QualityFigures& q : report.quality) {
-      std::cout << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
-                << ", records in aliased slots " << q.aliased_records << "\n";
-    }
+    std::cout << report.ToText();
   }
   if (report.Passed()) return kExitOk;
   WriteBundle(o, frames, report);
@@ -135,6 +139,8 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--repro-dir", o->repro_dir, "Where a failing check writes its repro bundle")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   c->add_option("--report", o->report_file, "Also write the versioned JSON report to FILE (hpsf check reads it)");
+  c->add_option("--capture", o->capture_dir,
+                "Write each hashed backend's frames as captures to DIR (BACKEND-frame-N.hpsfc), for hpsf judge");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
   c->callback([o, c, &context] {

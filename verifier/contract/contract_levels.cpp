@@ -3,6 +3,7 @@
 #include <bit>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "core/footprint.h"
@@ -18,13 +19,6 @@
 
 namespace hpsf {
 namespace {
-
-constexpr std::size_t kFailuresShown = 20;
-
-void Fail(LevelVerdict& verdict, std::string failure) {
-  verdict.passed = false;
-  if (verdict.failures.size() < kFailuresShown) verdict.failures.push_back(std::move(failure));
-}
 
 // A verdict's note gathers what each backend contributed to it.
 void Note(LevelVerdict& verdict, const std::string& backend, const std::string& text) {
@@ -50,8 +44,8 @@ std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, 
     ++compared;
     for (int w = 0; w < int(want.size()); ++w) {
       if (want[w] != got[w]) {
-        Fail(keys, prefix + "record " + std::to_string(i) + ": " + KeyResultWordName(w) + " differs (core " +
-                       std::to_string(want[w]) + ", backend " + std::to_string(got[w]) + ")");
+        keys.Fail(prefix + "record " + std::to_string(i) + ": " + KeyResultWordName(w) + " differs (core " +
+                  std::to_string(want[w]) + ", backend " + std::to_string(got[w]) + ")");
         break;
       }
     }
@@ -69,7 +63,7 @@ void CheckFrameTable(const std::string& who, const RecordBatch& batch, const Has
   input.temporal = config.temporal;
   input.level_seed = config.level_seed;
   input.normal_in_index = config.normal_in_index;
-  for (const TableViolation& v : CheckTable(input)) Fail(tables, who + ": " + v.ToString());
+  for (const TableViolation& v : CheckTable(input)) tables.Fail(who + ": " + v.ToString());
 }
 
 // Level 3 for one frame of a hashed run: every record outside the classified slots (probe failures, aliases,
@@ -87,8 +81,8 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
     failures += slot == kProbeFailure;
     if (slot == kProbeFailure || (slot < run.table.capacity && classified[slot])) continue;
     if ((slot < run.table.capacity) != (cell != kNoCell)) {
-      Fail(ideal, prefix + "record " + std::to_string(i) +
-                      ": placed in the table but not in the reference, or the other way round");
+      ideal.Fail(prefix + "record " + std::to_string(i) +
+                 ": placed in the table but not in the reference, or the other way round");
       continue;
     }
     if (cell == kNoCell) continue;
@@ -100,20 +94,20 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
         !fixed && config.temporal.mode == TemporalMode::kAdaptive && before && before->counts[slot] != 0;
     if (adaptive_float_history) continue;
     if (run.table.counts[slot] != c.count) {
-      Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": count " +
-                      std::to_string(run.table.counts[slot]) + ", reference " + std::to_string(c.count));
+      ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": count " +
+                 std::to_string(run.table.counts[slot]) + ", reference " + std::to_string(c.count));
     } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
-      Fail(ideal, prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) +
-                      ": sums differ from the reference cell's");
+      ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) +
+                 ": sums differ from the reference cell's");
     }
   }
   if (fixed && failures == 0 && std::count(classified.begin(), classified.end(), true) == 0 &&
       !SameBits(run.image, reference.image)) {
-    Fail(ideal, prefix + "nothing failed or aliased, yet the image differs from the reference");
+    ideal.Fail(prefix + "nothing failed or aliased, yet the image differs from the reference");
   }
   // Every image, classified records included, is the resolve of its own table: bit for bit in fixed64, within
   // the float32 bound of the exact sums.
-  for (const std::string& pixel : CheckImageAgainstTable(batch, run, before)) Fail(ideal, prefix + "image: " + pixel);
+  for (const std::string& pixel : CheckImageAgainstTable(batch, run, before)) ideal.Fail(prefix + "image: " + pixel);
   return compared;
 }
 
@@ -128,9 +122,9 @@ void CompareFloatOrder(const RecordBatch& batch, const HashedRun& run, const std
     if (!run.seeded_slots.empty() && run.seeded_slots[slot]) continue;  // its seed was added after the frame's adds
     const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
     if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
-      Fail(ideal, prefix + "slot " + std::to_string(slot) + " channel " + std::to_string(channel) +
-                      ": the replayed order of " + std::to_string(run.float_add_order[entry].size()) +
-                      " adds gives other bits");
+      ideal.Fail(prefix + "slot " + std::to_string(slot) + " channel " + std::to_string(channel) +
+                 ": the replayed order of " + std::to_string(run.float_add_order[entry].size()) +
+                 " adds gives other bits");
     }
   }
 }
@@ -145,9 +139,9 @@ const HashedRun* FilterOrFault(Backend& backend, const RecordBatch& batch, const
     backend.FilterFrame(batch, config);
     return backend.LastHashedRun();
   } catch (const simt::KernelFault& fault) {
-    Fail(tables, who + ": the kernel faulted: " + fault.what());
+    tables.Fail(who + ": the kernel faulted: " + fault.what());
   } catch (const ShaderOutputError& error) {
-    for (const std::string& fault : error.faults()) Fail(tables, who + ": invalid shader output: " + fault);
+    for (const std::string& fault : error.faults()) tables.Fail(who + ": invalid shader output: " + fault);
     if (refused_keys && error.keys().size() == batch.records.size()) *refused_keys = error.keys();
   }
   return nullptr;
@@ -189,7 +183,8 @@ JudgedBackend EmulatedPair::Judged() {
 }
 
 CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
-                               FilterConfig config, std::span<const JudgedBackend> hashed) {
+                               FilterConfig config, std::span<const JudgedBackend> hashed,
+                               const FrameObserver& observer) {
   const bool any_hashed = !hashed.empty();
   const bool several = frames.size() > 1;
   const bool fixed = config.accumulation == Accumulation::kFixed64;
@@ -226,10 +221,11 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         s.fault_at = several ? " from frame " + std::to_string(numbers[k]) + " on" : "";
         continue;
       }
+      if (observer) observer(judged.name, batch, numbers[k], *run, s.before ? &*s.before : nullptr);
       if (judged.judge_keys) s.keys_compared += CompareKeys(batch, config, run->keys, who + ": ", keys);
       if (run->table.fixed_point_bits != fixed_point_bits) {
-        Fail(tables, who + ": F " + std::to_string(run->table.fixed_point_bits) + ", the reference's " +
-                         std::to_string(fixed_point_bits) + ": sums of different scales cannot be compared");
+        tables.Fail(who + ": F " + std::to_string(run->table.fixed_point_bits) + ", the reference's " +
+                    std::to_string(fixed_point_bits) + ": sums of different scales cannot be compared");
       }
 
       CheckFrameTable(who, batch, *run, s.before, config, tables);
@@ -249,13 +245,13 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
                                                  s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
 
       if (judged.ordered && again->trace_hash != run->trace_hash) {
-        Fail(determinism, who + ": the trace hash changed between two identical runs");
+        determinism.Fail(who + ": the trace hash changed between two identical runs");
       }
       const RerunPromise promise =
           RerunPromiseFor(judged.ordered, config.accumulation, s.classes.any() || s.rerun_classes.any());
       s.promises.insert(ToString(promise));
       for (const std::string& difference : CompareReruns(*run, *again, promise)) {
-        Fail(determinism, who + ": " + difference);
+        determinism.Fail(who + ": " + difference);
       }
       if (k + 1 < frames.size()) {
         s.before = run->table;
@@ -350,6 +346,26 @@ nlohmann::json CrosscheckReport::ToJson() const {
                             {"aliased_records", q.aliased_records}});
   }
   return j;
+}
+
+std::string CrosscheckReport::ToText() const {
+  std::ostringstream out;
+  for (const LevelVerdict& v : levels) {
+    out << "level " << v.level << " " << v.name << ": "
+        << (!v.applicable ? "n/a"
+            : v.passed    ? "PASS"
+                          : "FAIL")
+        << " (" << v.note << ")\n";
+    for (const std::string& f : v.failures) out << "  " << f << "\n";
+  }
+  if (frames > 1) out << "frames: " << frames << ", each judged from the table before it\n";
+  out << "accumulation: " << ToString(accumulation) << ", F " << fixed_point_bits << " fraction bits\n";
+  if (!vulkan_device.empty()) out << "vulkan device: " << vulkan_device << "\n";
+  for (const QualityFigures& q : quality) {
+    out << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
+        << ", records in aliased slots " << q.aliased_records << "\n";
+  }
+  return out.str();
 }
 
 }  // namespace hpsf

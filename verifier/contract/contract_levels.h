@@ -47,7 +47,8 @@ class EmulatedPair {
 // frames[k] filtered as frame numbers[k] through one table per backend (each Reset first), the reference always:
 // the four levels of every frame, each failure naming its frame when there are several.
 CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
-                               FilterConfig config, std::span<const JudgedBackend> hashed);
+                               FilterConfig config, std::span<const JudgedBackend> hashed,
+                               const FrameObserver& observer = {});
 
 // The reference and the emulated backend on one batch, as frame config.frame: Crosscheck(batch, config,
 // {"reference", "emulated"}, ...) without linking Vulkan.

@@ -58,7 +58,7 @@ CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::s
     hashed.push_back(
         {"vulkan", vulkan_->backend.backend.get(), vulkan_->rerun.backend.get(), "rerun on the device", false, true});
   }
-  CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed);
+  CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed, observer_);
   if (has("vulkan")) report.vulkan_device = vulkan_->description;
   return report;
 }

@@ -7,6 +7,7 @@
 #define HPSF_VERIFIER_CONTRACT_CROSSCHECK_H
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/filter_config.h"
+#include "core/hashed_run.h"
 #include "core/record.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
@@ -29,6 +31,12 @@ struct LevelVerdict {
   bool passed = true;
   std::string note;                   // why not applicable, or what was compared
   std::vector<std::string> failures;  // the first few, each naming records or slots
+  static constexpr std::size_t kFailuresShown = 20;
+  // Fails the level, keeping the first kFailuresShown failures.
+  void Fail(std::string failure) {
+    passed = false;
+    if (failures.size() < kFailuresShown) failures.push_back(std::move(failure));
+  }
 };
 
 // Summed over the frames of a sequence.
@@ -52,7 +60,13 @@ struct CrosscheckReport {
   // "level N NAME: " and the first failure of the first failed level (its note when it lists none); "" if passed.
   std::string FirstFailure() const;
   nlohmann::json ToJson() const;  // versioned
+  std::string ToText() const;     // for people: each level's verdict and failures, then the figures
 };
+
+// Sees each frame a hashed backend filtered (not its rerun's), before it is judged: the records, the frame's number,
+// the run and the table before it (null for a table that started empty). `hpsf crosscheck --capture` writes these.
+using FrameObserver = std::function<void(const std::string& backend, const RecordBatch& batch, std::uint32_t frame,
+                                         const HashedRun& run, const HashTableDump* before)>;
 
 struct VulkanBackendOptions {
   std::string device_filter;   // --vk-device: a substring of the device name; empty picks the best
@@ -79,6 +93,7 @@ class Crosschecker {
   // at least frames.size() (fixed64's F leaves room for that many).
   CrosscheckReport CheckFrames(std::span<const RecordBatch> frames, const FilterConfig& config,
                                const EmulatorOptions& emulator);
+  void ObserveFrames(FrameObserver observer) { observer_ = std::move(observer); }
 
  private:
   CrosscheckReport Judge(std::span<const RecordBatch> frames, std::span<const std::uint32_t> numbers,
@@ -87,6 +102,7 @@ class Crosschecker {
   std::vector<std::string> backends_;
   Defect defect_;
   VulkanBackendOptions vulkan_options_;
+  FrameObserver observer_;
   std::unique_ptr<VulkanContext> vulkan_;  // created by the first batch that needs it
 };
 

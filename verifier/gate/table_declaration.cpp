@@ -107,6 +107,30 @@ std::vector<DeclaredSetting> ApplyTableDeclarationText(const std::string& text, 
   return made;
 }
 
+std::string TableDeclarationText(const FilterConfig& config) {
+  json document = {
+      {"hpsf_table", kTableDeclarationVersion},
+      {"name", "written by hpsf"},
+      {"capacity", config.capacity},
+      {"probing", ToString(config.probing) + ":" + std::to_string(config.probe_limit)},
+      {"key",
+       {{"identity", "fingerprint"},
+        {"fingerprint_bits", config.fingerprint_bits},
+        {"normal_in_index", config.normal_in_index}}},
+      {"sums", {{"encoding", ToString(config.accumulation)}}},
+      {"passes",
+       {{"eviction", config.eviction.ToString()},
+        {"temporal", config.temporal.ToString()},
+        {"level_change", config.level_seed.ToString()}}},
+  };
+  if (config.fixed_point_bits) {
+    document["sums"]["fixed_point_bits"] = *config.fixed_point_bits;
+  } else {
+    document["sums"]["fixed_point_bits"] = "auto";
+  }
+  return document.dump(2) + "\n";
+}
+
 std::vector<DeclaredSetting> ApplyTableDeclaration(const std::string& path, FilterConfig& config) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the table declaration");

@@ -28,6 +28,10 @@ std::vector<DeclaredSetting> ApplyTableDeclaration(const std::string& path, Filt
 std::vector<DeclaredSetting> ApplyTableDeclarationText(const std::string& text, const std::string& source,
                                                        FilterConfig& config);
 
+// The declaration of `config`'s table, every field given: what hpsf writes into a capture of its own runs. Applied
+// to hpsf's defaults, it gives back config's table (capacity, probing, key, sums and passes).
+std::string TableDeclarationText(const FilterConfig& config);
+
 }  // namespace hpsf
 
 #endif  // HPSF_VERIFIER_GATE_TABLE_DECLARATION_H

@@ -1,0 +1,111 @@
+#include "tools/hpsf/judge_command.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include "core/capture_file.h"
+#include "core/error.h"
+#include "tools/hpsf/seconds_since.h"
+#include "verifier/contract/capture_judgement.h"
+#include "verifier/gate/junit_report.h"
+#include "verifier/gate/table_declaration.h"
+
+namespace hpsf {
+namespace {
+
+struct JudgeOptions {
+  std::vector<std::string> captures;
+  bool json = false;
+  std::string junit_file;
+};
+
+struct JudgedCapture {
+  std::string path;
+  CrosscheckReport report;
+  double seconds = 0.0;
+};
+
+// A directory stands for the captures in it, in name order.
+std::vector<std::string> CaptureFiles(const std::vector<std::string>& given) {
+  std::vector<std::string> files;
+  for (const std::string& path : given) {
+    if (!std::filesystem::is_directory(path)) {
+      files.push_back(path);
+      continue;
+    }
+    std::vector<std::string> inside;
+    for (const auto& entry : std::filesystem::directory_iterator(path)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".hpsfc") inside.push_back(entry.path().string());
+    }
+    if (inside.empty()) throw InputError(path + ": a directory without captures (*.hpsfc)");
+    std::sort(inside.begin(), inside.end());
+    files.insert(files.end(), inside.begin(), inside.end());
+  }
+  return files;
+}
+
+JudgedCapture Judge(const std::string& path) {
+  const auto start = std::chrono::steady_clock::now();
+  const Capture capture = ReadCapture(path);
+  FilterConfig config;
+  ApplyTableDeclarationText(capture.declaration, path + ": its declaration", config);
+  JudgedCapture judged{path, JudgeCapture(capture, config), 0.0};
+  judged.seconds = SecondsSince(start);
+  return judged;
+}
+
+GateCaseResult JUnitCase(const JudgedCapture& j, std::size_t index) {
+  GateCaseResult r;
+  r.id = j.path;
+  r.family = "judge";
+  r.outcome = j.report.Passed() ? CaseOutcome::kPassed : CaseOutcome::kFailed;
+  r.seconds = j.seconds;
+  r.message = j.report.FirstFailure();
+  r.details = j.report.ToText();
+  r.reproduce = "hpsf judge " + j.path;
+  r.fixed_point = ToString(j.report.accumulation) + ", F " + std::to_string(j.report.fixed_point_bits);
+  r.index = index;
+  return r;
+}
+
+int Run(const JudgeOptions& o, bool options_only) {
+  if (options_only) return kExitOk;
+  // Every capture is read and judged before anything is printed: a bad one leaves no partial output.
+  std::vector<JudgedCapture> judged;
+  for (const std::string& path : CaptureFiles(o.captures)) judged.push_back(Judge(path));
+  bool passed = true;
+  nlohmann::json json = {{"version", 1}, {"captures", nlohmann::json::array()}};
+  std::vector<GateCaseResult> cases;
+  for (const JudgedCapture& j : judged) {
+    passed = passed && j.report.Passed();
+    json["captures"].push_back({{"capture", j.path}, {"report", j.report.ToJson()}});
+    cases.push_back(JUnitCase(j, cases.size()));
+    if (!o.json) std::cout << j.path << ": " << (j.report.Passed() ? "PASS" : "FAIL") << "\n" << j.report.ToText();
+  }
+  json["passed"] = passed;
+  if (o.json) std::cout << json.dump(2) << "\n";
+  if (!o.junit_file.empty()) {
+    std::ofstream out(o.junit_file);
+    out << JUnitXml("hpsf judge", cases);
+    if (!out) throw InputError(o.junit_file + ": cannot write the JUnit report");
+  }
+  return passed ? kExitOk : kExitCheckFailed;
+}
+
+}  // namespace
+
+void AddJudgeCommand(CLI::App& app, CommandContext& context) {
+  auto o = std::make_shared<JudgeOptions>();
+  CLI::App* c = app.add_subcommand(
+      "judge", "Judge frames captured from a team's engine (FILE.hpsfc, or a directory of them) by the contract");
+  c->add_option("captures", o->captures, "Captures, or directories of captures (*.hpsfc)")->required();
+  c->add_flag("--json", o->json, "Print the versioned verdicts as JSON");
+  c->add_option("--junit", o->junit_file, "Also write a JUnit XML report to FILE, one test case per capture");
+  c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });
+}
+
+}  // namespace hpsf

@@ -1,0 +1,273 @@
+#include "verifier/contract/capture_judgement.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "core/footprint.h"
+#include "core/hashed_run.h"
+#include "core/input_check.h"
+#include "core/key_batch.h"
+#include "core/shared/eviction_priority.h"
+#include "core/shared/fixed_point.h"
+#include "verifier/checker/classified_slots.h"
+#include "verifier/checker/table_checker.h"
+
+namespace hpsf {
+namespace {
+
+using KeyWordsOf = std::array<std::uint32_t, 6>;
+
+std::string RecordName(std::size_t i) { return "record " + std::to_string(i); }
+
+// The capture against its declaration: what the buffers' shape says must be what the declaration declares.
+void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
+  auto fail = [&](const std::string& problem) { throw InputError(c.path + ": " + problem); };
+  if (c.capacity != config.capacity) {
+    fail("the table has " + std::to_string(c.capacity) + " slots, its declaration " + std::to_string(config.capacity));
+  }
+  if (c.float32_sums != (config.accumulation == Accumulation::kFloat32)) {
+    fail(std::string("the sums are ") + (c.float32_sums ? "float32" : "fixed64") + ", its declaration's " +
+         ToString(config.accumulation));
+  }
+  if (c.last_seen != config.eviction.enabled()) {
+    fail(config.eviction.enabled() ? "its declaration evicts, but the tables carry no last-seen frames"
+                                   : "the tables carry last-seen frames, but its declaration does not evict");
+  }
+  if (!c.float32_sums &&
+      (c.fixed_point_bits < shared::kFixedPointBitsMin || c.fixed_point_bits > shared::kFixedPointBitsMax)) {
+    fail("F " + std::to_string(c.fixed_point_bits) + " is outside [-126, 126]");
+  }
+  if (config.level_seed.enabled) fail("level seeding (passes.level_change) is not judged from a capture");
+  if (c.hpsf_records && c.key_words != 6) {
+    fail("hpsf's records come with hpsf's key, of 6 words; the capture's keys have " + std::to_string(c.key_words));
+  }
+}
+
+HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConfig& config) {
+  HashTableDump d;
+  d.capacity = c.capacity;
+  d.probe_limit = config.probe_limit;
+  d.probing = config.probing;
+  d.fingerprint_bits = config.fingerprint_bits;
+  d.accumulation = config.accumulation;
+  d.fixed_point_bits = c.float32_sums ? 0 : c.fixed_point_bits;
+  d.tags = t.tags;
+  d.fixed_sums = t.fixed_sums;
+  d.float_sums = t.float_sums;
+  d.counts = t.counts;
+  d.last_seen = t.last_seen;
+  return d;
+}
+
+KeyWordsOf WordsOf(const KeyResult& k) {
+  return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal, k.words.extra};
+}
+
+// The captured keys as core's KeyResult: the key words in order, the home slot as slot0, the identity as the
+// fingerprint.
+std::vector<KeyResult> CapturedKeys(const Capture& c) {
+  std::vector<KeyResult> keys(c.record_count());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    std::uint32_t w[6] = {};
+    for (std::uint32_t k = 0; k < c.key_words; ++k) w[k] = c.keys[i * c.key_words + k];
+    KeyResult& key = keys[i];
+    key = shared::EmptyKeyResult(c.statuses[i]);
+    key.words = {w[0], w[1], w[2], w[3], w[4], w[5]};
+    key.slot0 = c.home_slots[i];
+    key.fingerprint = c.identities[i];
+  }
+  return keys;
+}
+
+// The records the checker sums: hpsf's own when captured, else each one's contribution, with a vertex where it has
+// a key (a non-finite or negative contribution is then rejected, as hpsf rejects such a record).
+std::vector<Record> RecordsToCheck(const Capture& c) {
+  if (c.hpsf_records) return c.hpsf_records->records;
+  std::vector<Record> records(c.record_count());
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    Record& r = records[i];
+    r = {};
+    r.contribution = glm::vec4(c.contributions[i][0], c.contributions[i][1], c.contributions[i][2], 0.0f);
+    r.path.z = c.statuses[i] == shared::kKeyNoVertex ? 0u : shared::kRecordHasVertex;
+  }
+  return records;
+}
+
+// Level 1.
+std::uint64_t JudgeKeys(const Capture& c, const FilterConfig& config, std::span<const Record> records,
+                        std::vector<KeyResult>& keys, LevelVerdict& verdict) {
+  const std::uint32_t bits = config.fingerprint_bits;
+  std::map<KeyWordsOf, std::size_t> first_of;
+  std::uint64_t judged = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const KeyResult& k = keys[i];
+    if (k.status > shared::kKeyUnkeyable) {
+      verdict.Fail(RecordName(i) + ": status " + std::to_string(k.status) + " is none of keyed, no vertex, unkeyable");
+      continue;
+    }
+    if (k.status != shared::kKeyed || CheckRecordInputs(records[i]) != InputVerdict::kAccepted) continue;
+    ++judged;
+    if (k.slot0 >= c.capacity) {
+      verdict.Fail(RecordName(i) + ": home slot " + std::to_string(k.slot0) + " outside the table of " +
+                   std::to_string(c.capacity) + " slots");
+    }
+    if (k.fingerprint == 0) {
+      verdict.Fail(RecordName(i) +
+                   ": identity 0, the empty slot's marker: its cell can never be told from an empty slot");
+    } else if (bits < 32 && (k.fingerprint >> bits) != 0) {
+      verdict.Fail(RecordName(i) + ": identity " + std::to_string(k.fingerprint) + " wider than the declared " +
+                   std::to_string(bits) + " bits");
+    } else if (config.eviction.by_priority() && k.fingerprint == shared::kTombstoneTag) {
+      verdict.Fail(RecordName(i) + ": identity 0xFFFFFFFF, priority eviction's tombstone marker");
+    }
+    const auto [first, inserted] = first_of.emplace(WordsOf(k), i);
+    if (!inserted) {
+      const KeyResult& f = keys[first->second];
+      if (f.slot0 != k.slot0 || f.fingerprint != k.fingerprint) {
+        verdict.Fail(RecordName(i) + " and " + RecordName(first->second) + " share their key words but not their " +
+                     (f.slot0 != k.slot0 ? "home slot" : "identity") + ": the key is not a function of the cell");
+      }
+    }
+  }
+  if (!c.hpsf_records) return judged;
+  // hpsf's key: every word of every accepted record against core's, whose level then stands for the captured one.
+  const CapturedRecords& r = *c.hpsf_records;
+  const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, r.fov_y_radians, r.height),
+                                         std::uint32_t(records.size()));
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (CheckRecordInputs(records[i]) != InputVerdict::kAccepted) continue;
+    const KeyResult expected = shared::ComputeKey(params, records[i]);
+    const auto want = KeyResultWords(expected);
+    KeyResult got = keys[i];
+    got.level = expected.level;  // a capture carries no level: hpsf's is core's
+    const auto have = KeyResultWords(got);
+    for (int w = 0; w < int(want.size()); ++w) {
+      if (want[w] != have[w]) {
+        verdict.Fail(RecordName(i) + ": " + KeyResultWordName(w) + " differs (core " + std::to_string(want[w]) +
+                     ", capture " + std::to_string(have[w]) + ")");
+        break;
+      }
+    }
+    keys[i].level = expected.level;
+    if (!std::equal(
+            c.contributions[i].begin(), c.contributions[i].end(), &records[i].contribution[0],
+            [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); })) {
+      verdict.Fail(RecordName(i) + ": the captured contribution is not its record's");
+    }
+  }
+  return judged;
+}
+
+struct ExactCell {
+  std::uint64_t count = 0;
+  std::array<std::uint64_t, 3> fixed_sum = {};
+  std::set<std::uint32_t> slots;  // where its records went; kProbeFailure for those that failed
+  std::size_t first_record = 0;
+};
+
+// Level 3.
+std::uint64_t JudgeAgainstExactMap(const Capture& c, const FilterConfig& config, std::span<const Record> records,
+                                   const HashedRun& run, const HashTableDump* before,
+                                   const std::vector<bool>& classified, LevelVerdict& verdict) {
+  const bool fixed = !c.float32_sums;
+  const float scale = fixed ? shared::PowerOfTwo(c.fixed_point_bits) : 1.0f;
+  std::map<KeyWordsOf, ExactCell> cells;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const KeyResult& k = run.keys[i];
+    if (k.status != shared::kKeyed || CheckRecordInputs(records[i]) != InputVerdict::kAccepted) continue;
+    ExactCell& cell = cells[WordsOf(k)];
+    if (cell.count == 0) cell.first_record = i;
+    ++cell.count;
+    for (int ch = 0; ch < 3 && fixed; ++ch)
+      cell.fixed_sum[ch] += shared::ToFixedPoint(records[i].contribution[ch], scale);
+    cell.slots.insert(run.placements[i]);
+  }
+  for (const auto& [words, cell] : cells) {
+    if (cell.slots.size() > 1) {
+      std::string where;
+      for (std::uint32_t s : cell.slots) {
+        where += (where.empty() ? "" : ", ") + (s == kProbeFailure ? std::string("failed") : std::to_string(s));
+      }
+      verdict.Fail("the cell of " + RecordName(cell.first_record) + " is split: its " + std::to_string(cell.count) +
+                   " records went to " + where);
+    }
+  }
+  std::uint64_t compared = 0;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const std::uint32_t slot = run.placements[i];
+    if (slot >= c.capacity || classified[slot]) continue;
+    const auto found = cells.find(WordsOf(run.keys[i]));
+    if (found == cells.end()) continue;  // placed without a key: level 2's
+    const ExactCell& cell = found->second;
+    const bool history = before && before->counts[slot] != 0;
+    if (history && config.temporal.blends()) continue;  // the blend is level 2's
+    ++compared;
+    const std::uint64_t count = run.table.counts[slot] - (history ? before->counts[slot] : 0);
+    if (count != cell.count) {
+      verdict.Fail(RecordName(i) + " at slot " + std::to_string(slot) + ": the frame's count " + std::to_string(count) +
+                   ", its cell's " + std::to_string(cell.count));
+      continue;
+    }
+    for (int ch = 0; ch < 3 && fixed; ++ch) {
+      const std::uint64_t sum = run.table.fixed_sums[slot][ch] - (history ? before->fixed_sums[slot][ch] : 0);
+      if (sum != cell.fixed_sum[ch]) {
+        verdict.Fail(RecordName(i) + " at slot " + std::to_string(slot) + ": channel " + std::to_string(ch) +
+                     " differs from its cell's exact sum");
+        break;
+      }
+    }
+  }
+  return compared;
+}
+
+}  // namespace
+
+CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
+  CheckAgainstDeclaration(capture, config);
+  config.frame = capture.frame;
+  const std::vector<Record> records = RecordsToCheck(capture);
+  LevelVerdict keys{1, "keys", true, true, "", {}};
+  LevelVerdict tables{2, "tables", true, true, "", {}};
+  LevelVerdict ideal{3, "agreement with the reference", true, true, "", {}};
+  LevelVerdict determinism{4, "determinism", false, true, "one capture is one run", {}};
+
+  HashedRun run;
+  run.keys = CapturedKeys(capture);
+  const std::uint64_t judged = JudgeKeys(capture, config, records, run.keys, keys);
+  keys.note = std::to_string(judged) + " keyed records: home slot, identity, one key per cell" +
+              (capture.hpsf_records ? "; hpsf's key: every word against core's" : "");
+
+  run.table = TableOf(capture.after, capture, config);
+  run.placements = capture.placements;
+  std::optional<HashTableDump> before;
+  if (capture.before) before = TableOf(*capture.before, capture, config);
+  TableCheckInput input{run.table, records, run.keys, run.placements};
+  input.before = before ? &*before : nullptr;
+  input.eviction = config.eviction;
+  input.frame = config.frame;
+  input.temporal = config.temporal;
+  input.normal_in_index = config.normal_in_index;
+  for (const TableViolation& v : CheckTable(input)) tables.Fail("capture: " + v.ToString());
+  tables.note = std::string("table checker") + (before ? ", from the captured table before the frame" : "");
+
+  ClassifiedSlots classes(config.eviction.by_priority(), false, config.normal_in_index);
+  const std::vector<bool>& classified = classes.AddFrame(run);
+  CountProbes(run);
+  const std::uint64_t compared =
+      JudgeAgainstExactMap(capture, config, records, run, before ? &*before : nullptr, classified, ideal);
+  ideal.note = std::string("the exact map over the captured key words: one slot per cell; ") +
+               (capture.float32_sums ? "counts" : "counts and fixed64 sums") +
+               " of the frame equal to each cell's outside the classified slots; " + std::to_string(compared) +
+               " records compared; no image in a capture";
+
+  CrosscheckReport report;
+  report.levels = {keys, tables, ideal, determinism};
+  report.quality.push_back({"capture", run.probe_failures, classes.aliased_slots(), classes.classified_records()});
+  report.fixed_point_bits = capture.float32_sums ? 0 : capture.fixed_point_bits;
+  report.accumulation = config.accumulation;
+  return report;
+}
+
+}  // namespace hpsf

@@ -1,0 +1,63 @@
+#include "verifier/contract/run_capture.h"
+
+#include <span>
+#include <vector>
+
+#include "core/capture_writer.h"
+#include "core/error.h"
+
+namespace hpsf {
+namespace {
+
+static_assert(sizeof(std::array<std::uint64_t, 3>) == 24 && sizeof(std::array<float, 3>) == 12);
+
+capture::TableBuffers BuffersOf(const HashTableDump& t) {
+  capture::TableBuffers b;
+  b.tags = t.tags;
+  b.fixed_sums = {reinterpret_cast<const std::uint64_t*>(t.fixed_sums.data()), 3 * t.fixed_sums.size()};
+  b.float_sums = {reinterpret_cast<const float*>(t.float_sums.data()), 3 * t.float_sums.size()};
+  b.counts = t.counts;
+  b.last_seen = t.last_seen;
+  return b;
+}
+
+}  // namespace
+
+void WriteRunCapture(const std::string& path, const std::string& declaration, const RecordBatch& batch,
+                     std::uint32_t frame, const HashedRun& run, const HashTableDump* before) {
+  const std::size_t n = batch.records.size();
+  std::vector<float> contributions(3 * n);
+  std::vector<std::uint32_t> keys(6 * n), home(n), identities(n), statuses(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) contributions[3 * i + std::size_t(c)] = batch.records[i].contribution[c];
+    const KeyResult& k = run.keys[i];
+    const std::uint32_t words[6] = {k.words.cell_x, k.words.cell_y, k.words.cell_z,
+                                    k.words.level,  k.words.normal, k.words.extra};
+    std::copy(words, words + 6, keys.begin() + std::ptrdiff_t(6 * i));
+    home[i] = k.slot0;
+    identities[i] = k.fingerprint;
+    statuses[i] = k.status;
+  }
+  const capture::RecordView records{batch.width, batch.height, batch.samples_per_pixel, batch.fov_y_radians,
+                                    std::as_bytes(std::span<const Record>(batch.records))};
+  const capture::TableBuffers table_before = before ? BuffersOf(*before) : capture::TableBuffers{};
+  capture::FrameCapture c;
+  c.declaration = declaration;
+  c.frame = frame;
+  c.capacity = run.table.capacity;
+  c.fixed_point_bits = run.table.fixed_point_bits;
+  c.float32_sums = run.table.accumulation == Accumulation::kFloat32;
+  c.key_words = 6;
+  c.contributions = contributions;
+  c.keys = keys;
+  c.home_slots = home;
+  c.identities = identities;
+  c.statuses = statuses;
+  c.placements = run.placements;
+  c.hpsf_records = &records;
+  c.before = before ? &table_before : nullptr;
+  c.after = BuffersOf(run.table);
+  if (const std::string error = capture::WriteCapture(path, c); !error.empty()) throw InputError(error);
+}
+
+}  // namespace hpsf
