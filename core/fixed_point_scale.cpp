@@ -35,6 +35,26 @@ unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int chan
   return sum;
 }
 
+void RequireFixedPointConverts(std::span<const glm::vec3> contributions, int fixed_point_bits) {
+  float largest = 0.0f;
+  for (const glm::vec3& c : contributions) largest = std::max({largest, c.x, c.y, c.z});
+  // c * 2^F is exact in double; below 2^64 its rounding to even stays below 2^64 too (the largest float under 2^64
+  // is 2^64 - 2^40).
+  if (std::ldexp(double(largest), fixed_point_bits) < 0x1p64) return;
+  const int exponent = std::ilogb(largest);
+  throw ConfigError("--fixed-point-bits", "F " + std::to_string(fixed_point_bits) + " is too large for a contribution of " +
+                                              std::to_string(largest) + " in this batch: it reaches 2^64, past fixed64's range; F " +
+                                              std::to_string(63 - exponent) + " at most converts it");
+}
+
+void RequireFixedPointConverts(std::span<const Record> records, int fixed_point_bits) {
+  std::vector<glm::vec3> contributions;
+  for (const Record& r : records) {
+    if (EntersTable(r)) contributions.push_back(glm::vec3(r.contribution));
+  }
+  RequireFixedPointConverts(contributions, fixed_point_bits);
+}
+
 int ChooseFixedPointBits(std::span<const Record> records, std::uint32_t frames) {
   std::vector<glm::vec3> contributions;
   contributions.reserve(records.size());

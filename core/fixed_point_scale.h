@@ -30,6 +30,14 @@ int ChooseFixedPointBits(std::span<const Record> records, std::uint32_t frames =
 int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner = {},
                            std::uint32_t frames = 1);
 
+// Every contribution converts at F: fixed64's c * 2^F, rounded, lies below 2^64, where the conversion is defined in
+// C++ and GLSL alike (a sum past it wraps and is counted; one conversion past it is undefined). The automatic F
+// always fits its first frame, but a given --fixed-point-bits, or a later frame much brighter than the first, may not:
+// a ConfigError naming --fixed-point-bits and the largest F that would. `contributions` as for the choice above.
+void RequireFixedPointConverts(std::span<const glm::vec3> contributions, int fixed_point_bits);
+// The same over the records that enter the table.
+void RequireFixedPointConverts(std::span<const Record> records, int fixed_point_bits);
+
 // The channel total bound of the choice above, exact: sum of ceil(c * 2^F) over accepted vertex records.
 // Saturates at 2^127 instead of wrapping.
 unsigned __int128 FixedPointCeilingSum(std::span<const Record> records, int channel, int fraction_bits);

@@ -99,6 +99,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
                                                      : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
+  if (fixed) RequireFixedPointConverts(entering, table.fixed_point_bits);
 
   run.timings.fixed_point_ms = clock.LapMs();
   simt::DeviceMemory memory;

@@ -371,9 +371,12 @@ TEST(CaptureJudgement, ACaptureThatContradictsItsDeclarationIsBadInput) {
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"eviction": "strict"}})",
        "its declaration evicts, but the tables carry no last-seen frames"},
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"level_change": "seed"}})", "level seeding"},
+      // F 100 with contributions near 1: c x 2^100 is past fixed64, where the conversion is undefined.
+      {R"({"hpsf_table": 1, "capacity": 64})", "--fixed-point-bits: F 100 is too large for a contribution"},
   };
   for (const auto& [declaration, named] : declarations) {
     c.declaration = declaration;
+    c.fixed_point_bits = named.rfind("--fixed", 0) == 0 ? 100 : kFractionBits;
     const std::string path = ::testing::TempDir() + "/contradicting.hpsfc";
     ASSERT_EQ(capture::WriteCapture(path, c), "");
     try {

@@ -97,6 +97,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
   const float scale = shared::PowerOfTwo(stats.fixed_point_bits);
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   if (!fixed) RequireFloat32Range(stats.fixed_point_bits);
+  if (fixed) RequireFixedPointConverts(batch.records, stats.fixed_point_bits);
 
   std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
   if (previous) {

@@ -85,6 +85,12 @@ add_test(NAME HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DTABLES=${PROJECT_SOURCE_DIR}/examples/tables
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/table_declaration.cmake)
 set_tests_properties(HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits PROPERTIES LABELS "unit;schemes")
+# Captures (label schemes): hpsf judge gives the host's verdict on frames crosscheck --capture wrote, and a broken
+# capture exits 3 without output.
+add_test(NAME HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DVARIANTS=${HPSF_SHADER_VARIANT_DIR}
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/judge_cli.cmake)
+set_tests_properties(HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3 PROPERTIES LABELS "vulkan;schemes;untrusted")
 hpsf_add_cli_test(HpsfCrosscheck.TheSharcBucketsDeclarationPassesOnEveryBackend "vulkan;schemes" 0
   "level 2 tables: PASS" "" $<TARGET_FILE:hpsf> crosscheck cornell --size 32x32 --spp 2
   --table ${PROJECT_SOURCE_DIR}/examples/tables/sharc-buckets.json --repro-dir ${hpsf_out}/sharc-repro)
@@ -270,6 +276,11 @@ hpsf_add_cli_test(HpsfCrosscheck.AWeakCasReadFromItsOldValueIsNamed "unit;scheme
   "emulated: tag is not the record's fingerprint at slot [0-9]+, records [0-9, ]+: tag 0, fingerprint" ""
   $<TARGET_FILE:hpsf> ${shipped_run} --probing bucket:4 --backends reference,emulated --mode faithful --warp-size 8
   --schedule random:1 --spurious-cas 0.25 --inject-defect weak-cas-old-value)
+# A given F past what a contribution converts to (c x 2^F reaching 2^64, undefined in C++ and GLSL) is bad input,
+# not a verdict on garbage (found by fuzz_capture through the judge, which shares the conversion).
+hpsf_add_cli_test(HpsfCrosscheck.FixedPointBitsPastAContributionsRangeExits3 unit 3
+  "--fixed-point-bits: F 126 is too large for a contribution of [0-9.]+ in this batch: it reaches 2\\^64" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --fixed-point-bits 126 --backends reference,emulated)
 hpsf_add_cli_test(HpsfCrosscheck.SpuriousCasInFastModeExits3 "unit;schemes" 3
   "--spurious-cas: needs --mode faithful" "" $<TARGET_FILE:hpsf> crosscheck cornell --spurious-cas 0.25)
 hpsf_add_cli_test(HpsfCrosscheck.SpuriousCasOfOneExits3 "unit;schemes" 3
@@ -386,6 +397,14 @@ add_test(NAME ReadBackFuzz.CorpusAndGeneratedInputsGiveAVerdict
   COMMAND read_back_fuzz_tests ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_read_back --inputs=300 --seed=1
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(ReadBackFuzz.CorpusAndGeneratedInputsGiveAVerdict PROPERTIES LABELS "unit;untrusted")
+# Captures (fuzz_capture) the same way: read, declared and judged over its corpus (hpsf's frames and a team's own
+# keys written by a second writer) and 300 generated inputs.
+add_executable(capture_fuzz_tests fuzz/fuzz_capture.cpp fuzz/fuzz_inputs_main.cpp)
+target_link_libraries(capture_fuzz_tests PRIVATE hpsf_verifier)
+add_test(NAME CaptureFuzz.CorpusAndGeneratedInputsGiveAVerdict
+  COMMAND capture_fuzz_tests ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture --inputs=300 --seed=1
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(CaptureFuzz.CorpusAndGeneratedInputsGiveAVerdict PROPERTIES LABELS "unit;untrusted;schemes")
 
 # The consumer project (examples/consumer) against the installed package, through add_subdirectory and through
 # FetchContent of the commit checked out.

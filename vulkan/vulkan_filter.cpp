@@ -379,6 +379,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                            : config.fixed_point_bits ? *config.fixed_point_bits
                                                      : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
   if (!fixed) RequireFloat32Range(table.fixed_point_bits);
+  if (fixed) RequireFixedPointConverts(entering, table.fixed_point_bits);
 
   // The double buffer of the temporal blend and the level seed: the table as the previous frame left it, copied
   // before the accumulate (the seed needs its tags too); on a first frame where a pass is forced, an empty table.

@@ -1,11 +1,15 @@
 // A team's test of its own hash table with hpsf's verifier: it computes keys with hpsf's key path (compiled here,
 // with this project's flags), inserts the records into a table of its own by linear probing, and asks hpsf's
 // table checker whether the table is one a correct insertion could have produced. Then it plants a lost update
-// and expects the checker to name it. Exit 0 when all of that holds.
+// and expects the checker to name it. Given a path, it also writes its correct table as a capture through the
+// header-only writer (core/capture_writer.h), as an engine would for `hpsf judge`, and reads it back with hpsf's
+// reader. Exit 0 when all of that holds.
 #include <cstdio>
 #include <cstring>
 #include <vector>
 
+#include "core/capture_file.h"
+#include "core/capture_writer.h"
 #include "core/filter_config.h"
 #include "core/hash_table.h"
 #include "core/key_batch.h"
@@ -37,9 +41,54 @@ void Insert(const std::vector<hpsf::Record>& records, const std::vector<hpsf::Ke
   }
 }
 
+// The team's table as a capture of its own keys (six opaque words per record), then read back by hpsf.
+bool CaptureRoundTrips(const char* path, const std::vector<hpsf::Record>& records,
+                       const std::vector<hpsf::KeyResult>& keys, const hpsf::HashTableDump& table,
+                       const std::vector<std::uint32_t>& placements) {
+  std::vector<float> contributions;
+  std::vector<std::uint32_t> words, home, identities, statuses;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    for (int c = 0; c < 3; ++c) contributions.push_back(records[i].contribution[c]);
+    const hpsf::KeyResult& k = keys[i];
+    for (std::uint32_t w :
+         {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal, k.words.extra}) {
+      words.push_back(w);
+    }
+    home.push_back(k.slot0);
+    identities.push_back(k.fingerprint);
+    statuses.push_back(k.status);
+  }
+  hpsf::capture::FrameCapture c;
+  c.declaration = R"({"hpsf_table": 1, "capacity": 4096, "probing": "linear:16",
+    "sums": {"encoding": "fixed64", "fixed_point_bits": 16}})";
+  c.capacity = table.capacity;
+  c.fixed_point_bits = table.fixed_point_bits;
+  c.key_words = 6;
+  c.contributions = contributions;
+  c.keys = words;
+  c.home_slots = home;
+  c.identities = identities;
+  c.statuses = statuses;
+  c.placements = placements;
+  c.after = {table.tags,
+             {reinterpret_cast<const std::uint64_t*>(table.fixed_sums.data()), 3 * table.fixed_sums.size()},
+             {},
+             table.counts,
+             {}};
+  if (const std::string error = hpsf::capture::WriteCapture(path, c); !error.empty()) {
+    std::printf("capture: %s\n", error.c_str());
+    return false;
+  }
+  const hpsf::Capture read = hpsf::ReadCapture(path);
+  const bool same = read.keys == words && read.placements == placements && read.after.tags == table.tags &&
+                    read.after.counts == table.counts && read.after.fixed_sums == table.fixed_sums;
+  std::printf("capture: %s, %s\n", path, same ? "read back as written" : "read back DIFFERENT");
+  return same;
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   hpsf::FilterConfig config;
   config.capacity = 1u << 12;
   const std::uint32_t count = 3000;
@@ -77,7 +126,10 @@ int main() {
   std::printf("correct table: %zu violations\n", clean.size());
   for (const hpsf::TableViolation& v : clean) std::printf("  %s\n", v.ToString().c_str());
 
-  // 3. A lost update (one record's add dropped, its placement kept) is named.
+  // 3. The correct table, captured for `hpsf judge`.
+  const bool captured = argc < 2 || CaptureRoundTrips(argv[1], records, keys, table, placements);
+
+  // 4. A lost update (one record's add dropped, its placement kept) is named.
   std::size_t victim = 0;
   while (placements[victim] >= table.capacity) ++victim;
   --table.counts[placements[victim]];
@@ -86,5 +138,5 @@ int main() {
   std::printf("lost update: %zu violations, first: %s\n", broken.size(),
               broken.empty() ? "none" : broken.front().ToString().c_str());
 
-  return differing == 0 && clean.empty() && named ? 0 : 1;
+  return differing == 0 && clean.empty() && named && captured ? 0 : 1;
 }

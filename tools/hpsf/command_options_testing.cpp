@@ -115,6 +115,7 @@ std::vector<std::string> RequiredArguments(const std::vector<std::string>& path)
                                                                            {"crosscheck", {"cornell"}},
                                                                            {"stats", {"furnace"}},
                                                                            {"diff", {"a.exr", "b.exr"}},
+                                                                           {"judge", {"c.hpsfc"}},
                                                                            {"reference", {"cornell"}},
                                                                            {"sweep", {"cornell", "--grid", "spp=1"}}};
   const auto given = required.find(path.back());
@@ -123,8 +124,8 @@ std::vector<std::string> RequiredArguments(const std::vector<std::string>& path)
 
 const std::vector<std::vector<std::string>>& CommandPaths() {
   static const std::vector<std::vector<std::string>> paths = {
-      {"device"},          {"render"},          {"replay"}, {"crosscheck"}, {"stats"},     {"diff"},
-      {"golden", "check"}, {"golden", "bless"}, {"fuzz"},   {"check"},      {"reference"}, {"sweep"}};
+      {"device"},          {"render"}, {"replay"}, {"crosscheck"}, {"stats"}, {"diff"}, {"golden", "check"},
+      {"golden", "bless"}, {"fuzz"},   {"check"},  {"reference"},  {"sweep"}, {"judge"}};
   return paths;
 }
 

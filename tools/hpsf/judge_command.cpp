@@ -60,7 +60,10 @@ JudgedCapture Judge(const std::string& path) {
 
 GateCaseResult JUnitCase(const JudgedCapture& j, std::size_t index) {
   GateCaseResult r;
-  r.id = j.path;
+  // The capture's folder then its name: CI systems group a folder's frames (classname, verifier/gate/junit_report.h).
+  const std::filesystem::path path(j.path);
+  const std::string folder = path.parent_path().filename().string();
+  r.id = "judge/" + (folder.empty() ? "." : folder) + "/" + path.filename().string();
   r.family = "judge";
   r.outcome = j.report.Passed() ? CaseOutcome::kPassed : CaseOutcome::kFailed;
   r.seconds = j.seconds;

@@ -2,7 +2,8 @@
 # (MODE installed: cmake --install, then find_package(hpsf)), against hpsf's sources (MODE subdirectory:
 # add_subdirectory), or fetched from its repository at the commit checked out (MODE fetchcontent: FetchContent).
 # The consumer compiles with -ffp-contract=fast and checks its keys against hpsf::core's, its table with the
-# checker, and that a planted lost update is named.
+# checker, and that a planted lost update is named; it captures its table through the installed header, which
+# hpsf judge then passes.
 # -DSOURCE=<hpsf source tree> -DBUILD=<hpsf build tree> -DOUT=<scratch folder>
 # -DMODE=installed|subdirectory|fetchcontent
 file(REMOVE_RECURSE ${OUT})
@@ -14,6 +15,7 @@ if(MODE STREQUAL "installed")
     message(FATAL_ERROR "cmake --install ${BUILD} failed: ${code}")
   endif()
   foreach(installed bin/hpsf lib/cmake/hpsf/hpsfConfig.cmake include/hpsf/vulkan/shaders/table_interface.glsl
+          include/hpsf/core/capture_writer.h
           include/hpsf/core/shared/key.h include/hpsf/verifier/checker/table_checker.h)
     if(NOT EXISTS ${OUT}/prefix/${installed})
       message(FATAL_ERROR "the install lacks ${installed}")
@@ -59,8 +61,19 @@ file(STRINGS ${OUT}/build/build.ninja flags REGEX "FLAGS = .*-ffp-contract=fast"
 if(NOT flags MATCHES "-ffp-contract=fast.* -ffp-contract=off -fno-fast-math")
   message(FATAL_ERROR "hpsf::core's exactness flags do not follow the consumer's own: ${flags}")
 endif()
-execute_process(COMMAND ${OUT}/build/check_my_table RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
+execute_process(COMMAND ${OUT}/build/check_my_table ${OUT}/team.hpsfc RESULT_VARIABLE code OUTPUT_VARIABLE out
+  ERROR_VARIABLE out)
 message(STATUS "${out}")
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "the consumer's check failed (${code})")
+endif()
+# The capture its engine wrote through the installed header, judged by hpsf (the installed one where there is one).
+set(hpsf_bin ${BUILD}/bin/hpsf)
+if(MODE STREQUAL "installed")
+  set(hpsf_bin ${OUT}/prefix/bin/hpsf)
+endif()
+execute_process(COMMAND ${hpsf_bin} judge ${OUT}/team.hpsfc RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
+message(STATUS "${out}")
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "hpsf judge failed the consumer's captured table (${code})")
 endif()

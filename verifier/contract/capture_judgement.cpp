@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/fixed_point_scale.h"
 #include "core/footprint.h"
 #include "core/hashed_run.h"
 #include "core/input_check.h"
@@ -45,14 +46,14 @@ void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
   }
 }
 
-HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConfig& config) {
+HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConfig& config, int fixed_point_bits) {
   HashTableDump d;
   d.capacity = c.capacity;
   d.probe_limit = config.probe_limit;
   d.probing = config.probing;
   d.fingerprint_bits = config.fingerprint_bits;
   d.accumulation = config.accumulation;
-  d.fixed_point_bits = c.float32_sums ? 0 : c.fixed_point_bits;
+  d.fixed_point_bits = fixed_point_bits;
   d.tags = t.tags;
   d.fixed_sums = t.fixed_sums;
   d.float_sums = t.float_sums;
@@ -134,8 +135,13 @@ std::uint64_t JudgeKeys(const Capture& c, const FilterConfig& config, std::span<
   if (!c.hpsf_records) return judged;
   // hpsf's key: every word of every accepted record against core's, whose level then stands for the captured one.
   const CapturedRecords& r = *c.hpsf_records;
-  const KeyParams params = MakeKeyParams(config, FootprintScale(config.filter_width_px, r.fov_y_radians, r.height),
-                                         std::uint32_t(records.size()));
+  KeyParams params;
+  try {  // the camera is the capture's: a field of view or height no camera has is its bad input
+    params = MakeKeyParams(config, FootprintScale(config.filter_width_px, r.fov_y_radians, r.height),
+                           std::uint32_t(records.size()));
+  } catch (const ConfigError& e) {
+    throw InputError(c.path + ": RECD's camera: " + e.what());
+  }
   for (std::size_t i = 0; i < records.size(); ++i) {
     if (CheckRecordInputs(records[i]) != InputVerdict::kAccepted) continue;
     const KeyResult expected = shared::ComputeKey(params, records[i]);
@@ -228,6 +234,18 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
   CheckAgainstDeclaration(capture, config);
   config.frame = capture.frame;
   const std::vector<Record> records = RecordsToCheck(capture);
+  // float32 sums: the F hpsf's range check assumes for the batch (the checker's exact sums use it), which float32
+  // refuses below kFloat32FixedPointBitsMin, as every backend does.
+  const int fixed_point_bits = capture.float32_sums ? ChooseFixedPointBits(records) : capture.fixed_point_bits;
+  try {
+    if (capture.float32_sums) {
+      RequireFloat32Range(fixed_point_bits);
+    } else {
+      RequireFixedPointConverts(records, fixed_point_bits);
+    }
+  } catch (const ConfigError& e) {
+    throw InputError(capture.path + ": " + e.what());
+  }
   LevelVerdict keys{1, "keys", true, true, "", {}};
   LevelVerdict tables{2, "tables", true, true, "", {}};
   LevelVerdict ideal{3, "agreement with the reference", true, true, "", {}};
@@ -236,13 +254,18 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
   HashedRun run;
   run.keys = CapturedKeys(capture);
   const std::uint64_t judged = JudgeKeys(capture, config, records, run.keys, keys);
+  // A record of hpsf's without a vertex has no key, whatever status the capture gives it (level 1 names that): the
+  // checker and the exact map must not sum its contribution, which hpsf never checked.
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (!shared::RecordHasVertex(records[i])) run.keys[i].status = shared::kKeyNoVertex;
+  }
   keys.note = std::to_string(judged) + " keyed records: home slot, identity, one key per cell" +
               (capture.hpsf_records ? "; hpsf's key: every word against core's" : "");
 
-  run.table = TableOf(capture.after, capture, config);
+  run.table = TableOf(capture.after, capture, config, fixed_point_bits);
   run.placements = capture.placements;
   std::optional<HashTableDump> before;
-  if (capture.before) before = TableOf(*capture.before, capture, config);
+  if (capture.before) before = TableOf(*capture.before, capture, config, fixed_point_bits);
   TableCheckInput input{run.table, records, run.keys, run.placements};
   input.before = before ? &*before : nullptr;
   input.eviction = config.eviction;
@@ -265,7 +288,7 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
   CrosscheckReport report;
   report.levels = {keys, tables, ideal, determinism};
   report.quality.push_back({"capture", run.probe_failures, classes.aliased_slots(), classes.classified_records()});
-  report.fixed_point_bits = capture.float32_sums ? 0 : capture.fixed_point_bits;
+  report.fixed_point_bits = fixed_point_bits;
   report.accumulation = config.accumulation;
   return report;
 }
