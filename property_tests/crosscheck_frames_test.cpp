@@ -229,8 +229,9 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
   auto emulated = [](AccumulateKernelFn kernel, EvictionKernels reclaim) {
     return std::make_unique<EmulatedBackend>(EmulatorOptions{}, kernel, reclaim);
   };
-  auto vulkan = [&](const std::string& eviction_spv, const std::string& accumulate_spv = "") {
-    return std::make_unique<VulkanBackend>(device, accumulate_spv, eviction_spv);
+  auto vulkan = [&](const std::string& eviction_spv, const std::string& accumulate_spv = "",
+                    const std::string& temporal_spv = "") {
+    return std::make_unique<VulkanBackend>(device, accumulate_spv, eviction_spv, temporal_spv);
   };
   const std::string d7_spv = HPSF_SHADER_VARIANT_DIR "/eviction_D7.spv";
   const std::string correct_spv = HPSF_SHADER_VARIANT_DIR "/accumulate_correct.spv";
@@ -249,6 +250,12 @@ TEST(CrosscheckFrames, BrokenVariantsOfFramesFailTheContract) {
   variants.push_back(
       {"vulkan, the correct shader", "none", "ema:0.5", vulkan("", correct_spv), vulkan("", correct_spv), false});
   variants.push_back({"vulkan D10", "none", "ema:0.5", vulkan("", d10_spv), vulkan("", d10_spv), true});
+  // A team's own temporal blend (--temporal-spv): the correct one passes, each broken one fails.
+  for (const char* temporal : {"correct", "BLEND_UNTOUCHED", "TRUNCATED_BLEND"}) {
+    const std::string spv = std::string(HPSF_SHADER_VARIANT_DIR) + "/temporal_" + temporal + ".spv";
+    variants.push_back({std::string("vulkan, temporal shader ") + temporal, "none", "ema:0.5", vulkan("", "", spv),
+                        vulkan("", "", spv), std::string(temporal) != "correct"});
+  }
   for (Variant& v : variants) {
     config.eviction = ParseEviction(v.eviction);
     config.temporal = ParseTemporal(v.temporal);

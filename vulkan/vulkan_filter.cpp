@@ -162,6 +162,8 @@ struct VulkanFilter::Impl {
   Accumulation custom_accumulation;  // what the user's shader declares its sums as
   std::vector<std::uint32_t> custom_eviction;
   std::string eviction_name;
+  std::vector<std::uint32_t> custom_temporal;
+  std::string temporal_name;
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
   std::optional<ComputeProgram> resolve[2];
   std::optional<ComputeProgram> eviction;
@@ -217,15 +219,19 @@ struct VulkanFilter::Impl {
 
   ComputeProgram& Temporal() {
     if (!temporal) {
-      temporal = vulkan_internal::CreateComputeProgram(device, temporal_spv, kTemporalBindings, sizeof(TemporalPush));
+      const std::span<const std::uint32_t> spirv = custom_temporal.empty()
+                                                       ? std::span<const std::uint32_t>(temporal_spv)
+                                                       : std::span<const std::uint32_t>(custom_temporal);
+      temporal = vulkan_internal::CreateComputeProgram(device, spirv, kTemporalBindings, sizeof(TemporalPush));
     }
     return *temporal;
   }
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
-    if (custom_accumulate.empty() && custom_eviction.empty()) return "the built-in shaders";
+    if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty()) return "the built-in shaders";
     std::string names = custom_accumulate.empty() ? "" : "the accumulate shader " + accumulate_name;
     if (!custom_eviction.empty()) names += (names.empty() ? "" : " or ") + ("the eviction shader " + eviction_name);
+    if (!custom_temporal.empty()) names += (names.empty() ? "" : " or ") + ("the temporal shader " + temporal_name);
     return names;
   }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
@@ -233,13 +239,16 @@ struct VulkanFilter::Impl {
   }
 };
 
-VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv)
+VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
+                           const std::string& temporal_spv)
     : impl_(new Impl{device.impl(),
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
                      Accumulation::kFixed64,
                      eviction_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(eviction_spv),
                      eviction_spv,
+                     temporal_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(temporal_spv),
+                     temporal_spv,
                      {},
                      {},
                      {},

@@ -46,9 +46,10 @@ class VulkanFilter {
  public:
   // accumulate_spv: the path of a user's accumulate shader (SPIR-V) to run in place of the built-in one,
   // through the same bindings; empty for the built-in shaders. InputError naming the file when it is not SPIR-V.
-  // eviction_spv: likewise for the eviction pass (eviction.comp's bindings and push constants).
+  // eviction_spv: likewise for the eviction pass (eviction.comp's bindings and push constants), temporal_spv for
+  // the temporal blend (temporal.comp's).
   explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "",
-                        const std::string& eviction_spv = "");
+                        const std::string& eviction_spv = "", const std::string& temporal_spv = "");
   ~VulkanFilter();
   VulkanFilter(const VulkanFilter&) = delete;
   VulkanFilter& operator=(const VulkanFilter&) = delete;

@@ -134,6 +134,9 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   if (!vulkan.eviction_spv.empty()) {
     a.insert(a.end(), {"--eviction-spv", std::filesystem::absolute(vulkan.eviction_spv).string()});
   }
+  if (!vulkan.temporal_spv.empty()) {
+    a.insert(a.end(), {"--temporal-spv", std::filesystem::absolute(vulkan.temporal_spv).string()});
+  }
   return a;
 }
 

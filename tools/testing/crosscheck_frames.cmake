@@ -48,6 +48,14 @@ if(NOT out MATCHES "level 2 tables: FAIL" OR NOT out MATCHES "vulkan, frame 5: t
 endif()
 hpsf_expect_bundle_reproduces(${dir}/d7)
 
+# A team's own temporal blend that truncates the fixed64 blend: named at level 2, and its bundle reruns it.
+hpsf_run(2 crosscheck ${sequence} --capacity 1024 --temporal ema:0.5 --backends reference,vulkan
+    --temporal-spv ${SHADER_VARIANTS}/temporal_TRUNCATED_BLEND.spv --repro-dir ${dir}/truncated-blend)
+if(NOT out MATCHES "level 2 tables: FAIL" OR NOT out MATCHES "vulkan, frame [0-9]+: blended cell differs from the temporal blend")
+  message(FATAL_ERROR "a truncating temporal shader over the sequence:\n${out}")
+endif()
+hpsf_expect_bundle_reproduces(${dir}/truncated-blend)
+
 hpsf_run(3 crosscheck ${sequence} --frames 2)
 if(NOT err MATCHES "--frames: .*sequence.hpsfv holds 3 frames, not 2")
   message(FATAL_ERROR "--frames 2 of a 3-frame file: ${err}")

@@ -72,6 +72,7 @@ struct VulkanBackendOptions {
   std::string device_filter;   // --vk-device: a substring of the device name; empty picks the best
   std::string accumulate_spv;  // --accumulate-spv: a user's accumulate shader; empty for the built-in one
   std::string eviction_spv;    // --eviction-spv: a user's eviction shader; empty for the built-in one
+  std::string temporal_spv;    // --temporal-spv: a user's temporal blend shader; empty for the built-in one
   StagingPolicy staging = StagingPolicy::kAuto;  // --vk-staging
 };
 

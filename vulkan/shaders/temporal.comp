@@ -3,7 +3,9 @@
 // the rule): one invocation per slot. A slot that held samples in the previous table (the double buffer the host
 // copied the table into before the accumulate, read here and written by no pass of the frame) and that the frame
 // added to is blended by core/shared/temporal_blend.h, in double, as C++ blends it; every other slot keeps what it
-// holds.
+// holds. The test suite compiles it once more per defect, run through --temporal-spv as a team's own would be:
+// HPSF_DEFECT_BLEND_UNTOUCHED, a slot the frame did not touch blended too (its history decays with no sample);
+// HPSF_DEFECT_TRUNCATED_BLEND, the fixed64 blend truncated instead of rounded half to even.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "../../core/shared/prelude.h"
@@ -38,7 +40,9 @@ void Blend(uint slot) {
   uint64_t old_count = previous_counts[slot];
   if (old_count == 0ul) return;  // a new cell, or none: nothing to blend
   uint64_t count = counts[slot];
+#if !defined(HPSF_DEFECT_BLEND_UNTOUCHED)
   if (count == old_count) return;  // the frame did not touch it
+#endif
   dvec3 old_sum, frame_sum;
   for (int c = 0; c < 3; ++c) {
     old_sum[c] = SumAt(slot, c, true);
@@ -58,7 +62,11 @@ void Blend(uint slot) {
   if (b.integrated) return;
   for (int c = 0; c < 3; ++c) {
     if (fixed64 != 0u) {
+#if defined(HPSF_DEFECT_TRUNCATED_BLEND)
+      uvec2 words = unpackUint2x32(uint64_t(b.sum[c]));
+#else
       uvec2 words = unpackUint2x32(uint64_t(roundEven(b.sum[c])));
+#endif
       uint w = (slot * 3u + uint(c)) * 2u;
       sum_words[w] = words.x;
       sum_words[w + 1u] = words.y;
