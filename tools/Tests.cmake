@@ -85,6 +85,23 @@ add_test(NAME HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DTABLES=${PROJECT_SOURCE_DIR}/examples/tables
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/table_declaration.cmake)
 set_tests_properties(HpsfRender.HpsfsOwnTableDeclaredRendersTheSameBits PROPERTIES LABELS "unit;schemes")
+# A team's own resolve (--resolve-spv): the correct one holds the contract; one whose average is off by one and one
+# that averages in float32 are each named at level 3 (the image is not the resolve of its table); a resolve of the
+# other mode is bad input.
+set(resolve_run crosscheck cornell --size 24x24 --capacity 256 --fingerprint-bits 8 --backends reference,vulkan
+  --repro-dir ${hpsf_out}/resolve-repro --resolve-spv ${HPSF_SHADER_VARIANT_DIR})
+hpsf_add_cli_test(HpsfCrosscheck.ACorrectResolveShaderHoldsTheContract vulkan 0 "level 3 agreement with the reference: PASS" ""
+  $<TARGET_FILE:hpsf> ${resolve_run}/resolve_correct.spv)
+hpsf_add_cli_test(HpsfCrosscheck.AResolveAveragingOffByOneIsNamed vulkan 2
+  "vulkan: image: pixel [0-9]+ channel [0-9]: [0-9.e-]+, its table gives [0-9.e-]+ exactly" ""
+  $<TARGET_FILE:hpsf> ${resolve_run}/resolve_AVERAGE_OFF_BY_ONE.spv)
+hpsf_add_cli_test(HpsfCrosscheck.AResolveAveragingInFloatIsNamed vulkan 2
+  "vulkan: image: pixel [0-9]+ channel [0-9]: [0-9.e-]+, its table gives [0-9.e-]+ exactly" ""
+  $<TARGET_FILE:hpsf> ${resolve_run}/resolve_AVERAGE_IN_FLOAT.spv)
+hpsf_add_cli_test(HpsfCrosscheck.AResolveOfTheOtherModeExits3 vulkan 3
+  "--accum: .*resolve_correct_float32.spv declares its sums \\(binding 1\\) as float: it resolves float32, not fixed64" ""
+  $<TARGET_FILE:hpsf> ${resolve_run}/resolve_correct_float32.spv)
+
 # Captures (label schemes): hpsf judge gives the host's verdict on frames crosscheck --capture wrote, and a broken
 # capture exits 3 without output.
 add_test(NAME HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3

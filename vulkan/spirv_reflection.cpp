@@ -10,8 +10,6 @@
 namespace hpsf {
 namespace {
 
-constexpr unsigned kSumsBinding = 3;
-
 std::string TypeName(spvc_type type) {
   switch (spvc_type_get_basetype(type)) {
     case SPVC_BASETYPE_UINT64:
@@ -35,7 +33,8 @@ std::string TypeName(spvc_type type) {
 
 }  // namespace
 
-Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file) {
+Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file,
+                              std::uint32_t sums_binding) {
   spvc_context raw_context = nullptr;
   if (spvc_context_create(&raw_context) != SPVC_SUCCESS) throw InputError(file + ": cannot reflect the SPIR-V");
   const std::unique_ptr<spvc_context_s, void (*)(spvc_context)> context(raw_context, spvc_context_destroy);
@@ -52,11 +51,11 @@ Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::s
           SPVC_SUCCESS) {
     throw InputError(file + ": the SPIR-V does not reflect: " + spvc_context_get_last_error_string(raw_context));
   }
-  // Every declaration of binding 3 (a shader may alias a binding, e.g. as 32-bit words): the element types.
+  // Every declaration of the binding (a shader may alias a binding, e.g. as 32-bit words): the element types.
   std::set<std::string> types;
   for (std::size_t b = 0; b < count; ++b) {
     if (spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationDescriptorSet) != 0 ||
-        spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationBinding) != kSumsBinding) {
+        spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationBinding) != sums_binding) {
       continue;
     }
     const spvc_type block = spvc_compiler_get_type_handle(compiler, buffers[b].base_type_id);
@@ -64,13 +63,14 @@ Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::s
     types.insert(TypeName(spvc_compiler_get_type_handle(compiler, spvc_type_get_member_type(block, 0))));
   }
   if (types.empty()) {
-    throw InputError(file + ": declares no storage buffer at binding 3 (the sums of the stable buffer interface)");
+    throw InputError(file + ": declares no storage buffer at binding " + std::to_string(sums_binding) +
+                     " (the sums of the stable buffer interface)");
   }
   if (types == std::set<std::string>{"uint64_t"}) return Accumulation::kFixed64;
   if (types == std::set<std::string>{"float"}) return Accumulation::kFloat32;
   std::string found;
   for (const std::string& type : types) found += (found.empty() ? "" : " and ") + type;
-  throw InputError(file + ": binding 3 (sums) holds " + found +
+  throw InputError(file + ": binding " + std::to_string(sums_binding) + " (sums) holds " + found +
                    "; the stable buffer interface takes uint64_t (fixed64) or float (float32)");
 }
 

@@ -13,10 +13,11 @@
 
 namespace hpsf {
 
-// The mode of the sums binding of `spirv` (the contents of `file`, named in messages). InputError when the module
-// does not parse, declares no storage buffer at binding 3, or declares it with another element type (or with
-// both), naming the types found.
-Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file);
+// The mode of the sums binding of `spirv` (the contents of `file`, named in messages): binding 3 of an accumulate
+// shader, 1 of a resolve shader. InputError when the module does not parse, declares no storage buffer at that
+// binding, or declares it with another element type (or with both), naming the types found.
+Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file,
+                              std::uint32_t sums_binding = 3);
 
 }  // namespace hpsf
 

@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "eviction_spv.h"
 #include "keys_spv.h"
+#include "resolve_fixed64_spv.h"
+#include "resolve_float32_spv.h"
 #include "temporal_spv.h"
 
 namespace hpsf {
@@ -28,6 +30,20 @@ TEST(SpirvReflection, TheAccumulateShadersDeclareTheirMode) {
   EXPECT_EQ(SumsAccumulation(accumulate_float32_spv, "a.spv"), Accumulation::kFloat32);
   // temporal.comp's binding 3 is a uint64_t array too: reflection reads the type, not the name.
   EXPECT_EQ(SumsAccumulation(temporal_spv, "t.spv"), Accumulation::kFixed64);
+}
+
+// A resolve shader's sums are binding 1 (--resolve-spv).
+TEST(SpirvReflection, TheResolveShadersDeclareTheirModeAtBindingOne) {
+  EXPECT_EQ(SumsAccumulation(resolve_fixed64_spv, "r.spv", 1), Accumulation::kFixed64);
+  EXPECT_EQ(SumsAccumulation(resolve_float32_spv, "r.spv", 1), Accumulation::kFloat32);
+  try {
+    SumsAccumulation(keys_spv, "k.spv", 1);
+    ADD_FAILURE() << "keys.comp's binding 1 taken for sums";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "k.spv: binding 1 (sums) holds uint; the stable buffer interface takes uint64_t "
+              "(fixed64) or float (float32)");
+  }
 }
 
 TEST(SpirvReflection, OtherBindingsAndBytesAreRefused) {

@@ -47,6 +47,7 @@ void AllCores(std::size_t n, const std::function<void(std::size_t, std::size_t)>
 // Each shader's local_size_x times its kRecordsPerInvocation (kPixelsPerInvocation).
 constexpr std::uint32_t kAccumulateRecordsPerWorkgroup = 128 * 16;
 constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;
+constexpr std::uint32_t kResolveSumsBinding = 1;  // resolve.glsl's
 
 struct AccumulatePush {
   KeyParams key;
@@ -164,6 +165,9 @@ struct VulkanFilter::Impl {
   std::string eviction_name;
   std::vector<std::uint32_t> custom_temporal;
   std::string temporal_name;
+  std::vector<std::uint32_t> custom_resolve;
+  std::string resolve_name;
+  Accumulation custom_resolve_accumulation;     // what the user's resolve shader declares its sums as
   std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
   std::optional<ComputeProgram> resolve[2];
   std::optional<ComputeProgram> eviction;
@@ -194,8 +198,10 @@ struct VulkanFilter::Impl {
   ComputeProgram& Resolve(Accumulation mode) {
     const int m = mode == Accumulation::kFixed64 ? 0 : 1;
     if (!resolve[m]) {
-      const std::span<const std::uint32_t> spirv = m == 0 ? std::span<const std::uint32_t>(resolve_fixed64_spv)
-                                                          : std::span<const std::uint32_t>(resolve_float32_spv);
+      std::span<const std::uint32_t> spirv = custom_resolve;
+      if (spirv.empty())
+        spirv = m == 0 ? std::span<const std::uint32_t>(resolve_fixed64_spv)
+                       : std::span<const std::uint32_t>(resolve_float32_spv);
       resolve[m] = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
     return *resolve[m];
@@ -228,10 +234,13 @@ struct VulkanFilter::Impl {
   }
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
-    if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty()) return "the built-in shaders";
+    if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty() && custom_resolve.empty()) {
+      return "the built-in shaders";
+    }
     std::string names = custom_accumulate.empty() ? "" : "the accumulate shader " + accumulate_name;
     if (!custom_eviction.empty()) names += (names.empty() ? "" : " or ") + ("the eviction shader " + eviction_name);
     if (!custom_temporal.empty()) names += (names.empty() ? "" : " or ") + ("the temporal shader " + temporal_name);
+    if (!custom_resolve.empty()) names += (names.empty() ? "" : " or ") + ("the resolve shader " + resolve_name);
     return names;
   }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
@@ -240,7 +249,7 @@ struct VulkanFilter::Impl {
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
-                           const std::string& temporal_spv)
+                           const std::string& temporal_spv, const std::string& resolve_spv)
     : impl_(new Impl{device.impl(),
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
@@ -249,6 +258,9 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      eviction_spv,
                      temporal_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(temporal_spv),
                      temporal_spv,
+                     resolve_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(resolve_spv),
+                     resolve_spv,
+                     Accumulation::kFixed64,
                      {},
                      {},
                      {},
@@ -275,6 +287,9 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {}}) {
   if (!impl_->custom_accumulate.empty()) {
     impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
+  }
+  if (!impl_->custom_resolve.empty()) {
+    impl_->custom_resolve_accumulation = SumsAccumulation(impl_->custom_resolve, resolve_spv, kResolveSumsBinding);
   }
 }
 
@@ -315,6 +330,12 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +
                                      (p.custom_accumulation == Accumulation::kFixed64 ? "uint64_t" : "float") +
                                      ": it accumulates " + ToString(p.custom_accumulation) + ", not " +
+                                     ToString(config.accumulation));
+  }
+  if (!p.custom_resolve.empty() && p.custom_resolve_accumulation != config.accumulation) {
+    throw ConfigError("--accum", p.resolve_name + " declares its sums (binding 1) as " +
+                                     (p.custom_resolve_accumulation == Accumulation::kFixed64 ? "uint64_t" : "float") +
+                                     ": it resolves " + ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
   if (keep_table &&

@@ -47,9 +47,10 @@ class VulkanFilter {
   // accumulate_spv: the path of a user's accumulate shader (SPIR-V) to run in place of the built-in one,
   // through the same bindings; empty for the built-in shaders. InputError naming the file when it is not SPIR-V.
   // eviction_spv: likewise for the eviction pass (eviction.comp's bindings and push constants), temporal_spv for
-  // the temporal blend (temporal.comp's).
+  // the temporal blend (temporal.comp's), resolve_spv for the resolve (resolve.glsl's; its sums binding says its mode).
   explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "",
-                        const std::string& eviction_spv = "", const std::string& temporal_spv = "");
+                        const std::string& eviction_spv = "", const std::string& temporal_spv = "",
+                        const std::string& resolve_spv = "");
   ~VulkanFilter();
   VulkanFilter(const VulkanFilter&) = delete;
   VulkanFilter& operator=(const VulkanFilter&) = delete;

@@ -37,6 +37,9 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--temporal-spv", flags.vulkan.temporal_spv,
                      "Vulkan backend: run this SPIR-V temporal blend shader (docs/reference/buffer-interface.md) with "
                      "a blending --temporal");
+  command.add_option("--resolve-spv", flags.vulkan.resolve_spv,
+                     "Vulkan backend: run this SPIR-V resolve shader (docs/reference/buffer-interface.md); its sums "
+                     "binding's type must match --accum");
   command
       .add_option("--inject-defect", flags.defect,
                   "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "

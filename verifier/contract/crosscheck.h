@@ -73,6 +73,7 @@ struct VulkanBackendOptions {
   std::string accumulate_spv;  // --accumulate-spv: a user's accumulate shader; empty for the built-in one
   std::string eviction_spv;    // --eviction-spv: a user's eviction shader; empty for the built-in one
   std::string temporal_spv;    // --temporal-spv: a user's temporal blend shader; empty for the built-in one
+  std::string resolve_spv;     // --resolve-spv: a user's resolve shader; empty for the built-in ones
   StagingPolicy staging = StagingPolicy::kAuto;  // --vk-staging
 };
 

@@ -32,7 +32,8 @@ std::vector<std::string> OptionArguments(const std::string& name, const json& va
 }
 
 bool IsPathOption(const std::string& name) {
-  return name == "accumulate-spv" || name == "eviction-spv" || name == "temporal-spv" || name == "table";
+  return name == "accumulate-spv" || name == "eviction-spv" || name == "temporal-spv" || name == "resolve-spv" ||
+         name == "table";
 }
 
 bool IsFile(const std::string& scene) {

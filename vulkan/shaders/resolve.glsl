@@ -2,7 +2,9 @@
 // record's value is radiance_before + throughput * the average of its slot (sum / count), or its own
 // contribution without a slot, or radiance_before alone without a vertex; the pixel is the mean of its
 // records in sample order. In double, operation for operation as core/resolve.cpp, so that with the same table
-// the image is the same bits. resolve_fixed64.comp and resolve_float32.comp define the sums type.
+// the image is the same bits. resolve_fixed64.comp and resolve_float32.comp define the sums type. The test suite
+// compiles it once more per defect (HPSF_DEFECT_AVERAGE_OFF_BY_ONE, HPSF_DEFECT_AVERAGE_IN_FLOAT), run through
+// --resolve-spv as a team's own resolve would be.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #include "../../core/shared/prelude.h"
@@ -54,7 +56,13 @@ void ResolvePixel(uint pixel, ResolveParams p) {
 #else
           precise double channel = double(sums[slot * 3u + uint(c)]);
 #endif
+#if defined(HPSF_DEFECT_AVERAGE_OFF_BY_ONE)  // the slot's count taken as one more than it holds
+          incident[c] = channel / (count + 1.0LF);
+#elif defined(HPSF_DEFECT_AVERAGE_IN_FLOAT)  // the average in float32: other bits than core's double
+          incident[c] = double(float(channel) / float(count));
+#else
           incident[c] = channel / count;
+#endif
         }
       }
       value = value + D(r.throughput) * incident;
