@@ -27,6 +27,7 @@
 #include "verifier/contract/crosscheck.h"
 #include "verifier/contract/run_capture.h"
 #include "verifier/gate/table_declaration.h"
+#include "verifier/theory/table_statistics.h"
 
 namespace hpsf::testing {
 namespace {
@@ -195,6 +196,7 @@ enum class Bug {
   kLostUpdate,           // one record's add lost (a non-atomic add)
   kSplitCell,            // a cell's later records claim a second slot (a claim race lost)
   kKeyNotAFunction,      // one record of a cell hashed with another seed
+  kClusteredHomes,       // a home hash that reaches an eighth of the table: correct, but buckets overflow
 };
 
 constexpr std::uint32_t kBucket = 8;
@@ -242,6 +244,7 @@ TeamCapture TeamFrame(std::uint32_t capacity, std::uint32_t identity_bits, Bug b
     identity = std::max(identity, 1u);
     if (bug == Bug::kZeroIdentity && bug_record) identity = 0;
     if (bug == Bug::kHomeOutsideTable && bug_record) home += capacity;
+    if (bug == Bug::kClusteredHomes) home &= capacity / 8 - 1;
     if (bug == Bug::kKeyNotAFunction && bug_record && bug_cell_records % 2 == 0) {
       identity = std::max(TeamHash(x, y, 3u) >> (32u - identity_bits), 1u);
     }
@@ -285,7 +288,7 @@ TeamCapture TeamFrame(std::uint32_t capacity, std::uint32_t identity_bits, Bug b
   return t;
 }
 
-CrosscheckReport JudgedTeamFrame(std::uint32_t capacity, std::uint32_t identity_bits, Bug bug) {
+std::string TeamCaptureFile(std::uint32_t capacity, std::uint32_t identity_bits, Bug bug) {
   const TeamCapture t = TeamFrame(capacity, identity_bits, bug);
   const std::string declaration =
       R"({"hpsf_table": 1, "capacity": )" + std::to_string(capacity) +
@@ -305,7 +308,18 @@ CrosscheckReport JudgedTeamFrame(std::uint32_t capacity, std::uint32_t identity_
   c.after = {t.tags, t.sums, {}, t.counts, {}};
   const std::string path = ::testing::TempDir() + "/team.hpsfc";
   EXPECT_EQ(capture::WriteCapture(path, c), "");
-  return Judged(path);
+  return path;
+}
+
+CrosscheckReport JudgedTeamFrame(std::uint32_t capacity, std::uint32_t identity_bits, Bug bug) {
+  return Judged(TeamCaptureFile(capacity, identity_bits, bug));
+}
+
+TableStatistics TeamKeyStatistics(std::uint32_t capacity, Bug bug) {
+  const Capture capture = ReadCapture(TeamCaptureFile(capacity, 32, bug));
+  FilterConfig config;
+  ApplyTableDeclarationText(capture.declaration, capture.path, config);
+  return MeasureGivenKeyStatistics(capture.record_count(), CapturedKeys(capture), config);
 }
 
 std::string AllFailures(const CrosscheckReport& report) {
@@ -349,6 +363,24 @@ TEST(CaptureJudgement, EachBugOfATeamsCacheIsNamedAtItsLevel) {
     EXPECT_EQ(FailedLevels(report), e.levels) << int(e.bug) << "\n" << AllFailures(report);
     EXPECT_NE(AllFailures(report).find(e.named), std::string::npos) << int(e.bug) << "\n" << AllFailures(report);
   }
+}
+
+// hpsf stats on a team's keys: its home slots against uniform hashing under its scheme. A home hash that reaches an
+// eighth of the table is a correct table (the contract holds) whose buckets overflow far above the binomial theory;
+// the alternative rejected is exactly such non-uniformity. The rates are held at a family level of 0.001 (Sidak over
+// the probe limits and the one width), on this fixed input, so the uniform hash passing is deterministic.
+TEST(CaptureJudgement, StatisticsOfATeamsKeysTellAClusteredHomeHash) {
+  const TableStatistics uniform = TeamKeyStatistics(1024, Bug::kNone);
+  EXPECT_FALSE(uniform.ExceedsTheory());
+  EXPECT_TRUE(uniform.jitter.empty());
+  ASSERT_EQ(uniform.fingerprints.size(), 1u);  // the declared width alone
+  EXPECT_EQ(uniform.fingerprints[0].fingerprint_bits, 32u);
+  EXPECT_TRUE(JudgedTeamFrame(1024, 32, Bug::kClusteredHomes).Passed());
+  const TableStatistics clustered = TeamKeyStatistics(1024, Bug::kClusteredHomes);
+  EXPECT_TRUE(clustered.ExceedsTheory());
+  bool failures_exceed = false;
+  for (const ProbeLimitFigure& f : clustered.probe_limits) failures_exceed |= f.failures.ExceedsTheory();
+  EXPECT_TRUE(failures_exceed);
 }
 
 TEST(CaptureJudgement, ACaptureThatContradictsItsDeclarationIsBadInput) {

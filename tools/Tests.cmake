@@ -102,6 +102,16 @@ hpsf_add_cli_test(HpsfCrosscheck.AResolveOfTheOtherModeExits3 vulkan 3
   "--accum: .*resolve_correct_float32.spv declares its sums \\(binding 1\\) as float: it resolves float32, not fixed64" ""
   $<TARGET_FILE:hpsf> ${resolve_run}/resolve_correct_float32.spv)
 
+# hpsf stats on a team's own keys from a capture (written by a second writer, from the format's description alone):
+# its home slots and identities against uniform hashing; the capture's table is its declaration's, so a filter
+# option beside it is bad input.
+hpsf_add_cli_test(HpsfStats.ATeamsCapturedKeysAgainstUniformHashing "unit;schemes" 0
+  "24 records, 24 keyed, 21 distinct keys; capacity 16.*under bucket probing.*jitter tests: none \\(the keys are not hpsf's\\)"
+  "" $<TARGET_FILE:hpsf> stats ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture/team-keys-buckets.hpsfc)
+hpsf_add_cli_test(HpsfStats.AFilterOptionBesideACaptureExits3 "unit;schemes" 3
+  "--capacity: .*team-keys-buckets.hpsfc is a capture: its table is its declaration's" ""
+  $<TARGET_FILE:hpsf> stats ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture/team-keys-buckets.hpsfc --capacity 8)
+
 # Captures (label schemes): hpsf judge gives the host's verdict on frames crosscheck --capture wrote, and a broken
 # capture exits 3 without output.
 add_test(NAME HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3

@@ -2,15 +2,19 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
+#include "core/capture_file.h"
 #include "core/error.h"
 #include "core/footprint.h"
 #include "core/key_batch.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
 #include "tracer/path_tracer.h"
+#include "verifier/contract/capture_judgement.h"
+#include "verifier/gate/table_declaration.h"
 #include "verifier/theory/table_statistics.h"
 
 namespace hpsf {
@@ -18,6 +22,7 @@ namespace {
 
 struct StatsOptions {
   std::string input;
+  std::vector<std::string> given;  // the options given besides the input and --json: a capture takes none
   std::string size = "256x256";
   TraceOptions trace;
   FilterOptions filter;
@@ -58,7 +63,11 @@ void PrintText(const TableStatistics& s, const std::string& input) {
   for (std::size_t k = 0; k < s.records_per_cell.size(); ++k) {
     std::printf(" %llu-%llu: %llu", 1ull << k, (2ull << k) - 1, (unsigned long long)s.records_per_cell[k]);
   }
-  std::printf("\njitter tests (each at %.3g):\n", s.jitter_alpha);
+  if (s.jitter.empty()) {
+    std::printf("\njitter tests: none (the keys are not hpsf's)\n");
+  } else {
+    std::printf("\njitter tests (each at %.3g):\n", s.jitter_alpha);
+  }
   for (const JitterVerdict& v : s.jitter) {
     std::printf("  %-13s %s%s\n", ToString(v.test), v.chi_square.ToString().c_str(),
                 v.chi_square.p_value <= s.jitter_alpha ? "   REJECTED" : "");
@@ -66,17 +75,9 @@ void PrintText(const TableStatistics& s, const std::string& input) {
   std::printf("%s\n", s.ExceedsTheory() ? "WARN: a measured rate exceeds its theory" : "every rate within its theory");
 }
 
-int Run(StatsOptions& o, bool options_only) {
-  const FilterConfig config = ResolveFilterConfig(o.filter);
-  ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
-  if (options_only) return kExitOk;
-  const RecordBatch batch = LoadOrTraceBatch(o.input, o.trace);
-  const auto start = std::chrono::steady_clock::now();
-  const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
-  const std::vector<KeyResult> keys =
-      ComputeKeys(batch.records, MakeKeyParams(config, footprint, std::uint32_t(batch.records.size())));
-  const TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+bool IsCapture(const std::string& input) { return std::filesystem::path(input).extension() == ".hpsfc"; }
+
+void PrintReport(const TableStatistics& s, const StatsOptions& o, const FilterConfig& config, double seconds) {
   if (o.json) {
     nlohmann::json report = s.ToJson();
     report["version"] = 1;
@@ -88,6 +89,44 @@ int Run(StatsOptions& o, bool options_only) {
   } else {
     PrintText(s, o.input);
   }
+}
+
+// A team's keys from a capture (docs/reference/capture-format.md): its own home slots and identities against
+// uniform hashing, under the table its declaration declares. Keys that fail level 1 (a home slot outside the table,
+// the empty marker as identity) cannot be inserted: exit 2 naming them, as hpsf judge would.
+int RunOnCapture(const StatsOptions& o, bool options_only) {
+  if (!o.given.empty()) {
+    throw ConfigError(o.given.front(), o.input + " is a capture: its table is its declaration's, its keys its own");
+  }
+  if (options_only) return kExitOk;
+  const Capture capture = ReadCapture(o.input);
+  FilterConfig config;
+  ApplyTableDeclarationText(capture.declaration, o.input + ": its declaration", config);
+  const CrosscheckReport judged = JudgeCapture(capture, config);
+  const LevelVerdict& keys = judged.levels.front();
+  if (!keys.passed) {
+    std::cerr << "hpsf: " << o.input << ": the keys fail level 1, so no statistics of them hold:\n";
+    for (const std::string& f : keys.failures) std::cerr << "  " << f << "\n";
+    return kExitCheckFailed;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const TableStatistics s = MeasureGivenKeyStatistics(capture.record_count(), CapturedKeys(capture), config);
+  PrintReport(s, o, config, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return s.ExceedsTheory() ? kExitWarn : kExitOk;
+}
+
+int Run(StatsOptions& o, bool options_only) {
+  if (IsCapture(o.input)) return RunOnCapture(o, options_only);
+  const FilterConfig config = ResolveFilterConfig(o.filter);
+  ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
+  if (options_only) return kExitOk;
+  const RecordBatch batch = LoadOrTraceBatch(o.input, o.trace);
+  const auto start = std::chrono::steady_clock::now();
+  const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
+  const std::vector<KeyResult> keys =
+      ComputeKeys(batch.records, MakeKeyParams(config, footprint, std::uint32_t(batch.records.size())));
+  const TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
+  PrintReport(s, o, config, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return s.ExceedsTheory() ? kExitWarn : kExitOk;
 }
 
@@ -98,7 +137,9 @@ void AddStatsCommand(CLI::App& app, CommandContext& context) {
   CLI::App* c = app.add_subcommand("stats",
                                    "The figures that size a table for a scene: load, probes, failures, "
                                    "aliases, records per cell, jitter; each beside its theory");
-  c->add_option("input", o->input, "A scene (built-in name or file) to trace, or a recorded batch FILE.hpsfv")
+  c->add_option("input", o->input,
+                "A scene (built-in name or file) to trace, a recorded batch FILE.hpsfv, or a capture FILE.hpsfc of a "
+                "team's own keys (docs/reference/capture-format.md)")
       ->required();
   c->add_option("--size", o->size, "Traced image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--spp", o->trace.samples_per_pixel, "Samples per pixel")->capture_default_str();
@@ -108,7 +149,15 @@ void AddStatsCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   AddFilterOptions(*c, o->filter);
-  c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });
+  c->callback([o, c, &context] {
+    o->given.clear();
+    for (const CLI::Option* option : c->get_options()) {
+      if (option->count() == 0 || option->get_positional() || option->get_name() == "--json") continue;
+      if (option->get_name() == "--help") continue;
+      o->given.push_back(option->get_name());
+    }
+    context.exit_code = Run(*o, context.options_only);
+  });
 }
 
 }  // namespace hpsf

@@ -66,22 +66,6 @@ KeyWordsOf WordsOf(const KeyResult& k) {
   return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal, k.words.extra};
 }
 
-// The captured keys as core's KeyResult: the key words in order, the home slot as slot0, the identity as the
-// fingerprint.
-std::vector<KeyResult> CapturedKeys(const Capture& c) {
-  std::vector<KeyResult> keys(c.record_count());
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    std::uint32_t w[6] = {};
-    for (std::uint32_t k = 0; k < c.key_words; ++k) w[k] = c.keys[i * c.key_words + k];
-    KeyResult& key = keys[i];
-    key = shared::EmptyKeyResult(c.statuses[i]);
-    key.words = {w[0], w[1], w[2], w[3], w[4], w[5]};
-    key.slot0 = c.home_slots[i];
-    key.fingerprint = c.identities[i];
-  }
-  return keys;
-}
-
 // The records the checker sums: hpsf's own when captured, else each one's contribution, with a vertex where it has
 // a key (a non-finite or negative contribution is then rejected, as hpsf rejects such a record).
 std::vector<Record> RecordsToCheck(const Capture& c) {
@@ -229,6 +213,20 @@ std::uint64_t JudgeAgainstExactMap(const Capture& c, const FilterConfig& config,
 }
 
 }  // namespace
+
+std::vector<KeyResult> CapturedKeys(const Capture& c) {
+  std::vector<KeyResult> keys(c.record_count());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    std::uint32_t w[6] = {};
+    for (std::uint32_t k = 0; k < c.key_words; ++k) w[k] = c.keys[i * c.key_words + k];
+    KeyResult& key = keys[i];
+    key = shared::EmptyKeyResult(c.statuses[i]);
+    key.words = {w[0], w[1], w[2], w[3], w[4], w[5]};
+    key.slot0 = c.home_slots[i];
+    key.fingerprint = c.identities[i];
+  }
+  return keys;
+}
 
 CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
   CheckAgainstDeclaration(capture, config);

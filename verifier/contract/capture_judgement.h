@@ -23,6 +23,10 @@ namespace hpsf {
 // encoding, last-seen frames with eviction) or that hpsf cannot judge is an InputError naming the capture.
 CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config);
 
+// The captured keys as core's KeyResult: the key words in order (zero past key_words), the home slot as slot0, the
+// identity as the fingerprint, the status as given, level 0.
+std::vector<KeyResult> CapturedKeys(const Capture& capture);
+
 }  // namespace hpsf
 
 #endif  // HPSF_VERIFIER_CONTRACT_CAPTURE_JUDGEMENT_H

@@ -103,10 +103,14 @@ std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys, std::vector
   return distinct;
 }
 
-TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
-                                       const FilterConfig& config) {
+namespace {
+
+// hpsf_keys: the keys are hpsf's, whose fingerprint at any width is recomputed from the key words, and whose jitter
+// is tested; else the identities are taken as given, at the declared width only.
+TableStatistics MeasureStatistics(std::uint64_t records, std::span<const KeyResult> keys, const FilterConfig& config,
+                                  bool hpsf_keys) {
   TableStatistics s;
-  s.records = records.size();
+  s.records = records;
   s.capacity = config.capacity;
   s.probe_limit = config.probe_limit;
   s.probing = config.probing;
@@ -128,7 +132,8 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
   WindowFullOverTheFill window_full(s.capacity, s.distinct_keys);
   std::vector<std::uint32_t> limits = SortedWith(kProbeLimits, config.probe_limit);
   std::erase_if(limits, [&](std::uint32_t limit) { return limit > s.capacity; });
-  const std::vector<std::uint32_t> widths = SortedWith(kFingerprintBits, config.fingerprint_bits);
+  const std::vector<std::uint32_t> widths = hpsf_keys ? SortedWith(kFingerprintBits, config.fingerprint_bits)
+                                                      : std::vector<std::uint32_t>{config.fingerprint_bits};
   const double alpha = SidakLevel(kLevel, int(limits.size() + widths.size()));
 
   if (s.distinct_keys < s.capacity) {
@@ -167,7 +172,9 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
   double observed = 0.0, predicted = 0.0, compared_per_key = 0.0;
   for (const std::uint32_t bits : widths) {
     std::vector<KeyResult> at_width = distinct;
-    for (KeyResult& k : at_width) k.fingerprint = shared::Fingerprint(k.words, bits);
+    if (hpsf_keys) {
+      for (KeyResult& k : at_width) k.fingerprint = shared::Fingerprint(k.words, bits);
+    }
     const AliasTally t = InsertAndCountAliases(at_width, s.capacity, config.probe_limit, bits, config.probing);
     s.fingerprints.push_back({bits, Rate(t.aliased, t.keys, t.PredictedRate(), alpha)});
     observed += double(t.aliased);
@@ -179,12 +186,25 @@ TableStatistics MeasureTableStatistics(std::span<const Record> records, std::spa
   const double observed_share = predicted > 0.0 ? observed / predicted : 1.0;
   s.extrapolated_alias_rate_32 = observed_share * compared_per_key * std::ldexp(1.0, -32);
 
+  if (!hpsf_keys) return s;
   s.jitter_alpha = SidakLevel(kLevel, int(std::size(kJitterTests)));
   for (const JitterTest test : kJitterTests) {
     const std::uint32_t samples = test == JitterTest::kMean ? kJitterMeanSamples : kJitterSamples;
     s.jitter.push_back(RunJitterTest(CoreKeyPass, MakeJitterExperiment(test, config.seed, config.frame, samples)));
   }
   return s;
+}
+
+}  // namespace
+
+TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
+                                       const FilterConfig& config) {
+  return MeasureStatistics(records.size(), keys, config, true);
+}
+
+TableStatistics MeasureGivenKeyStatistics(std::uint64_t records, std::span<const KeyResult> keys,
+                                          const FilterConfig& config) {
+  return MeasureStatistics(records, keys, config, false);
 }
 
 nlohmann::json TableStatistics::ToJson() const {

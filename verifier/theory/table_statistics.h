@@ -70,6 +70,13 @@ std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys,
 TableStatistics MeasureTableStatistics(std::span<const Record> records, std::span<const KeyResult> keys,
                                        const FilterConfig& config);
 
+// The same for keys that are not hpsf's (a team's, from a capture, verifier/contract/capture_judgement.h): the key
+// words, home slots and identities as given. Aliases are measured at the declared width only, with the identities
+// given (no other width can be recomputed without the team's hash), and no jitter test runs (the jitter is hpsf's).
+// Against uniform hashing's theory, as for hpsf's keys: a home slot or identity that is not uniform shows here.
+TableStatistics MeasureGivenKeyStatistics(std::uint64_t records, std::span<const KeyResult> keys,
+                                          const FilterConfig& config);
+
 }  // namespace hpsf
 
 #endif  // HPSF_VERIFIER_THEORY_TABLE_STATISTICS_H
