@@ -38,6 +38,14 @@ report(crosscheck 2 crosscheck cornell ${small} --backends reference,emulated --
   --capacity 4096 --repro-dir bundle --json)
 report(stats 0 stats cornell ${small} --json)
 report(stats 0 stats cornell ${small} --capacity 64 --probe-limit 2 --fingerprint-bits 8 --json)
+execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference,emulated --capacity 4096 --frames 2
+  --eviction strict --capture captures OUTPUT_QUIET RESULT_VARIABLE code WORKING_DIRECTORY ${OUT})
+execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference,emulated --inject-defect D9
+  --mode faithful --capacity 4096 --capture captures-d9 --repro-dir bundle-d9 OUTPUT_QUIET ERROR_QUIET
+  WORKING_DIRECTORY ${OUT})
+report(judge 0 judge captures --json)
+report(judge 2 judge captures-d9 --json)
+report(stats 0 stats captures/emulated-frame-1.hpsfc --json)
 report(diff 0 diff r.exr r.exr --json)
 report(diff 2 diff r.exr r3.exr --json)
 report(diff 0 diff r.exr r3.exr --metric ssim --warn 0.1 --fail 0.05 --json)

@@ -230,6 +230,7 @@ nlohmann::json TableStatistics::ToJson() const {
   for (const AliasFigure& f : fingerprints) {
     j["aliases"].push_back({{"fingerprint_bits", f.fingerprint_bits}, {"aliases", RateJson(f.aliases)}});
   }
+  j["jitter"] = nlohmann::json::array();  // empty for keys that are not hpsf's
   for (const JitterVerdict& v : jitter) {
     j["jitter"].push_back({{"test", ToString(v.test)},
                            {"samples", v.samples},
