@@ -240,8 +240,8 @@ int RunCheck(const CheckOptions& o, bool options_only) {
 void AddCheckCommand(CLI::App& app, CommandContext& context) {
   auto o = std::make_shared<CheckOptions>();
   CLI::App* c = app.add_subcommand("check",
-                                   "The CI correctness gate: run a gate file's cross-checks, statistics, goldens and "
-                                   "fuzzing: exit 0 pass, 1 warn, 2 fail, 3 bad input");
+                                   "The CI correctness gate: run a gate file's cross-checks, statistics, goldens, "
+                                   "fuzzing and captures: exit 0 pass, 1 warn, 2 fail, 3 bad input");
   c->add_option("gate", o->gate_file, "The gate file (JSON, \"hpsf_gate\": 1); none: the default gate");
   c->add_option("--shard", o->shard, "Run shard I of N: cases I, I + N, I + 2N, ...")->capture_default_str();
   c->add_option("--junit", o->junit, "Write the JUnit XML report to FILE");

@@ -55,3 +55,15 @@ if(NOT "${out}" STREQUAL "" OR EXISTS ${dir}/mixed.xml)
 endif()
 run_hpsf(3 judge ${dir}/repro-does-not-exist.hpsfc)
 expect_match("${err}" "cannot open the capture" "judge's error")
+
+# The captures family of a gate file: one case per folder, the clean one passing and D2's failing, in JUnit too.
+file(WRITE ${dir}/gate.json "{\"hpsf_gate\": 1, \"captures\": {\"paths\": [\"d2\", \"clean\"]}}")
+run_hpsf(2 check ${dir}/gate.json --out ${dir}/gate-out --junit ${dir}/gate.xml)
+expect_match("${out}" "PASS captures/clean" "the gate's output")
+expect_match("${out}" "FAIL captures/d2 \\([0-9.]+ s\\): [^\n]*vulkan-frame-0.hpsfc: level 2 tables: capture: earlier slot"
+  "the gate's output")
+file(READ ${dir}/gate.xml junit)
+expect_match("${junit}" "<testsuite name=\"captures\" tests=\"2\" failures=\"1\"" "the gate's JUnit report")
+file(WRITE ${dir}/missing.json "{\"hpsf_gate\": 1, \"captures\": {\"paths\": [\"clean\", \"nowhere\"]}}")
+run_hpsf(3 check ${dir}/missing.json --out ${dir}/missing-out)
+expect_match("${err}" "missing.json: /captures/paths/1: .*nowhere: no such capture or folder" "the gate's error")

@@ -89,11 +89,23 @@ std::vector<std::string> FuzzFailure(const json& report) {
   return lines;
 }
 
+// A judge's failures over its captures, each "CAPTURE: level N name: failure".
+std::vector<std::string> CaptureFailures(const json& report) {
+  std::vector<std::string> lines;
+  for (const json& c : report.value("captures", json::array())) {
+    for (const std::string& line : ContractFailures(c["report"])) {
+      lines.push_back(c["capture"].get<std::string>() + ": " + line);
+    }
+  }
+  return lines;
+}
+
 std::vector<std::string> Problems(const std::string& family, const json& report) {
   if (family == "crosscheck") return ContractFailures(report);
   if (family == "statistics") return StatisticsWarnings(report);
   if (family == "golden") return GoldenProblems(report);
   if (family == "fuzz") return FuzzFailure(report);
+  if (family == "captures") return CaptureFailures(report);
   return {};
 }
 
@@ -106,6 +118,9 @@ std::string FixedPoint(const std::string& family, const json& report) {
   if (family == "crosscheck" && report.contains("fixed_point_bits") && report.contains("accumulation")) {
     const std::string mode = report["accumulation"].get<std::string>();
     return mode == "fixed64" ? mode + ", F " + std::to_string(report["fixed_point_bits"].get<int>()) : mode;
+  }
+  if (family == "captures" && report.contains("captures") && !report["captures"].empty()) {
+    return FixedPoint("crosscheck", report["captures"][0]["report"]);  // the first frame's: a folder is one table
   }
   if (family == "fuzz" && report.contains("fixed_point_bits") && report["fixed_point_bits"].is_object()) {
     const int low = report["fixed_point_bits"]["min"].get<int>(), high = report["fixed_point_bits"]["max"].get<int>();

@@ -6,6 +6,7 @@
 //                                                             their theory (a rate above it warns)
 //   golden      one case per golden of a manifest             `hpsf golden check`: the image against its golden
 //   fuzz        backend x seed, a budget of runs              `hpsf fuzz`: adversarial batches, shrunk on failure
+//   captures    one case per capture or folder of them         `hpsf judge`: a team's frames, captured in its engine
 //
 // Cases are appended in that order of families, each family's coordinates sorted as the file's objects are, so a
 // gate's case list (and so its shards) is a function of the file alone.
@@ -27,6 +28,7 @@ void ExpandCrosscheck(const nlohmann::json& family, const std::string& folder, c
 void ExpandStatistics(const nlohmann::json& family, const std::string& folder, const GateError& error, Gate& gate);
 void ExpandGolden(const nlohmann::json& family, const std::string& folder, const GateError& error, Gate& gate);
 void ExpandFuzz(const nlohmann::json& family, const std::string& folder, const GateError& error, Gate& gate);
+void ExpandCaptures(const nlohmann::json& family, const std::string& folder, const GateError& error, Gate& gate);
 
 }  // namespace hpsf::gate
 

@@ -74,19 +74,21 @@ Gate ExpandGate(const std::string& text, const std::string& source, const std::s
   if (!document.contains("hpsf_gate") || document["hpsf_gate"] != kGateFileVersion) {
     error.At("/hpsf_gate", "expected 1, the gate file's version");
   }
-  gate::RequireKeys(document, {"hpsf_gate", "name", "crosscheck", "statistics", "golden", "fuzz"}, "", error);
+  gate::RequireKeys(document, {"hpsf_gate", "name", "crosscheck", "statistics", "golden", "fuzz", "captures"}, "",
+                    error);
   Gate gate;
   gate.source = source;
   using Expansion = void (*)(const json&, const std::string&, const gate::GateError&, Gate&);
   const std::pair<const char*, Expansion> families[] = {{"crosscheck", gate::ExpandCrosscheck},
                                                         {"statistics", gate::ExpandStatistics},
                                                         {"golden", gate::ExpandGolden},
-                                                        {"fuzz", gate::ExpandFuzz}};
+                                                        {"fuzz", gate::ExpandFuzz},
+                                                        {"captures", gate::ExpandCaptures}};
   for (const auto& [name, expand] : families) {
     if (document.contains(name)) expand(document[name], folder, error, gate);
   }
   if (gate.cases.empty()) {
-    throw InputError(source + ": the gate declares no family to run: crosscheck, statistics, golden or fuzz");
+    throw InputError(source + ": the gate declares no family to run: crosscheck, statistics, golden, fuzz or captures");
   }
   std::set<std::string> ids;
   for (const GateCase& c : gate.cases) {
