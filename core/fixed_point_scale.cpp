@@ -42,10 +42,10 @@ void RequireFixedPointConverts(std::span<const glm::vec3> contributions, int fix
   // is 2^64 - 2^40).
   if (std::ldexp(double(largest), fixed_point_bits) < 0x1p64) return;
   const int exponent = std::ilogb(largest);
-  throw ConfigError("--fixed-point-bits", "F " + std::to_string(fixed_point_bits) +
-                                              " is too large for a contribution of " + std::to_string(largest) +
-                                              " in this batch: it reaches 2^64, past fixed64's range; F " +
-                                              std::to_string(63 - exponent) + " at most converts it");
+  throw FixedPointRangeError("--fixed-point-bits",
+                             "F " + std::to_string(fixed_point_bits) + " is too large for a contribution of " +
+                                 std::to_string(largest) + " in this batch: it reaches 2^64, past fixed64's range; F " +
+                                 std::to_string(63 - exponent) + " at most converts it");
 }
 
 void RequireFixedPointConverts(std::span<const Record> records, int fixed_point_bits) {

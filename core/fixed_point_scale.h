@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/error.h"
 #include "core/record.h"
 
 namespace hpsf {
@@ -34,6 +35,11 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
 // C++ and GLSL alike (a sum past it wraps and is counted; one conversion past it is undefined). The automatic F
 // always fits its first frame, but a given --fixed-point-bits, or a later frame much brighter than the first, may not:
 // a ConfigError naming --fixed-point-bits and the largest F that would. `contributions` as for the choice above.
+// The error names --fixed-point-bits; its own type lets hpsf fuzz tell a batch hpsf cannot represent from a bug.
+class FixedPointRangeError : public ConfigError {
+ public:
+  using ConfigError::ConfigError;
+};
 void RequireFixedPointConverts(std::span<const glm::vec3> contributions, int fixed_point_bits);
 // The same over the records that enter the table.
 void RequireFixedPointConverts(std::span<const Record> records, int fixed_point_bits);

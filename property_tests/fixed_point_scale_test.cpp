@@ -73,5 +73,25 @@ RC_GTEST_PROP(FixedPointScale, FDoesNotDependOnHowTheRunnerSplitsTheWork, ()) {
   RC_ASSERT(ChooseFixedPointBitsOf(contributions, split) == ChooseFixedPointBitsOf(contributions));
 }
 
+// A contribution converts at F exactly when c * 2^F lies below 2^64 (undefined past it, in C++ and GLSL alike): the
+// boundary is exact, and the error names the largest F that would convert the batch's largest contribution.
+TEST(FixedPointScale, AContributionPastFixed64IsRefusedAtItsExactBoundary) {
+  const std::vector<glm::vec3> batch = {glm::vec3(0.5f, 3.0f, 0.0f), glm::vec3(1.0f, 0.25f, 2.0f)};
+  EXPECT_NO_THROW(RequireFixedPointConverts(batch, 62));  // 3 x 2^62 < 2^64
+  try {
+    RequireFixedPointConverts(batch, 63);  // 3 x 2^63 >= 2^64
+    ADD_FAILURE() << "F 63 accepted for a contribution of 3";
+  } catch (const FixedPointRangeError& e) {
+    EXPECT_NE(std::string(e.what()).find("--fixed-point-bits: F 63 is too large for a contribution of 3.000000"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("F 62 at most converts it"), std::string::npos) << e.what();
+  }
+  const std::vector<glm::vec3> just_below = {glm::vec3(std::nextafter(2.0f, 0.0f), 0.0f, 0.0f)};
+  EXPECT_NO_THROW(RequireFixedPointConverts(just_below, 63));  // (2 - 2^-23) x 2^63 < 2^64
+  EXPECT_THROW(RequireFixedPointConverts(std::vector<glm::vec3>{glm::vec3(2.0f)}, 63), FixedPointRangeError);
+  EXPECT_NO_THROW(RequireFixedPointConverts(std::vector<glm::vec3>{}, 126));  // nothing to convert
+}
+
 }  // namespace
 }  // namespace hpsf

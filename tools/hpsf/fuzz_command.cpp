@@ -14,6 +14,7 @@
 
 #include "core/backend_registry.h"
 #include "core/error.h"
+#include "core/fixed_point_scale.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"
@@ -57,9 +58,18 @@ struct FixedPointRange {
 };
 
 // One case through the checker: one frame, or a sequence through one table per backend.
-CrosscheckReport Check(Crosschecker& checker, const AdversarialCase& c) {
-  return checker.CheckFrames(c.Frames(), c.config, c.emulator);
+// A case whose later frame is brighter than the F its first frame chose cannot be filtered (its conversions leave
+// fixed64's range: core/fixed_point_scale.h); it judges nothing, and is counted as refused, never as a pass.
+std::optional<CrosscheckReport> Check(Crosschecker& checker, const AdversarialCase& c) {
+  try {
+    return checker.CheckFrames(c.Frames(), c.config, c.emulator);
+  } catch (const FixedPointRangeError&) {
+    return std::nullopt;
+  }
 }
+
+bool Fails(const std::optional<CrosscheckReport>& report) { return report && !report->Passed(); }
+bool Passes(const std::optional<CrosscheckReport>& report) { return report && report->Passed(); }
 
 struct Failure {
   std::uint64_t run = 0;
@@ -77,16 +87,16 @@ struct Failure {
 int Tries(const BackendInfo& backend) { return backend.on_device ? 3 : 1; }
 
 // The first failing report of up to `tries` checks of c, or the last passing one.
-CrosscheckReport CheckUntilFails(Crosschecker& checker, const AdversarialCase& c, int tries) {
-  CrosscheckReport report;
+std::optional<CrosscheckReport> CheckUntilFails(Crosschecker& checker, const AdversarialCase& c, int tries) {
+  std::optional<CrosscheckReport> report;
   for (int t = 0; t < tries; ++t) {
     report = Check(checker, c);
-    if (!report.Passed()) break;
+    if (!Passes(report)) break;
   }
   return report;
 }
 
-nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds,
+nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, std::uint64_t refused, double seconds,
                       const std::array<std::uint64_t, kAdversarialFamilies>& families,
                       const FixedPointRange& fixed_point, const std::optional<Failure>& failure) {
   nlohmann::json j = {{"version", 1},
@@ -94,10 +104,14 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, double seconds,
                       {"backend", o.backend},
                       {"defect", o.defect},
                       {"accumulate_spv", o.vulkan.accumulate_spv},
+                      {"eviction_spv", o.vulkan.eviction_spv},
+                      {"temporal_spv", o.vulkan.temporal_spv},
+                      {"resolve_spv", o.vulkan.resolve_spv},
                       {"accum", o.accumulation.empty() ? "both" : o.accumulation},
                       {"probing", o.probing.empty() ? (o.vulkan.accumulate_spv.empty() ? "any" : "linear") : o.probing},
                       {"seed", o.seed},
                       {"runs", runs},
+                      {"refused", refused},
                       {"seconds", seconds},
                       {"runs_per_second", seconds > 0 ? double(runs) / seconds : 0.0},
                       {"passed", !failure.has_value()}};
@@ -135,8 +149,17 @@ int Run(FuzzOptions& o, bool options_only) {
     throw ConfigError("--inject-defect",
                       "breaks the emulated backend's kernel; for Vulkan give a broken shader with --accumulate-spv");
   }
-  if (!o.vulkan.accumulate_spv.empty() && !backend.runs_user_shaders) {
-    throw ConfigError("--accumulate-spv", "runs on the Vulkan backend; add --backend vulkan");
+  const std::pair<const char*, const std::string*> shaders[] = {{"--accumulate-spv", &o.vulkan.accumulate_spv},
+                                                                {"--eviction-spv", &o.vulkan.eviction_spv},
+                                                                {"--temporal-spv", &o.vulkan.temporal_spv},
+                                                                {"--resolve-spv", &o.vulkan.resolve_spv}};
+  for (const auto& [option, path] : shaders) {
+    if (!path->empty() && !backend.runs_user_shaders) {
+      throw ConfigError(option, "runs on the Vulkan backend; add --backend vulkan");
+    }
+  }
+  if ((o.accumulation.empty() || o.accumulation == "both") && !o.vulkan.resolve_spv.empty()) {
+    throw ConfigError("--accum", "say which mode the shader given with --resolve-spv resolves: fixed64 or float32");
   }
   if (o.accumulation.empty() && !o.vulkan.accumulate_spv.empty()) {
     throw ConfigError("--accum",
@@ -167,14 +190,18 @@ int Run(FuzzOptions& o, bool options_only) {
   std::array<std::uint64_t, kAdversarialFamilies> families{};
   std::optional<Failure> failure;
   FixedPointRange fixed_point;
-  std::uint64_t run = 0;
+  std::uint64_t run = 0, refused = 0;
   for (; !(o.runs && run >= *o.runs) && !(o.seconds && SecondsSince(start) >= *o.seconds); ++run) {
     const AdversarialCase c = MakeAdversarialCase(o.seed, run, generate);
     ++families[std::size_t(c.family)];
-    const CrosscheckReport report = Check(checker, c);
-    if (c.config.accumulation == Accumulation::kFixed64) fixed_point.Add(report.fixed_point_bits);
-    if (!report.Passed()) {
-      failure = Failure{run, SecondsSince(start), c, report, {}, 0, {}, false};
+    const std::optional<CrosscheckReport> report = Check(checker, c);
+    if (!report) {
+      ++refused;
+      continue;
+    }
+    if (c.config.accumulation == Accumulation::kFixed64) fixed_point.Add(report->fixed_point_bits);
+    if (!report->Passed()) {
+      failure = Failure{run, SecondsSince(start), c, *report, {}, 0, {}, false};
       ++run;
       break;
     }
@@ -194,14 +221,33 @@ int Run(FuzzOptions& o, bool options_only) {
     // A failure that does not repeat on every run of the case as found depends on timing: shrinking it would chase
     // luck, so it is bundled as found.
     for (int t = 1; t < tries && !failure->timing_dependent; ++t) {
-      failure->timing_dependent = Check(checker, failure->found).Passed();
+      failure->timing_dependent = Passes(Check(checker, failure->found));
     }
     if (!failure->timing_dependent) {
-      failure->shrink = ShrinkCase(
-          failure->found, [&](const AdversarialCase& c) { return !CheckUntilFails(checker, c, tries).Passed(); },
-          {.accumulation = accumulation.has_value(), .probing = generate.probing.has_value()});
-      failure->report = CheckUntilFails(checker, failure->shrink.shrunk, 3 * tries);
-      failure->timing_dependent = failure->report.Passed();  // the shrunk case lost the timing it needs
+      // With a broken kernel or a team's shader, a shrunk case must also pass on hpsf's own kernels and shaders:
+      // shrinking may otherwise wander into a failure they share (a sequence whose first frame, its records cut,
+      // chooses an F its later frame wraps), which says nothing of the shader. Unless the found case fails there too.
+      VulkanBackendOptions own = o.vulkan;
+      own.accumulate_spv = own.eviction_spv = own.temporal_spv = own.resolve_spv = "";
+      std::optional<Crosschecker> hpsfs_own;
+      if (defect != Defect::kNone || own.accumulate_spv != o.vulkan.accumulate_spv ||
+          own.eviction_spv != o.vulkan.eviction_spv || own.temporal_spv != o.vulkan.temporal_spv ||
+          own.resolve_spv != o.vulkan.resolve_spv) {
+        hpsfs_own.emplace(backends, Defect::kNone, own);
+        if (!Passes(Check(*hpsfs_own, failure->found))) hpsfs_own.reset();
+      }
+      failure->shrink =
+          ShrinkCase(failure->found,
+                     [&](const AdversarialCase& c) {
+                       return Fails(CheckUntilFails(checker, c, tries)) && (!hpsfs_own || Passes(Check(*hpsfs_own, c)));
+                     },
+                     {.accumulation = accumulation.has_value(),
+                      .probing = generate.probing.has_value(),
+                      .eviction = !o.vulkan.eviction_spv.empty(),
+                      .temporal = !o.vulkan.temporal_spv.empty()});
+      const std::optional<CrosscheckReport> shrunk = CheckUntilFails(checker, failure->shrink.shrunk, 3 * tries);
+      failure->timing_dependent = !Fails(shrunk);  // the shrunk case lost the timing it needs
+      if (shrunk) failure->report = *shrunk;
     }
     failure->shrink_seconds = SecondsSince(shrink_start);
     if (failure->timing_dependent) {
@@ -214,11 +260,15 @@ int Run(FuzzOptions& o, bool options_only) {
   }
 
   if (o.json) {
-    std::cout << ToJson(o, run, seconds, families, fixed_point, failure).dump(2) << "\n";
+    std::cout << ToJson(o, run, refused, seconds, families, fixed_point, failure).dump(2) << "\n";
   } else if (!failure) {
     std::printf(
         "fuzz: %llu runs in %.1f s (%.1f runs/s), seed %u, %s: every table passed the checker and the contract\n",
         (unsigned long long)run, seconds, double(run) / seconds, o.seed, fixed_point.ToString().c_str());
+    if (refused != 0) {
+      std::printf("  %llu of them refused as input, not judged: a later frame past the F its first frame chose\n",
+                  (unsigned long long)refused);
+    }
   } else {
     const Failure& f = *failure;
     std::printf("fuzz: FAIL at run %llu after %.2f s (seed %u; `--seed %u --runs %llu` %s)\n",
@@ -253,6 +303,12 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
       ->capture_default_str();
   c->add_option("--accumulate-spv", o->vulkan.accumulate_spv,
                 "Vulkan: your accumulate shader (SPIR-V) through the stable buffer interface");
+  c->add_option("--eviction-spv", o->vulkan.eviction_spv,
+                "Vulkan: your eviction shader (SPIR-V), run in the cases whose sequence evicts");
+  c->add_option("--temporal-spv", o->vulkan.temporal_spv,
+                "Vulkan: your temporal blend shader (SPIR-V), run in the cases whose sequence blends");
+  c->add_option("--resolve-spv", o->vulkan.resolve_spv,
+                "Vulkan: your resolve shader (SPIR-V), run in every case; --accum must name its mode");
   c->add_option("--accum", o->accumulation,
                 "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
   c->add_option("--probing", o->probing,

@@ -407,9 +407,13 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
         table_total[c] += t.fixed_sums[s][c];
         placed_total[c] += exact;
         if (exact != t.fixed_sums[s][c]) {
+          // An exact sum of 2^64 or more is one the table's 64 bits wrapped (a later frame brighter than the one
+          // whose F the table keeps): said so, rather than printed modulo 2^64 beside an equal-looking sum.
+          const std::uint64_t wraps = std::uint64_t(exact >> 64);
           violate(TableInvariant::kSumMismatch, s, here,
                   "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) + ", exact " +
-                      std::to_string(std::uint64_t(exact)));
+                      std::to_string(std::uint64_t(exact)) +
+                      (wraps == 0 ? "" : " + " + std::to_string(wraps) + " x 2^64: the sum wrapped"));
         }
       } else {
         // Float atomics are not promised to round to nearest: u = 2^-23, gamma(k) = k u / (1 - k u), over the k

@@ -95,8 +95,10 @@ class Shrinker {
       }
       if (Fails(candidate)) c = std::move(candidate);
     };
-    if (c.config.eviction.enabled()) attempt([](AdversarialCase& a) { a.config.eviction = {}; });
-    if (c.config.temporal.mode != TemporalMode::kIntegrate) attempt([](AdversarialCase& a) { a.config.temporal = {}; });
+    if (!keep_.eviction && c.config.eviction.enabled()) attempt([](AdversarialCase& a) { a.config.eviction = {}; });
+    if (!keep_.temporal && c.config.temporal.mode != TemporalMode::kIntegrate) {
+      attempt([](AdversarialCase& a) { a.config.temporal = {}; });
+    }
     if (c.config.fixed_point_bits) attempt([](AdversarialCase& a) { a.config.fixed_point_bits.reset(); });
     if (c.config.fingerprint_bits != 32) attempt([](AdversarialCase& a) { a.config.fingerprint_bits = 32; });
     if (!keep_.probing && c.config.probing != ProbeKind::kLinear)

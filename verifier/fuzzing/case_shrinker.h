@@ -1,10 +1,10 @@
 // Shrinks a failing adversarial case to a small one that still fails, so a repro bundle shows the defect in a
 // few records: a sequence's frames dropped one at a time, then delta debugging (Zeller and Hildebrandt 2002, ddmin)
-// over each frame's records, then greedy simplifications of the configuration (no eviction, integrating, the
-// automatic F, full fingerprints, fixed64 unless kept, the round-robin schedule, warp 8, the shortest probe limit),
-// then the frames and records once more. The result is 1-minimal in each frame's records: removing any one of them
-// makes the case pass. "Fails" is whatever the caller's predicate says, typically "the cross-check
-// contract does not hold".
+// over each frame's records, then greedy simplifications of the configuration (no eviction and integrating unless
+// kept, the automatic F, full fingerprints, fixed64 unless kept, the round-robin schedule, warp 8, the shortest probe
+// limit), then the frames and records once more. The result is 1-minimal in each frame's records: removing any one of
+// them makes the case pass. "Fails" is whatever the caller's predicate says, typically "the cross-check contract does
+// not hold".
 #ifndef HPSF_VERIFIER_FUZZING_CASE_SHRINKER_H
 #define HPSF_VERIFIER_FUZZING_CASE_SHRINKER_H
 
@@ -24,10 +24,13 @@ struct ShrinkResult {
 };
 
 // What was the user's choice and is not simplified: a shader may handle one accumulation mode or one probing
-// scheme only.
+// scheme only, and a team's eviction or temporal shader runs only while the case evicts or blends (simplified away,
+// the case would shrink into some other failure, or none of the shader's).
 struct ShrinkKeeps {
   bool accumulation = false;
   bool probing = false;
+  bool eviction = false;
+  bool temporal = false;
 };
 
 ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, ShrinkKeeps keep = {},
