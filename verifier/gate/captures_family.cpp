@@ -28,9 +28,14 @@ void ExpandCaptures(const json& family, const std::string& folder, const GateErr
   }
   std::sort(paths.begin(), paths.end());
   for (const auto& [given, resolved] : paths) {
+    // The id names the path without the climb out of the gate file's folder: "../examples/captures" is
+    // "captures/examples/captures".
+    std::string name = std::filesystem::path(given).lexically_normal().string();
+    while (name.rfind("../", 0) == 0 || name.rfind("./", 0) == 0) name.erase(0, name.find('/') + 1);
+    if (name.size() > 1 && name.back() == '/') name.pop_back();
     GateCase c;
     c.family = "captures";
-    c.id = "captures/" + given;
+    c.id = "captures/" + name;
     c.where = at + "/paths";
     c.arguments = {"judge", resolved};
     gate.cases.push_back(std::move(c));
