@@ -112,6 +112,35 @@ hpsf_add_cli_test(HpsfStats.AFilterOptionBesideACaptureExits3 "unit;schemes" 3
   "--capacity: .*team-keys-buckets.hpsfc is a capture: its table is its declaration's" ""
   $<TARGET_FILE:hpsf> stats ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture/team-keys-buckets.hpsfc --capacity 8)
 
+# A team's own key (--key-source shader): the accumulate shader writes cells twice hpsf's size under its own hashes.
+# Against core it fails level 1 word for word (and level 3 against hpsf's cells); judged as given it holds the whole
+# contract over frames with eviction and blending, crowded; an identity of 0 is named; level seeding, which looks
+# cells up by hpsf's key, is refused; hpsf fuzz runs it clean and finds the zero identity.
+set(team_key_run crosscheck cornell --size 32x32 --spp 2 --backends reference,vulkan --repro-dir ${hpsf_out}/team-key
+  --accumulate-spv ${HPSF_SHADER_VARIANT_DIR})
+hpsf_add_cli_test(HpsfCrosscheck.ATeamsOwnKeysFailAgainstCoresWordForWord "vulkan;schemes" 2
+  "level 1 keys: FAIL.*cell_x differs \\(core [0-9]+, backend [0-9]+\\).*level 3 agreement with the reference: FAIL" ""
+  $<TARGET_FILE:hpsf> ${team_key_run}/accumulate_TEAM_KEY.spv)
+hpsf_add_cli_test(HpsfCrosscheck.ATeamsOwnKeysHoldTheContractAsGiven "vulkan;schemes" 0
+  "level 1 keys: PASS \\(vulkan's own keys.*level 3 agreement with the reference: PASS \\(vulkan: the exact map over the shader's own key words.*level 4 determinism: PASS"
+  "" $<TARGET_FILE:hpsf> ${team_key_run}/accumulate_TEAM_KEY.spv --key-source shader --frames 3 --eviction stale:1
+  --temporal ema:0.5 --capacity 256 --fingerprint-bits 8)
+hpsf_add_cli_test(HpsfCrosscheck.ATeamsKeyOfIdentityZeroIsNamed "vulkan;schemes" 2
+  "vulkan: record [0-9]+: identity 0, the empty slot's marker" ""
+  $<TARGET_FILE:hpsf> ${team_key_run}/accumulate_TEAM_KEY_ZERO.spv --key-source shader)
+hpsf_add_cli_test(HpsfCrosscheck.ShaderKeysWithLevelSeedsExit3 "unit;schemes" 3
+  "--key-source: level seeding looks cells up by hpsf's key" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 16x16 --backends reference,vulkan --key-source shader
+  --level-change seed --frames 2)
+hpsf_add_cli_test(HpsfFuzz.ATeamsOwnKeysRunClean "vulkan;schemes" 0 "every table passed the checker and the contract" ""
+  $<TARGET_FILE:hpsf> fuzz --backend vulkan --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/accumulate_TEAM_KEY.spv
+  --key-source shader --accum fixed64 --runs 300 --seed 1 --repro-dir ${hpsf_out}/team-key-fuzz)
+add_test(NAME HpsfFuzz.FindsATeamsKeyOfIdentityZero
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_team_key_zero -DMAX_RECORDS=2
+    "-DARGS=--backend;vulkan;--accumulate-spv;${HPSF_SHADER_VARIANT_DIR}/accumulate_TEAM_KEY_ZERO.spv;--key-source;shader;--accum;fixed64;--runs;200;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsATeamsKeyOfIdentityZero PROPERTIES LABELS "vulkan;schemes;untrusted")
+
 # Captures (label schemes): hpsf judge gives the host's verdict on frames crosscheck --capture wrote, and a broken
 # capture exits 3 without output.
 add_test(NAME HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3

@@ -37,6 +37,16 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--temporal-spv", flags.vulkan.temporal_spv,
                      "Vulkan backend: run this SPIR-V temporal blend shader (docs/reference/buffer-interface.md) with "
                      "a blending --temporal");
+  command
+      .add_option_function<std::string>(
+          "--key-source",
+          [&flags](const std::string& text) {
+            if (text != "core" && text != "shader") throw ConfigError("--key-source", "core or shader; got " + text);
+            flags.vulkan.shader_keys = text == "shader";
+          },
+          "Vulkan backend: whose keys the accumulate shader writes: core's (judged word for word) or the shader's "
+          "own (shader: judged as given, against the exact map over its key words)")
+      ->default_str("core");
   command.add_option("--resolve-spv", flags.vulkan.resolve_spv,
                      "Vulkan backend: run this SPIR-V resolve shader (docs/reference/buffer-interface.md); its sums "
                      "binding's type must match --accum");

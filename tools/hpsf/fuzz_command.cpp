@@ -107,6 +107,7 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, std::uint64_t re
                       {"eviction_spv", o.vulkan.eviction_spv},
                       {"temporal_spv", o.vulkan.temporal_spv},
                       {"resolve_spv", o.vulkan.resolve_spv},
+                      {"key_source", o.vulkan.shader_keys ? "shader" : "core"},
                       {"accum", o.accumulation.empty() ? "both" : o.accumulation},
                       {"probing", o.probing.empty() ? (o.vulkan.accumulate_spv.empty() ? "any" : "linear") : o.probing},
                       {"seed", o.seed},
@@ -307,6 +308,14 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
                 "Vulkan: your eviction shader (SPIR-V), run in the cases whose sequence evicts");
   c->add_option("--temporal-spv", o->vulkan.temporal_spv,
                 "Vulkan: your temporal blend shader (SPIR-V), run in the cases whose sequence blends");
+  c->add_option_function<std::string>(
+       "--key-source",
+       [o](const std::string& text) {
+         if (text != "core" && text != "shader") throw ConfigError("--key-source", "core or shader; got " + text);
+         o->vulkan.shader_keys = text == "shader";
+       },
+       "Vulkan: whose keys your accumulate shader writes: core's or its own (shader), judged as given")
+      ->default_str("core");
   c->add_option("--resolve-spv", o->vulkan.resolve_spv,
                 "Vulkan: your resolve shader (SPIR-V), run in every case; --accum must name its mode");
   c->add_option("--accum", o->accumulation,

@@ -137,6 +137,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   if (!vulkan.temporal_spv.empty()) {
     a.insert(a.end(), {"--temporal-spv", std::filesystem::absolute(vulkan.temporal_spv).string()});
   }
+  if (vulkan.shader_keys) a.insert(a.end(), {"--key-source", "shader"});
   if (!vulkan.resolve_spv.empty()) {
     a.insert(a.end(), {"--resolve-spv", std::filesystem::absolute(vulkan.resolve_spv).string()});
   }

@@ -14,13 +14,10 @@
 #include "core/shared/fixed_point.h"
 #include "verifier/checker/classified_slots.h"
 #include "verifier/checker/table_checker.h"
+#include "verifier/contract/given_keys.h"
 
 namespace hpsf {
 namespace {
-
-using KeyWordsOf = std::array<std::uint32_t, 6>;
-
-std::string RecordName(std::size_t i) { return "record " + std::to_string(i); }
 
 // The capture against its declaration: what the buffers' shape says must be what the declaration declares.
 void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
@@ -62,10 +59,6 @@ HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConf
   return d;
 }
 
-KeyWordsOf WordsOf(const KeyResult& k) {
-  return {k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level, k.words.normal, k.words.extra};
-}
-
 // The records the checker sums: hpsf's own when captured, else each one's contribution, with a vertex where it has
 // a key (a non-finite or negative contribution is then rejected, as hpsf rejects such a record).
 std::vector<Record> RecordsToCheck(const Capture& c) {
@@ -80,42 +73,10 @@ std::vector<Record> RecordsToCheck(const Capture& c) {
   return records;
 }
 
-// Level 1.
+// Level 1: the given keys' own checks, then with hpsf's records every key word against core's.
 std::uint64_t JudgeKeys(const Capture& c, const FilterConfig& config, std::span<const Record> records,
                         std::vector<KeyResult>& keys, LevelVerdict& verdict) {
-  const std::uint32_t bits = config.fingerprint_bits;
-  std::map<KeyWordsOf, std::size_t> first_of;
-  std::uint64_t judged = 0;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const KeyResult& k = keys[i];
-    if (k.status > shared::kKeyUnkeyable) {
-      verdict.Fail(RecordName(i) + ": status " + std::to_string(k.status) + " is none of keyed, no vertex, unkeyable");
-      continue;
-    }
-    if (k.status != shared::kKeyed || CheckRecordInputs(records[i]) != InputVerdict::kAccepted) continue;
-    ++judged;
-    if (k.slot0 >= c.capacity) {
-      verdict.Fail(RecordName(i) + ": home slot " + std::to_string(k.slot0) + " outside the table of " +
-                   std::to_string(c.capacity) + " slots");
-    }
-    if (k.fingerprint == 0) {
-      verdict.Fail(RecordName(i) +
-                   ": identity 0, the empty slot's marker: its cell can never be told from an empty slot");
-    } else if (bits < 32 && (k.fingerprint >> bits) != 0) {
-      verdict.Fail(RecordName(i) + ": identity " + std::to_string(k.fingerprint) + " wider than the declared " +
-                   std::to_string(bits) + " bits");
-    } else if (config.eviction.by_priority() && k.fingerprint == shared::kTombstoneTag) {
-      verdict.Fail(RecordName(i) + ": identity 0xFFFFFFFF, priority eviction's tombstone marker");
-    }
-    const auto [first, inserted] = first_of.emplace(WordsOf(k), i);
-    if (!inserted) {
-      const KeyResult& f = keys[first->second];
-      if (f.slot0 != k.slot0 || f.fingerprint != k.fingerprint) {
-        verdict.Fail(RecordName(i) + " and " + RecordName(first->second) + " share their key words but not their " +
-                     (f.slot0 != k.slot0 ? "home slot" : "identity") + ": the key is not a function of the cell");
-      }
-    }
-  }
+  const std::uint64_t judged = JudgeGivenKeys(keys, records, c.capacity, config, "", verdict);
   if (!c.hpsf_records) return judged;
   // hpsf's key: every word of every accepted record against core's, whose level then stands for the captured one.
   const CapturedRecords& r = *c.hpsf_records;
@@ -135,8 +96,8 @@ std::uint64_t JudgeKeys(const Capture& c, const FilterConfig& config, std::span<
     const auto have = KeyResultWords(got);
     for (int w = 0; w < int(want.size()); ++w) {
       if (want[w] != have[w]) {
-        verdict.Fail(RecordName(i) + ": " + KeyResultWordName(w) + " differs (core " + std::to_string(want[w]) +
-                     ", capture " + std::to_string(have[w]) + ")");
+        verdict.Fail("record " + std::to_string(i) + ": " + KeyResultWordName(w) + " differs (core " +
+                     std::to_string(want[w]) + ", capture " + std::to_string(have[w]) + ")");
         break;
       }
     }
@@ -144,72 +105,10 @@ std::uint64_t JudgeKeys(const Capture& c, const FilterConfig& config, std::span<
     if (!std::equal(
             c.contributions[i].begin(), c.contributions[i].end(), &records[i].contribution[0],
             [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); })) {
-      verdict.Fail(RecordName(i) + ": the captured contribution is not its record's");
+      verdict.Fail("record " + std::to_string(i) + ": the captured contribution is not its record's");
     }
   }
   return judged;
-}
-
-struct ExactCell {
-  std::uint64_t count = 0;
-  std::array<std::uint64_t, 3> fixed_sum = {};
-  std::set<std::uint32_t> slots;  // where its records went; kProbeFailure for those that failed
-  std::size_t first_record = 0;
-};
-
-// Level 3.
-std::uint64_t JudgeAgainstExactMap(const Capture& c, const FilterConfig& config, std::span<const Record> records,
-                                   const HashedRun& run, const HashTableDump* before,
-                                   const std::vector<bool>& classified, LevelVerdict& verdict) {
-  const bool fixed = !c.float32_sums;
-  const float scale = fixed ? shared::PowerOfTwo(c.fixed_point_bits) : 1.0f;
-  std::map<KeyWordsOf, ExactCell> cells;
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const KeyResult& k = run.keys[i];
-    if (k.status != shared::kKeyed || CheckRecordInputs(records[i]) != InputVerdict::kAccepted) continue;
-    ExactCell& cell = cells[WordsOf(k)];
-    if (cell.count == 0) cell.first_record = i;
-    ++cell.count;
-    for (int ch = 0; ch < 3 && fixed; ++ch)
-      cell.fixed_sum[ch] += shared::ToFixedPoint(records[i].contribution[ch], scale);
-    cell.slots.insert(run.placements[i]);
-  }
-  for (const auto& [words, cell] : cells) {
-    if (cell.slots.size() > 1) {
-      std::string where;
-      for (std::uint32_t s : cell.slots) {
-        where += (where.empty() ? "" : ", ") + (s == kProbeFailure ? std::string("failed") : std::to_string(s));
-      }
-      verdict.Fail("the cell of " + RecordName(cell.first_record) + " is split: its " + std::to_string(cell.count) +
-                   " records went to " + where);
-    }
-  }
-  std::uint64_t compared = 0;
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
-    if (slot >= c.capacity || classified[slot]) continue;
-    const auto found = cells.find(WordsOf(run.keys[i]));
-    if (found == cells.end()) continue;  // placed without a key: level 2's
-    const ExactCell& cell = found->second;
-    const bool history = before && before->counts[slot] != 0;
-    if (history && config.temporal.blends()) continue;  // the blend is level 2's
-    ++compared;
-    const std::uint64_t count = run.table.counts[slot] - (history ? before->counts[slot] : 0);
-    if (count != cell.count) {
-      verdict.Fail(RecordName(i) + " at slot " + std::to_string(slot) + ": the frame's count " + std::to_string(count) +
-                   ", its cell's " + std::to_string(cell.count));
-      continue;
-    }
-    for (int ch = 0; ch < 3 && fixed; ++ch) {
-      const std::uint64_t sum = run.table.fixed_sums[slot][ch] - (history ? before->fixed_sums[slot][ch] : 0);
-      if (sum != cell.fixed_sum[ch]) {
-        verdict.Fail(RecordName(i) + " at slot " + std::to_string(slot) + ": channel " + std::to_string(ch) +
-                     " differs from its cell's exact sum");
-        break;
-      }
-    }
-  }
-  return compared;
 }
 
 }  // namespace
@@ -277,7 +176,7 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
   const std::vector<bool>& classified = classes.AddFrame(run);
   CountProbes(run);
   const std::uint64_t compared =
-      JudgeAgainstExactMap(capture, config, records, run, before ? &*before : nullptr, classified, ideal);
+      CompareWithExactMap(records, run, before ? &*before : nullptr, classified, config, "", ideal);
   ideal.note = std::string("the exact map over the captured key words: one slot per cell; ") +
                (capture.float32_sums ? "counts" : "counts and fixed64 sums") +
                " of the frame equal to each cell's outside the classified slots; " + std::to_string(compared) +

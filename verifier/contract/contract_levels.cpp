@@ -14,6 +14,7 @@
 #include "reference/reference_backend.h"
 #include "verifier/checker/classified_slots.h"
 #include "verifier/checker/table_checker.h"
+#include "verifier/contract/given_keys.h"
 #include "verifier/contract/image_check.h"
 #include "verifier/contract/rerun_check.h"
 
@@ -213,7 +214,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
       std::vector<KeyResult> refused_keys;
       const HashedRun* run = FilterOrFault(*judged.backend, batch, config, who, tables, &refused_keys);
       const HashedRun* again = run ? FilterOrFault(*judged.rerun, batch, config, who + " rerun", tables) : nullptr;
-      if (judged.judge_keys && !refused_keys.empty()) {
+      if (judged.judge_keys && !judged.shader_keys && !refused_keys.empty()) {
         s.keys_compared += CompareKeys(batch, config, refused_keys, who + ": ", keys);
       }
       if (!run || !again) {
@@ -222,7 +223,11 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         continue;
       }
       if (observer) observer(judged.name, batch, numbers[k], *run, s.before ? &*s.before : nullptr);
-      if (judged.judge_keys) s.keys_compared += CompareKeys(batch, config, run->keys, who + ": ", keys);
+      if (judged.shader_keys) {
+        s.keys_compared += JudgeGivenKeys(run->keys, batch.records, run->table.capacity, config, who + ": ", keys);
+      } else if (judged.judge_keys) {
+        s.keys_compared += CompareKeys(batch, config, run->keys, who + ": ", keys);
+      }
       if (run->table.fixed_point_bits != fixed_point_bits) {
         tables.Fail(who + ": F " + std::to_string(run->table.fixed_point_bits) + ", the reference's " +
                     std::to_string(fixed_point_bits) + ": sums of different scales cannot be compared");
@@ -241,8 +246,16 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         s.replayed_float_order = true;
         CompareFloatOrder(batch, *run, s.before, who + ": ", ideal);
       }
-      s.records_compared += CompareWithReference(batch, config, reference.result(), *run,
-                                                 s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
+      if (judged.shader_keys) {  // the reference's cells are hpsf's keys; these records' cells are the shader's
+        s.records_compared += CompareWithExactMap(batch.records, *run, s.before ? &*s.before : nullptr, classified,
+                                                  config, who + ": ", ideal);
+        for (const std::string& pixel : CheckImageAgainstTable(batch, *run, s.before ? &*s.before : nullptr)) {
+          ideal.Fail(who + ": image: " + pixel);
+        }
+      } else {
+        s.records_compared += CompareWithReference(batch, config, reference.result(), *run,
+                                                   s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
+      }
 
       if (judged.ordered && again->trace_hash != run->trace_hash) {
         determinism.Fail(who + ": the trace hash changed between two identical runs");
@@ -272,7 +285,11 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
     const JudgedBackend& judged = hashed[b];
     const SequenceState& s = states[b];
     report.quality.push_back(s.quality);
-    if (judged.judge_keys) {
+    if (judged.shader_keys) {
+      keys.applicable = true;
+      keys.note = judged.name + "'s own keys (--key-source shader): home slot, identity, one key per cell: " +
+                  std::to_string(s.keys_compared) + " keyed records judged" + over;
+    } else if (judged.judge_keys) {
       keys.applicable = true;
       keys.note = judged.name + " against core, word for word: " + std::to_string(s.keys_compared) +
                   " accepted records compared" + over;
@@ -291,8 +308,12 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
                     (s.replayed_float_order
                          ? "each new slot's recorded order of adds, replayed by the reference, gives its bits"
                          : "sums inside the bound at level 2");
+    const std::string against =
+        judged.shader_keys ? "the exact map over the shader's own key words (no reference image: its cells are not "
+                             "hpsf's): "
+                           : "";
     Note(ideal, judged.name,
-         sums + "; " + std::to_string(s.records_compared) + " records compared" + over + "; image " +
+         against + sums + "; " + std::to_string(s.records_compared) + " records compared" + over + "; image " +
              (fixed ? "equals the resolve of its table" : "within the float32 bound of its table's exact resolve"));
     std::string promised;
     for (const std::string& p : s.promises) promised += (promised.empty() ? "" : ", ") + p;

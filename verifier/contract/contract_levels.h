@@ -29,6 +29,9 @@ struct JudgedBackend {
   std::string rerun_how;    // what the rerun varies, for the note
   bool ordered = false;     // its order of memory operations is fixed (the faithful emulator): reruns repeat it
   bool judge_keys = false;  // level 1: its keys come from its own code (the Vulkan shaders)
+  // Its keys are a team's own (--key-source shader): level 1 judges them as given, level 3 against the exact map
+  // over their key words instead of hpsf's reference (verifier/contract/given_keys.h).
+  bool shader_keys = false;
 };
 
 // The emulated backend and its rerun: in fast mode on another number of worker threads, since no promised bit may

@@ -54,9 +54,14 @@ CrosscheckReport Crosschecker::Judge(std::span<const RecordBatch> frames, std::s
     hashed.push_back(emulated->Judged());
   }
   if (has("vulkan")) {
+    if (vulkan_options_.shader_keys && config.level_seed.enabled) {
+      throw ConfigError("--key-source",
+                        "level seeding looks cells up by hpsf's key and levels; a shader's own keys "
+                        "have neither: drop --level-change");
+    }
     if (!vulkan_) vulkan_ = std::make_unique<VulkanContext>(vulkan_options_);
-    hashed.push_back(
-        {"vulkan", vulkan_->backend.backend.get(), vulkan_->rerun.backend.get(), "rerun on the device", false, true});
+    hashed.push_back({"vulkan", vulkan_->backend.backend.get(), vulkan_->rerun.backend.get(), "rerun on the device",
+                      false, true, vulkan_options_.shader_keys});
   }
   CrosscheckReport report = JudgeSequence(frames, numbers, config, hashed, observer_);
   if (has("vulkan")) report.vulkan_device = vulkan_->description;

@@ -163,6 +163,28 @@ uint FindOrClaim(uint slot0, uint fingerprint, TableParams t) {
   return kPlacementProbeFailure;
 }
 
+#if defined(HPSF_TEAM_KEY) || defined(HPSF_TEAM_KEY_ZERO)
+// A team's own key (run with --key-source shader): cells twice as large as hpsf's (its cell words halved), hashed by
+// other functions into another home slot and identity. _ZERO lets the identity of every eighth cell be 0, the empty
+// marker (Bevy #21953).
+KeyResult TeamKey(KeyResult k, KeyParams p) {
+  if (k.status != kKeyed) return k;
+  k.words.cell_x = uint(int(k.words.cell_x) >> 1);
+  k.words.cell_y = uint(int(k.words.cell_y) >> 1);
+  k.words.cell_z = uint(int(k.words.cell_z) >> 1);
+  uint h = Pcg(k.words.cell_x ^ Pcg(k.words.cell_y ^ Pcg(k.words.cell_z ^ Pcg(k.words.level ^ Pcg(k.words.normal)))));
+  k.slot0 = h & p.capacity_mask;
+  uint identity = Pcg(h ^ 0x5BD1E995u) >> (32u - p.fingerprint_bits);
+#if defined(HPSF_TEAM_KEY_ZERO)
+  if ((k.words.cell_x & 7u) == 0u) identity = 0u;
+#else
+  identity = max(identity, 1u);
+#endif
+  k.fingerprint = identity;
+  return k;
+}
+#endif
+
 void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #if defined(HPSF_DEFECT_EVICT_RACE)
   EvictDuringAccumulate(i, t);
@@ -174,6 +196,9 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
   }
   Record r = LoadRecord(i);
   KeyResult k = ComputeKey(p, r);
+#if defined(HPSF_TEAM_KEY) || defined(HPSF_TEAM_KEY_ZERO)
+  k = TeamKey(k, p);
+#endif
   StoreKeyResult(i, k);
   uint placement = kPlacementNotPlaced;
   if (k.status == kKeyed) {
