@@ -1,8 +1,7 @@
 #include "verifier/contract/capture_judgement.h"
 
 #include <algorithm>
-#include <map>
-#include <set>
+#include <bit>
 
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
@@ -10,7 +9,6 @@
 #include "core/hashed_run.h"
 #include "core/input_check.h"
 #include "core/key_batch.h"
-#include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "verifier/checker/classified_slots.h"
 #include "verifier/checker/table_checker.h"
