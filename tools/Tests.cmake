@@ -108,6 +108,9 @@ hpsf_add_cli_test(HpsfCrosscheck.AResolveOfTheOtherModeExits3 vulkan 3
 hpsf_add_cli_test(HpsfStats.ATeamsCapturedKeysAgainstUniformHashing "unit;schemes" 0
   "24 records, 24 keyed, 21 distinct keys; capacity 16.*under bucket probing.*jitter tests: none \\(the keys are not hpsf's\\)"
   "" $<TARGET_FILE:hpsf> stats ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture/team-keys-buckets.hpsfc)
+hpsf_add_cli_test(HpsfStats.ACapturesKeysThatFailLevelOneAreNamedNotMeasured "unit;schemes" 2
+  "team_identity_zero.hpsfc: the keys fail level 1, so no statistics of them hold:.*record 3: identity 0" ""
+  $<TARGET_FILE:hpsf> stats ${hpsf_data}/team_identity_zero.hpsfc)
 hpsf_add_cli_test(HpsfStats.AFilterOptionBesideACaptureExits3 "unit;schemes" 3
   "--capacity: .*team-keys-buckets.hpsfc is a capture: its table is its declaration's" ""
   $<TARGET_FILE:hpsf> stats ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture/team-keys-buckets.hpsfc --capacity 8)
