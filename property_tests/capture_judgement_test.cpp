@@ -288,15 +288,10 @@ TeamCapture TeamFrame(std::uint32_t capacity, std::uint32_t identity_bits, Bug b
   return t;
 }
 
-std::string TeamCaptureFile(std::uint32_t capacity, std::uint32_t identity_bits, Bug bug) {
-  const TeamCapture t = TeamFrame(capacity, identity_bits, bug);
-  const std::string declaration =
-      R"({"hpsf_table": 1, "capacity": )" + std::to_string(capacity) +
-      R"(, "probing": "bucket:8", "key": {"identity": "fingerprint", "fingerprint_bits": )" +
-      std::to_string(identity_bits) + R"(}, "sums": {"encoding": "fixed64"}})";
+// The team's frame as the writer takes it (spans over `t`, which must outlive it), its declaration left to the caller.
+capture::FrameCapture FrameOf(const TeamCapture& t) {
   capture::FrameCapture c;
-  c.declaration = declaration;
-  c.capacity = capacity;
+  c.capacity = t.capacity;
   c.fixed_point_bits = kFractionBits;
   c.key_words = 2;
   c.contributions = t.contributions;
@@ -306,6 +301,17 @@ std::string TeamCaptureFile(std::uint32_t capacity, std::uint32_t identity_bits,
   c.statuses = t.statuses;
   c.placements = t.placements;
   c.after = {t.tags, t.sums, {}, t.counts, {}};
+  return c;
+}
+
+std::string TeamCaptureFile(std::uint32_t capacity, std::uint32_t identity_bits, Bug bug) {
+  const TeamCapture t = TeamFrame(capacity, identity_bits, bug);
+  const std::string declaration =
+      R"({"hpsf_table": 1, "capacity": )" + std::to_string(capacity) +
+      R"(, "probing": "bucket:8", "key": {"identity": "fingerprint", "fingerprint_bits": )" +
+      std::to_string(identity_bits) + R"(}, "sums": {"encoding": "fixed64"}})";
+  capture::FrameCapture c = FrameOf(t);
+  c.declaration = declaration;
   const std::string path = ::testing::TempDir() + "/team.hpsfc";
   EXPECT_EQ(capture::WriteCapture(path, c), "");
   return path;
@@ -385,17 +391,7 @@ TEST(CaptureJudgement, StatisticsOfATeamsKeysTellAClusteredHomeHash) {
 
 TEST(CaptureJudgement, ACaptureThatContradictsItsDeclarationIsBadInput) {
   const TeamCapture t = TeamFrame(64, 32, Bug::kNone);
-  capture::FrameCapture c;
-  c.capacity = 64;
-  c.fixed_point_bits = kFractionBits;
-  c.key_words = 2;
-  c.contributions = t.contributions;
-  c.keys = t.keys;
-  c.home_slots = t.home;
-  c.identities = t.identities;
-  c.statuses = t.statuses;
-  c.placements = t.placements;
-  c.after = {t.tags, t.sums, {}, t.counts, {}};
+  capture::FrameCapture c = FrameOf(t);
   const std::vector<std::pair<std::string, std::string>> declarations = {
       {R"({"hpsf_table": 1, "capacity": 128})", "the table has 64 slots, its declaration 128"},
       {R"({"hpsf_table": 1, "capacity": 64, "sums": {"encoding": "float32"}})",
