@@ -30,6 +30,7 @@ struct FrameTimings {
   std::optional<double> keys_ms;  // keys, input checks and the choice of F; absent where the accumulate computes keys
   double accumulate_ms = 0;       // clearing or preparing the table and the adds
   double level_seed_ms = 0;       // the seed pass of resolution changes (core/level_seed.h)
+  double compaction_ms = 0;       // the gather into the occupied list (core/compaction.h)
   double temporal_ms = 0;         // the temporal blend (core/temporal.h)
   double eviction_ms = 0;         // the evict and reclaim passes (core/eviction.h)
   double resolve_ms = 0;          // the table's dump and the resolve into pixels

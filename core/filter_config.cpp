@@ -155,6 +155,7 @@ std::string FilterConfig::ToString() const {
          (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) +
          (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) +
          (level_seed.enabled ? " level_change: " + level_seed.ToString() : std::string()) +
+         (compaction != Compaction::kNone ? " compaction: " + hpsf::ToString(compaction) : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/compaction.h"
 #include "core/effect_plan.h"
 #include "core/eviction.h"
 #include "core/level_seed.h"
@@ -54,7 +55,8 @@ struct FilterConfig {
   Eviction eviction;         // --eviction: which cells the table forgets after each frame (core/eviction.h)
   Temporal temporal;         // --temporal: how a cell blends its history with a frame (core/temporal.h)
   LevelSeed level_seed;      // --level-change: how a cell new at another level starts (core/level_seed.h)
-  ForcedEffects forced;      // --force-effect: passes run where the plan skips them (core/effect_plan.h)
+  Compaction compaction = Compaction::kNone;  // --compaction: the passes over slots step a list (core/compaction.h)
+  ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // Throws ConfigError for the first invalid option.
   void Validate() const;

@@ -36,6 +36,10 @@ struct HashTableDump {
   // and whose count is 0 is a tombstone: an evicted cell that still holds its tag, so that a lookup probing past
   // it never stops at a hole (docs/design/defects.md, D7). Empty without eviction.
   std::vector<std::uint32_t> last_seen;
+  // With --compaction occupied-list (core/compaction.h): the list of occupied slots as the device left it, in its
+  // order. Every slot whose tag is set, once, and nothing else; the checker holds it to that.
+  bool compacted = false;
+  std::vector<std::uint32_t> occupied;
 };
 
 inline shared::ProbeScheme ProbeSchemeOf(const HashTableDump& table) {

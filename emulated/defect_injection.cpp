@@ -216,10 +216,17 @@ simt::KernelTask AccumulateWithWeakCas(simt::ThreadContext& ctx, const Accumulat
 }
 
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args) {
-  const std::uint32_t slot = ctx.Thread();
+  const auto slot =
+      args.list.on ? static_cast<std::uint32_t>(co_await ctx.Load(args.list.slots, ctx.Thread())) : ctx.Thread();
   if (co_await ctx.Load(args.buffers.tags, slot) == kEmptyTag) co_return;
   if (co_await ctx.Load(args.buffers.counts, slot) != 0) co_return;
   co_await ctx.Store(args.buffers.tags, slot, kEmptyTag);  // the one change: no look at the live slots after it
+}
+
+simt::KernelTask FinishPruneCountOneWhenEmpty(simt::ThreadContext& ctx, const CompactionArgs& args) {
+  const std::uint64_t kept = co_await ctx.Load(args.list.next_count, 0);
+  co_await ctx.Store(args.list.count, 0, kept == 0 ? 1 : kept);  // the one change: an empty list counts one
+  co_await ctx.Store(args.list.next_count, 0, 0);
 }
 
 simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const EvictionArgs& args) {

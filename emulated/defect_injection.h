@@ -41,6 +41,10 @@ AccumulateKernelFn KernelWithDefect(Defect defect);
 // Not a Defect value yet: it takes a sequence of frames, which the single-frame commands do not run.
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args);
 
+// Bevy #21904 (docs/design/defects.md, "Shipped bugs"), in compaction (emulated/compaction_kernels.h): the prune's
+// count is 1 when it kept no slot, so the list names a slot that holds nothing.
+simt::KernelTask FinishPruneCountOneWhenEmpty(simt::ThreadContext& ctx, const CompactionArgs& args);
+
 // Priority eviction's compare of the wrong sign: the selection evicts, in a failed record's window, the
 // untouched live slot of highest priority instead of lowest (the most recently seen, most sampled cell).
 simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const EvictionArgs& args);

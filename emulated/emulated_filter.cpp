@@ -17,6 +17,7 @@
 #include "core/prefetch.h"
 #include "core/resolve.h"
 #include "core/temporal.h"
+#include "emulated/compaction_kernels.h"
 #include "emulated/level_seed_kernel.h"
 #include "emulated/temporal_kernel.h"
 
@@ -162,8 +163,37 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     }
   }
 
+  // The occupied list (core/compaction.h): the previous frame's, and its flags, where the sequence compacts.
+  const bool compacting = config.compaction == Compaction::kOccupiedList;
+  CompactionArgs compaction{config.capacity, b, {}};
+  OccupiedList& list = compaction.list;
+  if (compacting) {
+    list = {true,
+            memory.Allocate32("listed", config.capacity),
+            memory.Allocate32("occupied", config.capacity),
+            memory.Allocate64("occupied_count", 1),
+            memory.Allocate32("next_occupied", config.capacity),
+            memory.Allocate64("next_occupied_count", 1)};
+    if (previous) {
+      if (!previous->compacted) {
+        throw ConfigError("--compaction", "the previous frame's table has no occupied list; start a new sequence");
+      }
+      const std::span<std::uint32_t> slots = memory.Words32(list.slots);
+      const std::span<std::uint32_t> listed = memory.Words32(list.listed);
+      std::copy(previous->occupied.begin(), previous->occupied.end(), slots.begin());
+      for (const std::uint32_t slot : previous->occupied) {
+        if (slot >= config.capacity) {
+          throw InputError("the previous frame's occupied list names slot " + std::to_string(slot) + ", past the " +
+                           std::to_string(config.capacity) + " slots");
+        }
+        listed[slot] = 1;
+      }
+      memory.Words64(list.count)[0] = previous->occupied.size();
+    }
+    temporal.list = list;
+  }
   EvictionArgs eviction{
-      config.capacity, config.probe_limit, config.probing, config.frame, config.eviction, b, 0, {}, 0};
+      config.capacity, config.probe_limit, config.probing, config.frame, config.eviction, b, 0, {}, 0, list};
   if (evicting) {
     eviction.evicted = memory.Allocate64("evicted", 1);
     if (config.eviction.by_priority()) {
@@ -208,7 +238,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     simt::LaunchFaithful(memory, threads, options.warp_size, kernel, *schedule, {},
                          simt::WeakCasPolicy{options.spurious_cas});
   };
-  const auto launch_per_slot = [&](const simt::Kernel& kernel) { launch(config.capacity, kernel); };
+  // With compaction, a pass over slots runs one thread per entry of the list: its count, read back, is the emulator's
+  // indirect dispatch.
+  const auto list_count = [&] { return static_cast<std::uint32_t>(std::as_const(memory).Words64(list.count)[0]); };
+  const auto launch_per_slot = [&](const simt::Kernel& kernel) {
+    launch(compacting ? list_count() : config.capacity, kernel);
+  };
   const bool seeding = planned.level_seed;
   HashTableDump empty_table;  // a first frame's table before it, where the seed is forced
   if (seeding && !previous) {
@@ -241,6 +276,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
   // A skipped pass reads zero, not the clock's few nanoseconds between two laps.
   run.timings.level_seed_ms = seeding ? clock.LapMs() : 0.0;
+  if (compacting) launch(n, [&](simt::ThreadContext& ctx) { return GatherOccupiedKernel(ctx, compaction); });
+  run.timings.compaction_ms = compacting ? clock.LapMs() : 0.0;
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
   run.timings.temporal_ms = blending ? clock.LapMs() : 0.0;
   if (evicting) {
@@ -250,8 +287,19 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
     launch_per_slot([&](simt::ThreadContext& ctx) { return eviction_kernels.reclaim(ctx, eviction); });
     run.evicted = memory.Words64(eviction.evicted)[0];
+    if (compacting) {
+      launch_per_slot([&](simt::ThreadContext& ctx) { return PruneOccupiedKernel(ctx, compaction); });
+      launch(1, [&](simt::ThreadContext& ctx) { return eviction_kernels.finish_prune(ctx, compaction); });
+      std::swap(list.slots, list.next_slots);
+    }
   }
   if (tracking) table.last_seen = memory.TakeWords32(b.last_seen);
+  if (compacting) {
+    table.compacted = true;
+    // The count as the device left it, which a broken kernel may have written past the list: the checker names it.
+    const std::span<const std::uint32_t> slots = std::as_const(memory).Words32(list.slots);
+    table.occupied.assign(slots.begin(), slots.begin() + std::min<std::size_t>(list_count(), slots.size()));
+  }
   run.timings.eviction_ms = evicting ? clock.LapMs() : 0.0;
   // The dump: the final state of the device buffers, moved out where the layouts agree.
   table.tags = memory.TakeWords32(b.tags);

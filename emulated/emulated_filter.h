@@ -43,6 +43,7 @@ struct EmulatedTimings {
   double clear_ms = 0;        // allocating and zeroing the table
   double accumulate_ms = 0;   // the accumulate launch
   double level_seed_ms = 0;   // the seed launch of resolution changes; 0 without --level-change seed
+  double compaction_ms = 0;   // the gather launch of --compaction occupied-list (its prune counts as eviction's)
   double temporal_ms = 0;     // the temporal blend launch; 0 when integrating
   double eviction_ms = 0;     // the evict and reclaim launches; 0 without eviction
   double read_back_ms = 0;    // the dump of the table

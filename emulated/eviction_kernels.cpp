@@ -34,7 +34,8 @@ simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArg
 }
 
 simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args) {
-  const std::uint32_t slot = ctx.Thread();
+  const auto slot =
+      args.list.on ? static_cast<std::uint32_t>(co_await ctx.Load(args.list.slots, ctx.Thread())) : ctx.Thread();
   const TableBuffers& b = args.buffers;
   if (co_await ctx.Load(b.tags, slot) == kEmptyTag) co_return;
   if (co_await ctx.Load(b.counts, slot) == 0) co_return;  // a tombstone already
@@ -51,7 +52,8 @@ simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args)
 }
 
 simt::KernelTask ReclaimKernel(simt::ThreadContext& ctx, const EvictionArgs& args) {
-  const std::uint32_t slot = ctx.Thread();
+  const auto slot =
+      args.list.on ? static_cast<std::uint32_t>(co_await ctx.Load(args.list.slots, ctx.Thread())) : ctx.Thread();
   const TableBuffers& b = args.buffers;
   if (co_await ctx.Load(b.tags, slot) == kEmptyTag) co_return;
   if (co_await ctx.Load(b.counts, slot) != 0) co_return;  // live

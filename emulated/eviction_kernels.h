@@ -25,6 +25,7 @@
 
 #include "core/eviction.h"
 #include "emulated/accumulate_kernel.h"
+#include "emulated/compaction_kernels.h"
 #include "emulated/simt/kernel_task.h"
 
 namespace hpsf {
@@ -40,6 +41,7 @@ struct EvictionArgs {
   // With priority: the frame's keys (slot0 per record) and a 32-bit mark per slot, 1 for a victim.
   std::span<const KeyResult> keys;
   std::uint32_t victims = 0;
+  OccupiedList list{};  // with compaction: evict and reclaim launch one thread per entry
   shared::ProbeScheme scheme() const { return MakeProbeScheme(probing, capacity, probe_limit); }
 };
 
@@ -52,11 +54,15 @@ using EvictionKernelFn = simt::KernelTask (*)(simt::ThreadContext&, const Evicti
 // The eviction kernels to run where a variant may replace one (emulated/defect_injection.h): D7's reclaim empties
 // every tombstone; the wrong-sign selection evicts the highest priority. A reclaim kernel converts, so a call that
 // names only the reclaim keeps working.
+// With compaction, the prune's last step may be replaced too: Bevy #21904's count of one with nothing listed.
 struct EvictionKernels {
-  EvictionKernels(EvictionKernelFn reclaim_kernel = ReclaimKernel, EvictionKernelFn select_kernel = SelectVictimsKernel)
-      : reclaim(reclaim_kernel), select(select_kernel) {}
+  using FinishPruneFn = simt::KernelTask (*)(simt::ThreadContext&, const CompactionArgs&);
+  EvictionKernels(EvictionKernelFn reclaim_kernel = ReclaimKernel, EvictionKernelFn select_kernel = SelectVictimsKernel,
+                  FinishPruneFn finish_prune_kernel = FinishPruneKernel)
+      : reclaim(reclaim_kernel), select(select_kernel), finish_prune(finish_prune_kernel) {}
   EvictionKernelFn reclaim;
   EvictionKernelFn select;
+  FinishPruneFn finish_prune;
 };
 
 }  // namespace hpsf

@@ -7,7 +7,8 @@
 namespace hpsf {
 
 simt::KernelTask TemporalKernel(simt::ThreadContext& ctx, const TemporalArgs& args) {
-  const std::uint32_t slot = ctx.Thread();
+  const auto slot =
+      args.list.on ? static_cast<std::uint32_t>(co_await ctx.Load(args.list.slots, ctx.Thread())) : ctx.Thread();
   const TableBuffers& b = args.buffers;
   CellState before, accumulated;
   before.count = co_await ctx.Load(args.previous_counts, slot);

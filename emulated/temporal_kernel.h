@@ -10,6 +10,7 @@
 
 #include "core/shared/temporal_blend.h"
 #include "emulated/accumulate_kernel.h"
+#include "emulated/compaction_kernels.h"
 #include "emulated/simt/kernel_task.h"
 
 namespace hpsf {
@@ -21,6 +22,7 @@ struct TemporalArgs {
   TableBuffers buffers{};             // the current table: sums and counts
   std::uint32_t previous_sums = 0;    // the table before the frame, laid out as buffers.sums
   std::uint32_t previous_counts = 0;  // and buffers.counts
+  OccupiedList list{};                // with compaction: one thread per entry
 };
 
 simt::KernelTask TemporalKernel(simt::ThreadContext& ctx, const TemporalArgs& args);

@@ -303,7 +303,8 @@ DeviceBuffer CreateDeviceBuffer(VulkanDevice::Impl& d, vk::DeviceSize size) {
   b.size = std::max<vk::DeviceSize>(size, 16);
   Allocate(d, b,
            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer |
-               vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
+               vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst |
+               vk::BufferUsageFlagBits::eIndirectBuffer,
            false);
   if (!d.info.staged) b.mapped = b.memory.mapMemory(0, b.size);
   if (b.size % 16 == 0 && b.size / 16 <= d.physical.getProperties().limits.maxTexelBufferElements) {

@@ -12,6 +12,7 @@
 
 #include "accumulate_fixed64_spv.h"
 #include "accumulate_float32_spv.h"
+#include "compaction_spv.h"
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
@@ -66,7 +67,7 @@ struct EvictionPush {
   std::uint32_t record_count;
   std::uint32_t by_priority;
   std::uint32_t probe_scheme;
-  std::uint32_t reserved;
+  std::uint32_t compacted;  // 1: passes 0 and 1 step the occupied list, dispatched indirectly
 };
 static_assert(sizeof(EvictionPush) == 40, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
@@ -75,8 +76,10 @@ struct TemporalPush {
   shared::TemporalParams temporal;
   std::uint32_t capacity;
   std::uint32_t fixed64;
+  std::uint32_t compacted;  // 1: one invocation per entry of the occupied list, dispatched indirectly
+  std::uint32_t reserved;
 };
-static_assert(sizeof(TemporalPush) == 32, "push constants of temporal.comp");
+static_assert(sizeof(TemporalPush) == 40, "push constants of temporal.comp");
 constexpr std::uint32_t kTemporalSlotsPerWorkgroup = 64;
 
 struct LevelSeedPush {
@@ -91,6 +94,17 @@ struct LevelSeedPush {
 };
 static_assert(sizeof(LevelSeedPush) == 32, "push constants of level_seed.comp");
 constexpr std::uint32_t kLevelSeedRecordsPerWorkgroup = 64;
+
+struct CompactionPush {
+  std::uint32_t pass;  // 0 gather, 1 prune, 2 finish the prune, 3 the indirect dispatch
+  std::uint32_t record_count;
+  std::uint32_t capacity;
+  std::uint32_t reserved;
+};
+static_assert(sizeof(CompactionPush) == 16, "push constants of compaction.comp");
+constexpr std::uint32_t kCompactionItemsPerWorkgroup = 64;
+constexpr vk::DeviceSize kOccupiedDispatchOffset = 4;  // compaction.comp's Header: count, then the dispatch
+constexpr std::uint32_t kOccupiedHeaderBytes = 20;     // and the prune's next count
 
 struct ResolvePush {
   double unscale;
@@ -109,12 +123,17 @@ constexpr BindingKind kAccumulateBindings[] = {
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
 constexpr BindingKind kEvictionBindings[] = {
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kCompactionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                               BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                               BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kLevelSeedBindings[] = {
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
@@ -181,6 +200,7 @@ struct VulkanFilter::Impl {
     std::uint32_t capacity;
     Accumulation accumulation;
     int fixed_point_bits;
+    bool compacted;  // the occupied list and its flags are the table's
   };
   std::optional<TableShape> table;  // what the device table holds after a Run
 
@@ -232,24 +252,42 @@ struct VulkanFilter::Impl {
     }
     return *temporal;
   }
+  ComputeProgram& Compaction() {
+    if (!compaction) {
+      const std::span<const std::uint32_t> spirv = custom_compaction.empty()
+                                                       ? std::span<const std::uint32_t>(compaction_spv)
+                                                       : std::span<const std::uint32_t>(custom_compaction);
+      compaction = vulkan_internal::CreateComputeProgram(device, spirv, kCompactionBindings, sizeof(CompactionPush));
+    }
+    return *compaction;
+  }
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
-    if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty() && custom_resolve.empty()) {
+    if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty() && custom_resolve.empty() &&
+        custom_compaction.empty()) {
       return "the built-in shaders";
     }
     std::string names = custom_accumulate.empty() ? "" : "the accumulate shader " + accumulate_name;
     if (!custom_eviction.empty()) names += (names.empty() ? "" : " or ") + ("the eviction shader " + eviction_name);
     if (!custom_temporal.empty()) names += (names.empty() ? "" : " or ") + ("the temporal shader " + temporal_name);
     if (!custom_resolve.empty()) names += (names.empty() ? "" : " or ") + ("the resolve shader " + resolve_name);
+    if (!custom_compaction.empty())
+      names += (names.empty() ? "" : " or ") + ("the compaction shader " + compaction_name);
     return names;
   }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
     if (!*buffer.buffer || buffer.size < bytes) buffer = vulkan_internal::CreateDeviceBuffer(device, bytes);
   }
+  // --compaction occupied-list (compaction.comp): set after the constructor's list of the members above.
+  std::vector<std::uint32_t> custom_compaction;
+  std::string compaction_name;
+  std::optional<ComputeProgram> compaction;
+  DeviceBuffer listed, occupied, next_occupied, occupied_header;
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
-                           const std::string& temporal_spv, const std::string& resolve_spv)
+                           const std::string& temporal_spv, const std::string& resolve_spv,
+                           const std::string& compaction_spv)
     : impl_(new Impl{device.impl(),
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
@@ -284,12 +322,23 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {},
                      {},
                      {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
+                     {},
                      {}}) {
   if (!impl_->custom_accumulate.empty()) {
     impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
   }
   if (!impl_->custom_resolve.empty()) {
     impl_->custom_resolve_accumulation = SumsAccumulation(impl_->custom_resolve, resolve_spv, kResolveSumsBinding);
+  }
+  if (!compaction_spv.empty()) {
+    impl_->custom_compaction = ReadSpirvFile(compaction_spv);
+    impl_->compaction_name = compaction_spv;
   }
 }
 
@@ -317,8 +366,25 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   } else {
     std::memset(last_seen, 0, slots * 4);
   }
+  if (table.compacted) {
+    if (table.occupied.size() > slots) throw InputError("the table's occupied list is longer than its slots");
+    p.Ensure(p.listed, vk::DeviceSize(slots) * 4);
+    p.Ensure(p.occupied, vk::DeviceSize(slots) * 4);
+    p.Ensure(p.occupied_header, kOccupiedHeaderBytes);
+    auto* listed = static_cast<std::uint32_t*>(upload.Upload(p.listed, slots * 4));
+    std::memset(listed, 0, slots * 4);
+    for (const std::uint32_t slot : table.occupied) {
+      if (slot >= slots) throw InputError("the table's occupied list names slot " + std::to_string(slot));
+      listed[slot] = 1;
+    }
+    std::memcpy(upload.Upload(p.occupied, std::max<std::size_t>(table.occupied.size() * 4, 4)), table.occupied.data(),
+                table.occupied.size() * 4);
+    const std::uint32_t count = static_cast<std::uint32_t>(table.occupied.size());
+    const std::uint32_t header[kOccupiedHeaderBytes / 4] = {count, std::min((count + 63) / 64, 65535u), 1, 1, 0};
+    std::memcpy(upload.Upload(p.occupied_header, kOccupiedHeaderBytes), header, kOccupiedHeaderBytes);
+  }
   upload.Submit();
-  p.table = Impl::TableShape{table.capacity, table.accumulation, table.fixed_point_bits};
+  p.table = Impl::TableShape{table.capacity, table.accumulation, table.fixed_point_bits, table.compacted};
 }
 
 VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table,
@@ -343,6 +409,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     throw ConfigError("--capacity", "no device table of this shape to carry on from; start a new sequence");
   }
   const int kept_fixed_point_bits = keep_table ? p.table->fixed_point_bits : 0;
+  const bool compacting = config.compaction == Compaction::kOccupiedList;
+  if (keep_table && compacting && !p.table->compacted) {
+    throw ConfigError("--compaction", "the device table has no occupied list; start a new sequence");
+  }
   p.table.reset();  // until this run has written a whole table
   const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
   const bool fixed = config.accumulation == Accumulation::kFixed64;
@@ -388,6 +458,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.evicted, 8);
   const bool by_priority = config.eviction.by_priority();
   p.Ensure(p.victims, by_priority ? vk::DeviceSize(config.capacity) * 4 : 4);  // bound with eviction
+  // The occupied list (compaction.comp), bound always to the passes over slots, sized for the table with compaction.
+  p.Ensure(p.occupied, compacting ? vk::DeviceSize(config.capacity) * 4 : 4);
+  p.Ensure(p.occupied_header, kOccupiedHeaderBytes);
+  if (compacting) {
+    p.Ensure(p.listed, vk::DeviceSize(config.capacity) * 4);
+    p.Ensure(p.next_occupied, vk::DeviceSize(config.capacity) * 4);
+  }
   vulkan_internal::Transfer upload(p.device, p.staging);
   auto* records = static_cast<Record*>(upload.Upload(p.records, batch.records.size() * sizeof(Record)));
   auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
@@ -461,6 +538,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     if (!keep_table) {
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
       if (tracking) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
+      if (compacting) {
+        cb.fillBuffer(*p.listed.buffer, 0, VK_WHOLE_SIZE, 0);
+        cb.fillBuffer(*p.occupied_header.buffer, 0, VK_WHOLE_SIZE, 0);
+      }
     }
     const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite,
                                     vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -500,13 +581,52 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     });
   }
 
+  // Compaction (compaction.comp): the gather lists the slots records were placed in that are not listed yet, then
+  // one invocation writes the indirect dispatch of the passes over the list.
+  const vk::MemoryBarrier to_indirect(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eShaderRead |
+                                                                            vk::AccessFlagBits::eShaderWrite |
+                                                                            vk::AccessFlagBits::eIndirectCommandRead);
+  const vk::PipelineStageFlags indirect_stages =
+      vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect;
+  DeviceBuffer* const compaction_buffers[] = {&p.placements,      &p.tags,         &p.listed, &p.occupied,
+                                              &p.occupied_header, &p.next_occupied};
+  CompactionPush compaction_push{0, n, config.capacity, 0};
+  const auto compaction_pass = [&](vk::raii::CommandBuffer& cb, ComputeProgram& compaction, std::uint32_t pass) {
+    compaction_push.pass = pass;
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *compaction.pipeline);
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *compaction.layout, 0, *compaction.set, nullptr);
+    cb.pushConstants<CompactionPush>(*compaction.layout, vk::ShaderStageFlagBits::eCompute, 0, compaction_push);
+    if (pass == 0) {
+      cb.dispatch(vulkan_internal::WorkgroupsFor(n, kCompactionItemsPerWorkgroup), 1, 1);
+    } else if (pass == 1) {
+      cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
+    } else {
+      cb.dispatch(1, 1, 1);
+    }
+    cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, indirect_stages, {}, to_indirect, nullptr, nullptr);
+  };
+  if (compacting) {
+    ComputeProgram& compaction = p.Compaction();
+    vulkan_internal::BindBuffers(p.device, compaction, compaction_buffers);
+    run.timings.compaction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+      const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eTransferWrite,
+                                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer,
+                         vk::PipelineStageFlagBits::eComputeShader, {}, accumulated, nullptr, nullptr);
+      compaction_pass(cb, compaction, 0);
+      compaction_pass(cb, compaction, 3);
+    });
+  }
+
   // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
   // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
   if (blending) {
     ComputeProgram& temporal = p.Temporal();
-    DeviceBuffer* const temporal_buffers[] = {&p.sums, &p.counts, &p.previous_sums, &p.previous_counts};
+    DeviceBuffer* const temporal_buffers[] = {&p.sums,     &p.counts,         &p.previous_sums, &p.previous_counts,
+                                              &p.occupied, &p.occupied_header};
     vulkan_internal::BindBuffers(p.device, temporal, temporal_buffers);
-    const TemporalPush temporal_push{MakeTemporalParams(config.temporal), config.capacity, fixed ? 1u : 0u};
+    const TemporalPush temporal_push{MakeTemporalParams(config.temporal), config.capacity, fixed ? 1u : 0u,
+                                     compacting ? 1u : 0u, 0};
     run.timings.temporal_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -515,7 +635,11 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *temporal.pipeline);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *temporal.layout, 0, *temporal.set, nullptr);
       cb.pushConstants<TemporalPush>(*temporal.layout, vk::ShaderStageFlagBits::eCompute, 0, temporal_push);
-      cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kTemporalSlotsPerWorkgroup), 1, 1);
+      if (compacting) {
+        cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
+      } else {
+        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kTemporalSlotsPerWorkgroup), 1, 1);
+      }
     });
   }
 
@@ -524,8 +648,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // it may follow.
   if (evicting) {
     ComputeProgram& eviction = p.Eviction();
-    DeviceBuffer* const eviction_buffers[] = {&p.tags,    &p.sums, &p.counts,     &p.last_seen,
-                                              &p.evicted, &p.keys, &p.placements, &p.victims};
+    DeviceBuffer* const eviction_buffers[] = {&p.tags, &p.sums,       &p.counts,  &p.last_seen, &p.evicted,
+                                              &p.keys, &p.placements, &p.victims, &p.occupied,  &p.occupied_header};
     vulkan_internal::BindBuffers(p.device, eviction, eviction_buffers);
     EvictionPush eviction_push{config.capacity,
                                config.probe_limit,
@@ -536,7 +660,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                n,
                                by_priority ? 1u : 0u,
                                SharedProbeKind(config.probing),
-                               0};
+                               compacting ? 1u : 0u};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -551,14 +675,24 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       for (std::uint32_t pass : passes) {
         eviction_push.pass = pass;
         cb.pushConstants<EvictionPush>(*eviction.layout, vk::ShaderStageFlagBits::eCompute, 0, eviction_push);
-        cb.dispatch(vulkan_internal::WorkgroupsFor(pass == 2u ? n : config.capacity, kEvictionSlotsPerWorkgroup), 1, 1);
+        if (compacting && pass != 2u) {
+          cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
+        } else {
+          cb.dispatch(vulkan_internal::WorkgroupsFor(pass == 2u ? n : config.capacity, kEvictionSlotsPerWorkgroup), 1,
+                      1);
+        }
         // The evict pass reads the victims the select pass marked, the reclaim the counts the evict pass wrote.
         const vk::MemoryBarrier evicted(vk::AccessFlagBits::eShaderWrite,
                                         vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                            evicted, nullptr, nullptr);
       }
+      // The prune drops the slots the reclaim emptied from the list; its count becomes the list's.
+      if (compacting) {
+        for (std::uint32_t pass : {1u, 2u, 3u}) compaction_pass(cb, p.Compaction(), pass);
+      }
     });
+    if (compacting) std::swap(p.occupied, p.next_occupied);
   }
 
   // Resolve: a separate pass, 16 pixels per invocation.
@@ -590,6 +724,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_last_seen = tracking ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
   const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
   const void* from_seeded = seeding ? download.Download(p.seeded_count, 8) : nullptr;
+  const void* from_header = compacting ? download.Download(p.occupied_header, kOccupiedHeaderBytes) : nullptr;
+  const void* from_occupied = compacting ? download.Download(p.occupied, std::size_t(config.capacity) * 4) : nullptr;
   run.timings.read_back_copy_ms = download.Submit();
   run.timings.read_back_bytes = download.bytes();
   start = std::chrono::steady_clock::now();
@@ -616,6 +752,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
   if (evicting) std::memcpy(&run.evicted, from_evicted, 8);
+  if (compacting) {
+    // The count as the shaders left it, at most the list's length: the checker judges the entries.
+    std::uint32_t count = 0;
+    std::memcpy(&count, from_header, 4);
+    const auto* entries = static_cast<const std::uint32_t*>(from_occupied);
+    table.compacted = true;
+    table.occupied.assign(entries, entries + std::min(count, config.capacity));
+  }
   if (tracking) {
     ResizeOnHugePages(table.last_seen, config.capacity);
     ParallelCopy({table.last_seen.data(), from_last_seen, std::size_t(config.capacity) * 4});
@@ -623,7 +767,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.read_back_ms = MillisecondsSince(start);
   // Every word came from a shader, perhaps a team's: checked before any is used as an index.
   FinishReadBack(run, config.frame, p.ShaderNames());
-  p.table = Impl::TableShape{config.capacity, config.accumulation, table.fixed_point_bits};
+  p.table = Impl::TableShape{config.capacity, config.accumulation, table.fixed_point_bits, compacting};
   return run;
 }
 

@@ -27,12 +27,15 @@ struct VulkanTimings {
   double resolve_ms = 0;         // device: the resolve dispatch
   double level_seed_ms = 0;      // device: the seed pass of --level-change seed
   double temporal_ms = 0;        // device: the temporal blend (the copy into the previous table is in accumulate)
-  double eviction_ms = 0;        // device: the evict and reclaim dispatches; 0 without eviction
+  double compaction_ms = 0;      // device: the gather into the occupied list; 0 without --compaction
+  double eviction_ms = 0;        // device: the evict and reclaim dispatches (and the prune); 0 without eviction
   double read_back_copy_ms = 0;  // device: device to staging copies (0 when mapped)
   double read_back_ms = 0;       // host: image, table, keys and placements out of mapped or staging memory
   std::uint64_t upload_bytes = 0;
   std::uint64_t read_back_bytes = 0;
-  double FilterMs() const { return accumulate_ms + level_seed_ms + temporal_ms + eviction_ms + resolve_ms; }
+  double FilterMs() const {
+    return accumulate_ms + level_seed_ms + compaction_ms + temporal_ms + eviction_ms + resolve_ms;
+  }
   double UploadMs() const { return upload_ms + upload_copy_ms; }
   double ReadBackMs() const { return read_back_copy_ms + read_back_ms; }
 };
@@ -47,10 +50,11 @@ class VulkanFilter {
   // accumulate_spv: the path of a user's accumulate shader (SPIR-V) to run in place of the built-in one,
   // through the same bindings; empty for the built-in shaders. InputError naming the file when it is not SPIR-V.
   // eviction_spv: likewise for the eviction pass (eviction.comp's bindings and push constants), temporal_spv for
-  // the temporal blend (temporal.comp's), resolve_spv for the resolve (resolve.glsl's; its sums binding says its mode).
+  // the temporal blend (temporal.comp's), resolve_spv for the resolve (resolve.glsl's; its sums binding says its mode),
+  // compaction_spv for the occupied list's passes of --compaction occupied-list (compaction.comp's).
   explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "",
                         const std::string& eviction_spv = "", const std::string& temporal_spv = "",
-                        const std::string& resolve_spv = "");
+                        const std::string& resolve_spv = "", const std::string& compaction_spv = "");
   ~VulkanFilter();
   VulkanFilter(const VulkanFilter&) = delete;
   VulkanFilter& operator=(const VulkanFilter&) = delete;

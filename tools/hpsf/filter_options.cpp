@@ -61,6 +61,12 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "How a cell new in a frame starts when its location's level changed: none (empty) or seed[:S] "
                   "(from its children's sums one level finer, else an eighth of its parent's, times 2^-S)")
       ->capture_default_str();
+  command
+      .add_option("--compaction", o.compaction,
+                  "How the passes over slots (temporal blend, eviction) find them: none (every slot of the table) or "
+                  "occupied-list (a list of the occupied slots kept beside the table, so they cost in proportion to "
+                  "those)")
+      ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction; repeatable): the same bits, at the pass's cost");
@@ -93,6 +99,7 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   config.eviction = ParseEviction(o.eviction);
   config.level_seed = ParseLevelSeed(o.level_change);
   config.temporal = ParseTemporal(o.temporal);
+  config.compaction = ParseCompaction(o.compaction);
   for (const std::string& name : o.force_effects) config.forced.Add(ParseEffect(name));
   if (!o.table.empty()) {
     for (const DeclaredSetting& d : ApplyTableDeclaration(o.table, config)) {
@@ -137,6 +144,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"eviction", c.eviction.ToString()},
           {"level_change", c.level_seed.ToString()},
           {"temporal", c.temporal.ToString()},
+          {"compaction", ToString(c.compaction)},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

@@ -95,6 +95,43 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
   }
 }
 
+// With compaction: the list holds each slot whose tag is set once, and nothing else (Bevy #21904 listed a cell with
+// none active). The first few of each kind are named.
+void CheckOccupiedList(const HashTableDump& t, std::vector<TableViolation>& violations) {
+  constexpr int kNamed = 8;
+  int named = 0;
+  auto fail = [&](std::uint32_t slot, std::string detail) {
+    if (named++ < kNamed) violations.push_back({TableInvariant::kOccupiedList, slot, {}, std::move(detail)});
+  };
+  if (t.occupied.size() > t.capacity) {
+    fail(0xFFFFFFFFu, "the list's count " + std::to_string(t.occupied.size()) + " exceeds the " +
+                          std::to_string(t.capacity) + " slots");
+  }
+  std::vector<std::uint8_t> seen(t.capacity, 0);
+  for (std::size_t entry = 0; entry < t.occupied.size(); ++entry) {
+    const std::uint32_t slot = t.occupied[entry];
+    if (slot >= t.capacity) {
+      fail(0xFFFFFFFFu,
+           "entry " + std::to_string(entry) + " names slot " + std::to_string(slot) + ", past the table's end");
+    } else if (seen[slot]++) {
+      fail(slot, "entry " + std::to_string(entry) + " lists it again");
+    } else if (t.tags[slot] == kEmptyTag) {
+      fail(slot, "entry " + std::to_string(entry) + " lists it, but it is empty");
+    }
+  }
+  for (std::uint32_t slot = 0; slot < t.capacity; ++slot) {
+    if (t.tags[slot] != kEmptyTag && !seen[slot])
+      fail(slot, "occupied (tag " + std::to_string(t.tags[slot]) + "), but not in the list of " +
+                     std::to_string(t.occupied.size()));
+  }
+  if (named > kNamed) {
+    violations.push_back({TableInvariant::kOccupiedList,
+                          0xFFFFFFFFu,
+                          {},
+                          std::to_string(named - kNamed) + " more entries or slots not named"});
+  }
+}
+
 }  // namespace
 
 const char* ToString(TableInvariant invariant) {
@@ -133,6 +170,8 @@ const char* ToString(TableInvariant invariant) {
       return "blended cell differs from the temporal blend";
     case TableInvariant::kCellSplit:
       return "slot claimed though the cell lived in the window before the frame";
+    case TableInvariant::kOccupiedList:
+      return "occupied list differs from the occupied slots";
   }
   return "?";
 }
@@ -161,6 +200,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                      std::string detail) {
     violations.push_back({invariant, slot, std::move(records), std::move(detail)});
   };
+  if (t.compacted) CheckOccupiedList(t, violations);
 
   // The tags the frame's lookups saw: with eviction, a tombstone the reclaim emptied after them still held its tag
   // (whether the reclaim was right to empty it is the tombstone check's question below).

@@ -11,7 +11,9 @@
 // temporal mode (core/temporal.h), a slot that held samples before the frame and that the frame added to holds
 // the blend of the two: in fixed64 exactly core's BlendCellState of the table before and the frame's exact sums;
 // in float32 its count exactly (ema; adaptive: between the frame's count and the capped history's plus it) and
-// its average within the bounds of the history's and the frame's averages, widened by float32's rounding.
+// its average within the bounds of the history's and the frame's averages, widened by float32's rounding. With
+// compaction (core/compaction.h), the table's occupied list holds every slot whose tag is set exactly once and no
+// other slot, whatever its order.
 #ifndef HPSF_VERIFIER_CHECKER_TABLE_CHECKER_H
 #define HPSF_VERIFIER_CHECKER_TABLE_CHECKER_H
 
@@ -47,6 +49,7 @@ enum class TableInvariant {
   kTombstoneKept,               // a tombstone kept though no live slot after it can need it (the table fills)
   kTemporalBlend,               // a blended cell is not the blend of its history and the frame (core/temporal.h)
   kCellSplit,                   // a record claimed a slot though its cell lived in the window before the frame
+  kOccupiedList,                // with compaction: the list misses an occupied slot, lists one twice, or an empty one
 };
 const char* ToString(TableInvariant invariant);
 

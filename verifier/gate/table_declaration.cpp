@@ -54,6 +54,8 @@ const std::vector<Setting>& Settings() {
        [](const json& v, FilterConfig& c) { c.temporal = ParseTemporal(v.get<std::string>()); }},
       {"/passes/level_change", "--level-change",
        [](const json& v, FilterConfig& c) { c.level_seed = ParseLevelSeed(v.get<std::string>()); }},
+      {"/passes/compaction", "--compaction",
+       [](const json& v, FilterConfig& c) { c.compaction = ParseCompaction(v.get<std::string>()); }},
   };
   return settings;
 }
@@ -121,7 +123,8 @@ std::string TableDeclarationText(const FilterConfig& config) {
       {"passes",
        {{"eviction", config.eviction.ToString()},
         {"temporal", config.temporal.ToString()},
-        {"level_change", config.level_seed.ToString()}}},
+        {"level_change", config.level_seed.ToString()},
+        {"compaction", ToString(config.compaction)}}},
   };
   if (config.fixed_point_bits) {
     document["sums"]["fixed_point_bits"] = *config.fixed_point_bits;

@@ -1,6 +1,7 @@
 #version 450
 // The eviction pass after a frame's accumulate (core/eviction.h; the emulator's emulated/eviction_kernels.h holds
-// the rule and why tombstones): one invocation per slot, dispatched twice with a barrier between. Pass 0, evict:
+// the rule and why tombstones): one invocation per slot (or per entry of the occupied list, core/compaction.h),
+// dispatched twice with a barrier between. Pass 0, evict:
 // a live slot last seen `unseen_frames` or more frames ago keeps its tag and becomes a tombstone (count and sums
 // zeroed). Pass 1, reclaim: a tombstone is emptied unless a live slot follows it in some key's candidate order
 // (core/shared/probe_scheme.h's SlotAfter) with no empty slot between. Priority eviction (by_priority) dispatches pass 2, select, first: one invocation per record;
@@ -27,6 +28,9 @@ layout(std430, binding = 4) buffer Evicted { uint64_t evicted; };
 layout(std430, binding = 5) readonly buffer Keys { uvec4 key_vectors[]; };  // the accumulate's binding 1
 layout(std430, binding = 6) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 7) buffer Victims { uint victims[]; };  // per slot, zeroed: 1 marks a victim
+// Bindings 8 and 9, with --compaction occupied-list (compacted): passes 0 and 1 step the list's entries.
+layout(std430, binding = 8) readonly buffer Occupied { uint occupied[]; };
+layout(std430, binding = 9) readonly buffer OccupiedHeader { uint occupied_count; };
 layout(push_constant) uniform Params {
   uint capacity;
   uint probe_limit;
@@ -37,7 +41,7 @@ layout(push_constant) uniform Params {
   uint record_count;
   uint by_priority;         // 1 with --eviction priority
   uint probe_scheme;        // kProbeLinear, kProbeBucket or kProbeBucketWindow
-  uint reserved;
+  uint compacted;           // 1: dispatched indirectly, one invocation per entry of the occupied list
 };
 
 ProbeScheme Scheme() { return MakeProbeScheme(probe_scheme, capacity, probe_limit); }
@@ -100,7 +104,9 @@ void main() {
     for (uint i = gl_GlobalInvocationID.x; i < record_count; i += stride) SelectVictim(i);
     return;
   }
-  for (uint slot = gl_GlobalInvocationID.x; slot < capacity; slot += stride) {
+  uint steps = compacted != 0u ? occupied_count : capacity;
+  for (uint step = gl_GlobalInvocationID.x; step < steps; step += stride) {
+    uint slot = compacted != 0u ? occupied[step] : step;
     if (pass == 0u) {
       Evict(slot);
     } else {

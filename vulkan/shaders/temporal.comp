@@ -19,10 +19,15 @@ layout(std430, binding = 0) buffer SumWords { uint sum_words[]; };  // fixed64 o
 layout(std430, binding = 1) buffer Counts { uint64_t counts[]; };
 layout(std430, binding = 2) readonly buffer PreviousSumWords { uint previous_sum_words[]; };
 layout(std430, binding = 3) readonly buffer PreviousCounts { uint64_t previous_counts[]; };
+// Bindings 4 and 5, with --compaction occupied-list (compacted): one invocation per entry of the list.
+layout(std430, binding = 4) readonly buffer Occupied { uint occupied[]; };
+layout(std430, binding = 5) readonly buffer OccupiedHeader { uint occupied_count; };
 layout(push_constant) uniform Params {  // vulkan_filter.cpp's TemporalPush
   TemporalParams temporal;
   uint capacity;
-  uint fixed64;  // 1: sums are 64-bit fixed point (two words per channel); 0: float32
+  uint fixed64;    // 1: sums are 64-bit fixed point (two words per channel); 0: float32
+  uint compacted;  // 1: dispatched indirectly, one invocation per entry of the occupied list (core/compaction.h)
+  uint reserved;
 };
 
 double SumAt(uint slot, int c, bool previous) {
@@ -79,5 +84,6 @@ void Blend(uint slot) {
 
 void main() {
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  for (uint slot = gl_GlobalInvocationID.x; slot < capacity; slot += stride) Blend(slot);
+  uint steps = compacted != 0u ? occupied_count : capacity;
+  for (uint step = gl_GlobalInvocationID.x; step < steps; step += stride) Blend(compacted != 0u ? occupied[step] : step);
 }
