@@ -230,8 +230,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.timings.accumulate_ms = clock.LapMs();
   // The passes after the accumulate run one thread per slot. Faithful mode schedules them by the run's policy; an
   // exhaustive search drives only the accumulate launch, so they then take round-robin.
-  const auto launch = [&](std::uint32_t threads, const simt::Kernel& kernel) {
-    if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, threads, kernel, options.threads);
+  const auto launch = [&](std::uint32_t threads, const simt::Kernel& kernel,
+                          const simt::ThreadPrefetch& prefetch = {}) {
+    if (options.mode == simt::Mode::kFast) return simt::LaunchFast(memory, threads, kernel, options.threads, prefetch);
     const std::uint32_t warps = (threads + options.warp_size - 1) / options.warp_size;
     const std::string policy = options.schedule_instance ? "round-robin" : options.schedule;
     const auto schedule = simt::MakeSchedule(policy, warps, std::uint64_t(warps) * (2 * config.probe_limit + 8));
@@ -240,9 +241,26 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   };
   // With compaction, a pass over slots runs one thread per entry of the list: its count, read back, is the emulator's
   // indirect dispatch.
-  const auto list_count = [&] { return static_cast<std::uint32_t>(std::as_const(memory).Words64(list.count)[0]); };
+  // A count past the list (a broken kernel's) steps the whole list; the dump keeps as much and the checker names it.
+  const auto list_count = [&] {
+    return static_cast<std::uint32_t>(
+        std::min<std::uint64_t>(std::as_const(memory).Words64(list.count)[0], config.capacity));
+  };
+  // An entry's slot is anywhere in the table: its lines are asked for a few entries ahead, as the accumulate's are.
+  const auto prefetch_entry = [&](std::uint32_t entry) {
+    const std::span<const std::uint32_t> entries = std::as_const(memory).Words32(list.slots);
+    if (entry >= entries.size()) return;
+    const std::uint32_t slot = entries[entry];
+    for (const std::uint32_t buffer : {b.tags, b.counts, temporal.previous_counts}) memory.Prefetch({buffer, slot});
+    if (tracking) memory.Prefetch({b.last_seen, slot});
+    for (const std::uint32_t sums : {b.sums, temporal.previous_sums}) {
+      memory.Prefetch({sums, std::uint64_t(slot) * 3});
+      memory.Prefetch({sums, std::uint64_t(slot) * 3 + 2});
+    }
+  };
   const auto launch_per_slot = [&](const simt::Kernel& kernel) {
-    launch(compacting ? list_count() : config.capacity, kernel);
+    if (compacting) return launch(list_count(), kernel, prefetch_entry);
+    launch(config.capacity, kernel);
   };
   const bool seeding = planned.level_seed;
   HashTableDump empty_table;  // a first frame's table before it, where the seed is forced
@@ -276,7 +294,13 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
   // A skipped pass reads zero, not the clock's few nanoseconds between two laps.
   run.timings.level_seed_ms = seeding ? clock.LapMs() : 0.0;
-  if (compacting) launch(n, [&](simt::ThreadContext& ctx) { return GatherOccupiedKernel(ctx, compaction); });
+  if (compacting) {
+    launch(
+        n, [&](simt::ThreadContext& ctx) { return GatherOccupiedKernel(ctx, compaction); },
+        [&](std::uint32_t i) {
+          memory.Prefetch({list.listed, std::as_const(memory).Words32(b.placements)[i]});
+        });
+  }
   run.timings.compaction_ms = compacting ? clock.LapMs() : 0.0;
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
   run.timings.temporal_ms = blending ? clock.LapMs() : 0.0;
@@ -298,7 +322,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     table.compacted = true;
     // The count as the device left it, which a broken kernel may have written past the list: the checker names it.
     const std::span<const std::uint32_t> slots = std::as_const(memory).Words32(list.slots);
-    table.occupied.assign(slots.begin(), slots.begin() + std::min<std::size_t>(list_count(), slots.size()));
+    table.occupied.assign(slots.begin(), slots.begin() + list_count());
   }
   run.timings.eviction_ms = evicting ? clock.LapMs() : 0.0;
   // The dump: the final state of the device buffers, moved out where the layouts agree.

@@ -361,12 +361,12 @@ foreach(bug FULL_BUCKET_MASKED:bucket WINDOW_PAST_THE_END:bucket-window)
       -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
   set_tests_properties(HpsfFuzz.FindsShippedBug${shader}InAShader PROPERTIES LABELS "vulkan;schemes;untrusted")
 endforeach()
-# A team's own temporal blend and resolve, broken: hpsf fuzz finds each within 200 runs (seed 3), shrinks it while
+# A team's own temporal blend, resolve and compaction, broken: hpsf fuzz finds each within 200 runs (seed 3), shrinks it while
 # hpsf's own shaders pass the shrunk case (so it shrinks into the shader's failure, not another), to 2 or 3 records, and
 # its bundle reproduces it. (Seed 1 finds the truncated blend at run 3 in a case of 5282 records that shrinks to 2814
 # in 93 s: the same verdict, too slow a test.)
 foreach(pass temporal:TRUNCATED_BLEND:2 temporal:BLEND_UNTOUCHED:2 resolve:AVERAGE_OFF_BY_ONE:2
-        resolve:AVERAGE_IN_FLOAT:3)
+        resolve:AVERAGE_IN_FLOAT:3 compaction:COUNT_ONE_WHEN_EMPTY:3)
   string(REPLACE ":" ";" pass ${pass})
   list(GET pass 0 kind)
   list(GET pass 1 variant)

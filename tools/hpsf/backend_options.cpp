@@ -33,4 +33,10 @@ nlohmann::json LastFrameTemporal(const Backend& backend) {
   return {{"temporal_s", backend.LastFrameTimings().temporal_ms / 1e3}};
 }
 
+nlohmann::json LastFrameCompaction(const Backend& backend) {
+  if (backend.LastExactResult()) return nlohmann::json::object();
+  return {{"occupied", backend.LastHashedRun()->table.occupied.size()},
+          {"compaction_s", backend.LastFrameTimings().compaction_ms / 1e3}};
+}
+
 }  // namespace hpsf

@@ -36,6 +36,9 @@ nlohmann::json LastFrameEviction(const Backend& backend);
 // The temporal blend's pass time of the last frame: {"temporal_s": seconds} for a hashed backend; the reference
 // blends inside its filter ({}).
 nlohmann::json LastFrameTemporal(const Backend& backend);
+// The occupied list of the last frame (--compaction occupied-list): its length after the frame and the gather's
+// time, for a hashed backend; the reference's map holds its cells alone ({}).
+nlohmann::json LastFrameCompaction(const Backend& backend);
 // The last frame's level seeds (--level-change seed): cells_seeded (reference), or seeded and level_seed_s, the
 // seed pass's time (hashed backends).
 nlohmann::json LastFrameLevelSeed(const Backend& backend);

@@ -37,6 +37,9 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--temporal-spv", flags.vulkan.temporal_spv,
                      "Vulkan backend: run this SPIR-V temporal blend shader (docs/reference/buffer-interface.md) with "
                      "a blending --temporal");
+  command.add_option("--compaction-spv", flags.vulkan.compaction_spv,
+                     "Vulkan backend: run this SPIR-V compaction shader (the occupied list's gather and prune, "
+                     "docs/reference/buffer-interface.md) with --compaction occupied-list");
   command
       .add_option_function<std::string>(
           "--key-source",

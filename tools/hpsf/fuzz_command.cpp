@@ -107,6 +107,7 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, std::uint64_t re
                       {"eviction_spv", o.vulkan.eviction_spv},
                       {"temporal_spv", o.vulkan.temporal_spv},
                       {"resolve_spv", o.vulkan.resolve_spv},
+                      {"compaction_spv", o.vulkan.compaction_spv},
                       {"key_source", o.vulkan.shader_keys ? "shader" : "core"},
                       {"accum", o.accumulation.empty() ? "both" : o.accumulation},
                       {"probing", o.probing.empty() ? (o.vulkan.accumulate_spv.empty() ? "any" : "linear") : o.probing},
@@ -153,7 +154,8 @@ int Run(FuzzOptions& o, bool options_only) {
   const std::pair<const char*, const std::string*> shaders[] = {{"--accumulate-spv", &o.vulkan.accumulate_spv},
                                                                 {"--eviction-spv", &o.vulkan.eviction_spv},
                                                                 {"--temporal-spv", &o.vulkan.temporal_spv},
-                                                                {"--resolve-spv", &o.vulkan.resolve_spv}};
+                                                                {"--resolve-spv", &o.vulkan.resolve_spv},
+                                                                {"--compaction-spv", &o.vulkan.compaction_spv}};
   for (const auto& [option, path] : shaders) {
     if (!path->empty() && !backend.runs_user_shaders) {
       throw ConfigError(option, "runs on the Vulkan backend; add --backend vulkan");
@@ -229,11 +231,12 @@ int Run(FuzzOptions& o, bool options_only) {
       // shrinking may otherwise wander into a failure they share (a sequence whose first frame, its records cut,
       // chooses an F its later frame wraps), which says nothing of the shader. Unless the found case fails there too.
       VulkanBackendOptions own = o.vulkan;
-      own.accumulate_spv = own.eviction_spv = own.temporal_spv = own.resolve_spv = "";
+      own.accumulate_spv = own.eviction_spv = own.temporal_spv = own.resolve_spv = own.compaction_spv = "";
+      const bool teams_shader = !o.vulkan.accumulate_spv.empty() || !o.vulkan.eviction_spv.empty() ||
+                                !o.vulkan.temporal_spv.empty() || !o.vulkan.resolve_spv.empty() ||
+                                !o.vulkan.compaction_spv.empty();
       std::optional<Crosschecker> hpsfs_own;
-      if (defect != Defect::kNone || own.accumulate_spv != o.vulkan.accumulate_spv ||
-          own.eviction_spv != o.vulkan.eviction_spv || own.temporal_spv != o.vulkan.temporal_spv ||
-          own.resolve_spv != o.vulkan.resolve_spv) {
+      if (defect != Defect::kNone || teams_shader) {
         hpsfs_own.emplace(backends, Defect::kNone, own);
         if (!Passes(Check(*hpsfs_own, failure->found))) hpsfs_own.reset();
       }
@@ -245,7 +248,8 @@ int Run(FuzzOptions& o, bool options_only) {
                      {.accumulation = accumulation.has_value(),
                       .probing = generate.probing.has_value(),
                       .eviction = !o.vulkan.eviction_spv.empty(),
-                      .temporal = !o.vulkan.temporal_spv.empty()});
+                      .temporal = !o.vulkan.temporal_spv.empty(),
+                      .compaction = !o.vulkan.compaction_spv.empty()});
       const std::optional<CrosscheckReport> shrunk = CheckUntilFails(checker, failure->shrink.shrunk, 3 * tries);
       failure->timing_dependent = !Fails(shrunk);  // the shrunk case lost the timing it needs
       if (shrunk) failure->report = *shrunk;
@@ -308,6 +312,8 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
                 "Vulkan: your eviction shader (SPIR-V), run in the cases whose sequence evicts");
   c->add_option("--temporal-spv", o->vulkan.temporal_spv,
                 "Vulkan: your temporal blend shader (SPIR-V), run in the cases whose sequence blends");
+  c->add_option("--compaction-spv", o->vulkan.compaction_spv,
+                "Vulkan: your compaction shader (SPIR-V), run in the cases whose sequence compacts");
   c->add_option_function<std::string>(
        "--key-source",
        [o](const std::string& text) {

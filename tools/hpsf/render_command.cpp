@@ -90,6 +90,7 @@ nlohmann::json FilterSequenceFrame(BackendInstance& backend, const RecordBatch& 
   if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(*backend.backend);
   if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(*backend.backend);
   if (config.level_seed.enabled) frame["level_seed"] = LastFrameLevelSeed(*backend.backend);
+  if (config.compaction != Compaction::kNone) frame["compaction"] = LastFrameCompaction(*backend.backend);
   return report;
 }
 

@@ -121,6 +121,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 "--fixed-point-bits",
                                 c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
+  if (c.compaction != Compaction::kNone) a.insert(a.end(), {"--compaction", ToString(c.compaction)});
   const bool faithful = emulator.mode == simt::Mode::kFaithful;
   a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});
   if (faithful) a.insert(a.end(), {"--warp-size", std::to_string(emulator.warp_size), "--schedule", emulator.schedule});
@@ -136,6 +137,9 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   }
   if (!vulkan.temporal_spv.empty()) {
     a.insert(a.end(), {"--temporal-spv", std::filesystem::absolute(vulkan.temporal_spv).string()});
+  }
+  if (!vulkan.compaction_spv.empty()) {
+    a.insert(a.end(), {"--compaction-spv", std::filesystem::absolute(vulkan.compaction_spv).string()});
   }
   if (vulkan.shader_keys) a.insert(a.end(), {"--key-source", "shader"});
   if (!vulkan.resolve_spv.empty()) {

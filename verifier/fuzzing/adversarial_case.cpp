@@ -392,6 +392,13 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
     const int frames = g.UniformInt(2, 6);
     for (int k = 1; k < frames; ++k) a.later.push_back(LaterFrame(g, a.batch, std::uint32_t(k)));
     a.config.frames = std::uint32_t(frames);
+    // Half the sequences step their passes over an occupied list (core/compaction.h). A later frame in eight sees
+    // only sky (its records lose their vertex): nothing is touched, and a policy may evict every cell.
+    if (late_draws.Bits() % 2u == 0u) a.config.compaction = Compaction::kOccupiedList;
+    for (RecordBatch& frame : a.later) {
+      if (late_draws.Bits() % 8u != 0u) continue;
+      for (Record& r : frame.records) r.path.z &= ~shared::kRecordHasVertex;
+    }
   }
   a.config.Validate();
   return a;

@@ -11,7 +11,8 @@
 // fixed64 case in four takes a small F of its own, from -2 to 9 bits, where c * 2^F has a fraction and rounding matters
 // (the automatic F makes it whole and hides truncation); and one case in four is a sequence of 2 to 6 frames through
 // one table, with a drawn eviction policy and temporal mode, whose later frames revisit the first frame's records and
-// add new ones (a frame-state defect one frame hides).
+// add new ones (a frame-state defect one frame hides); half the sequences keep an occupied list (core/compaction.h),
+// and a later frame in eight sees only sky, so that a policy may evict every cell.
 #ifndef HPSF_VERIFIER_FUZZING_ADVERSARIAL_CASE_H
 #define HPSF_VERIFIER_FUZZING_ADVERSARIAL_CASE_H
 

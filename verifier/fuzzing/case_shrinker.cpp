@@ -96,6 +96,9 @@ class Shrinker {
       if (Fails(candidate)) c = std::move(candidate);
     };
     if (!keep_.eviction && c.config.eviction.enabled()) attempt([](AdversarialCase& a) { a.config.eviction = {}; });
+    if (!keep_.compaction && c.config.compaction != Compaction::kNone) {
+      attempt([](AdversarialCase& a) { a.config.compaction = Compaction::kNone; });
+    }
     if (!keep_.temporal && c.config.temporal.mode != TemporalMode::kIntegrate) {
       attempt([](AdversarialCase& a) { a.config.temporal = {}; });
     }

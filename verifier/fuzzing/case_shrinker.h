@@ -24,13 +24,14 @@ struct ShrinkResult {
 };
 
 // What was the user's choice and is not simplified: a shader may handle one accumulation mode or one probing
-// scheme only, and a team's eviction or temporal shader runs only while the case evicts or blends (simplified away,
-// the case would shrink into some other failure, or none of the shader's).
+// scheme only, and a team's eviction, temporal or compaction shader runs only while the case evicts, blends or
+// compacts (simplified away, the case would shrink into some other failure, or none of the shader's).
 struct ShrinkKeeps {
   bool accumulation = false;
   bool probing = false;
   bool eviction = false;
   bool temporal = false;
+  bool compaction = false;
 };
 
 ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, ShrinkKeeps keep = {},

@@ -41,6 +41,8 @@ void main() {
     for (uint i = gl_GlobalInvocationID.x; i < record_count; i += stride) {
       uint slot = placements[i];
       if (slot >= capacity) continue;  // not placed
+      // A plain read first: most records join a slot listed already, and a flag only goes from 0 to 1 in this pass.
+      if (listed[slot] != 0u) continue;
       if (atomicCompSwap(listed[slot], 0u, 1u) != 0u) continue;
       occupied[atomicAdd(count, 1u)] = slot;
     }
