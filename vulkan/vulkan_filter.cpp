@@ -538,9 +538,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     if (!keep_table) {
       for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
       if (tracking) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
-      if (compacting) {
-        cb.fillBuffer(*p.listed.buffer, 0, VK_WHOLE_SIZE, 0);
-        cb.fillBuffer(*p.occupied_header.buffer, 0, VK_WHOLE_SIZE, 0);
+      if (compacting) {  // the lists too, so that an entry a broken count exposes is the same on every run
+        for (DeviceBuffer* cleared : {&p.listed, &p.occupied_header, &p.occupied, &p.next_occupied})
+          cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
       }
     }
     const vk::MemoryBarrier cleared(vk::AccessFlagBits::eTransferWrite,
