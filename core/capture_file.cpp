@@ -99,6 +99,13 @@ class CaptureParser {
     }
     if (const auto before = next("TBEF", true)) c.before = Table(*before, c, "TBEF");
     c.after = Table(*next("TAFT", false), c, "TAFT");
+    if (const auto list = next("OCCL", true)) {
+      if (list->size() % 4 != 0 || list->size() / 4 > c.capacity) {
+        throw Fail(chunk_, "OCCL: " + std::to_string(list->size()) + " bytes, not a list of at most " +
+                               std::to_string(c.capacity) + " slots");
+      }
+      Values(*list, list->size(), "OCCL", c.occupied.emplace(), list->size() / 4);
+    }
     if (read != chunks)
       throw Fail(offset_,
                  "the header announces " + std::to_string(chunks) + " chunks, " + std::to_string(read) + " are known");

@@ -45,6 +45,7 @@ struct Capture {
   std::optional<CapturedRecords> hpsf_records;
   std::optional<CapturedTable> before;
   CapturedTable after;
+  std::optional<std::vector<std::uint32_t>> occupied;  // the OCCL chunk: the list of occupied slots after the frame
   std::size_t record_count() const { return home_slots.size(); }
 };
 

@@ -17,6 +17,7 @@
 
 #include "core/capture_writer.h"
 #include "core/error.h"
+#include "core/fnv1a.h"
 
 namespace hpsf {
 namespace {
@@ -37,6 +38,8 @@ struct Arrays {
   std::vector<std::uint64_t> counts = {1, 1, 0, 0, 0, 0, 0, 3};
   std::vector<std::uint32_t> last_seen = {4, 4, 0, 0, 0, 0, 0, 2};
   std::vector<std::uint32_t> tags_before = std::vector<std::uint32_t>(8);
+  std::vector<std::uint32_t> occupied = {7, 0, 1};
+  std::span<const std::uint32_t> occupied_view = occupied;
   Arrays() {
     std::iota(sums.begin(), sums.end(), std::uint64_t(1) << 40);
     for (std::size_t i = 0; i < records.size(); ++i) records[i] = std::byte(i * 7);
@@ -82,7 +85,9 @@ std::string FullCaptureBytes() {
   const capture::RecordView records{32, 16, 2, 0.75, a.records};
   const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen};
   const std::string path = TempPath("full.hpsfc");
-  EXPECT_EQ(capture::WriteCapture(path, Written(a, &records, &before, true)), "");
+  capture::FrameCapture c = Written(a, &records, &before, true);
+  c.occupied = &a.occupied_view;
+  EXPECT_EQ(capture::WriteCapture(path, c), "");
   return Bytes(path);
 }
 
@@ -102,7 +107,9 @@ TEST(CaptureFile, EveryArrayRoundTripsBitForBit) {
   const capture::RecordView records{32, 16, 2, 0.75, a.records};
   const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen};
   const std::string path = TempPath("round_trip.hpsfc");
-  ASSERT_EQ(capture::WriteCapture(path, Written(a, &records, &before, true)), "");
+  capture::FrameCapture written = Written(a, &records, &before, true);
+  written.occupied = &a.occupied_view;
+  ASSERT_EQ(capture::WriteCapture(path, written), "");
   const Capture c = ReadCapture(path);
   EXPECT_EQ(c.frame, 4u);
   EXPECT_EQ(c.capacity, 8u);
@@ -136,6 +143,38 @@ TEST(CaptureFile, EveryArrayRoundTripsBitForBit) {
   for (std::size_t s = 0; s < 8; ++s) {
     for (std::size_t ch = 0; ch < 3; ++ch) EXPECT_EQ(c.after.fixed_sums[s][ch], a.sums[3 * s + ch]);
   }
+  EXPECT_EQ(c.occupied, a.occupied);
+}
+
+// The occupied list's chunk (OCCL) is optional, after the table; one longer than the table is named, and the writer
+// refuses to write one.
+TEST(CaptureFile, AnOccupiedListLongerThanTheTableIsNamed) {
+  Arrays a;
+  EXPECT_FALSE(ReadCaptureBytes(Bytes([&] {
+                                  const std::string path = TempPath("no_list.hpsfc");
+                                  EXPECT_EQ(capture::WriteCapture(path, Written(a, nullptr, nullptr, true)), "");
+                                  return path;
+                                }()),
+                                "no_list.hpsfc")
+                   .occupied);
+  std::vector<std::uint32_t> long_list(9, 1);
+  const std::span<const std::uint32_t> view = long_list;
+  capture::FrameCapture c = Written(a, nullptr, nullptr, true);
+  c.occupied = &view;
+  EXPECT_EQ(capture::WriteCapture(TempPath("long_list.hpsfc"), c),
+            TempPath("long_list.hpsfc") + ": occupied: more entries than the capacity");
+  // Written with a list of 3, then its size word and payload made 9 entries long: the reader names the chunk.
+  std::string bytes = FullCaptureBytes();
+  const std::size_t list = bytes.size() - (8 + 12 + 16);
+  ASSERT_EQ(bytes.substr(list, 4), "OCCL");
+  std::string longer = bytes.substr(0, list + 8);
+  const std::uint64_t size = 36;
+  longer.append(reinterpret_cast<const char*>(&size), 8);
+  std::string payload(36, '\1');
+  longer += payload;
+  const std::uint64_t checksum = Fnv1a(payload.data(), payload.size());
+  longer.append(reinterpret_cast<const char*>(&checksum), 8);
+  ExpectInputError(longer, "OCCL: 36 bytes, not a list of at most 8 slots");
 }
 
 TEST(CaptureFile, Float32SumsWithoutTheOptionalChunksRoundTrip) {
@@ -204,7 +243,9 @@ TEST(CaptureFile, BrokenStructureIsNamed) {
   version[8] = 2;
   ExpectInputError(version, "capture version 2; this hpsf reads version 1");
   std::string fewer = bytes;
-  fewer[12] = char(fewer[12] - 1);  // the header then leaves out the table after the frame
+  fewer[12] = char(fewer[12] - 1);  // the header then leaves out the optional list: bytes follow the table
+  ExpectInputError(fewer, "bytes after the last chunk");
+  fewer[12] = char(fewer[12] - 1);  // and the table after the frame
   ExpectInputError(fewer, "the header's 10 chunks end before the TAFT chunk");
   std::string more = bytes;
   more[12] = char(more[12] + 1);

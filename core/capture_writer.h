@@ -76,6 +76,9 @@ struct FrameCapture {
   const RecordView* hpsf_records = nullptr;   // optional: the records, when the key is hpsf's (judged at level 1)
   const TableBuffers* before = nullptr;       // optional: the table before the frame; none means it started empty
   TableBuffers after;                         // the table after the frame and its passes
+  // With compaction (passes.compaction "occupied-list"): the list of occupied slots after the frame, in the engine's
+  // order, at most capacity entries; the judge holds it to the table's occupied slots.
+  const std::span<const std::uint32_t>* occupied = nullptr;
 };
 
 namespace detail {
@@ -164,6 +167,7 @@ inline std::string CaptureProblem(const FrameCapture& c) {
     if (std::string e = detail::CheckTable(*c.before, c, "before"); !e.empty()) return e;
     if (c.before->last_seen.empty() != c.after.last_seen.empty()) return "before and after: last_seen in one only";
   }
+  if (c.occupied && c.occupied->size() > c.capacity) return "occupied: more entries than the capacity";
   return "";
 }
 
@@ -176,7 +180,7 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return path + ": cannot write " + temporary;
-    const std::uint32_t chunks = 9 + (c.hpsf_records ? 1 : 0) + (c.before ? 1 : 0);
+    const std::uint32_t chunks = 9 + (c.hpsf_records ? 1 : 0) + (c.before ? 1 : 0) + (c.occupied ? 1 : 0);
     out.write(kMagic, sizeof kMagic);
     out.write(reinterpret_cast<const char*>(&kVersion), 4);
     out.write(reinterpret_cast<const char*>(&chunks), 4);
@@ -213,6 +217,7 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
     }
     if (c.before) detail::WriteTable(s, ChunkType("TBEF"), *c.before, c, last_seen);
     detail::WriteTable(s, ChunkType("TAFT"), c.after, c, last_seen);
+    if (c.occupied) words("OCCL", *c.occupied);
     out.close();
     if (!out) {
       std::remove(temporary.c_str());

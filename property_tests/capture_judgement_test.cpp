@@ -8,6 +8,7 @@
 
 #include "verifier/contract/capture_judgement.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -89,6 +90,9 @@ std::vector<HostCase> EmulatorCases() {
   evicting.eviction = ParseEviction("stale:1");
   evicting.temporal = ParseTemporal("ema:0.8");
   cases.push_back({"clean crowded stale:1 ema, 3 frames", Defect::kNone, evicting, 3});
+  FilterConfig listed = evicting;
+  listed.compaction = Compaction::kOccupiedList;
+  cases.push_back({"clean crowded stale:1 ema, occupied list, 3 frames", Defect::kNone, listed, 3});
   FilterConfig priority = Crowded();
   priority.eviction = ParseEviction("priority");
   cases.push_back({"clean crowded priority, 3 frames", Defect::kNone, priority, 3});
@@ -399,6 +403,8 @@ TEST(CaptureJudgement, ACaptureThatContradictsItsDeclarationIsBadInput) {
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"eviction": "strict"}})",
        "its declaration evicts, but the tables carry no last-seen frames"},
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"level_change": "seed"}})", "level seeding"},
+      {R"({"hpsf_table": 1, "capacity": 64, "passes": {"compaction": "occupied-list"}})",
+       "its declaration compacts (passes.compaction occupied-list), but the capture holds no OCCL list"},
       // F 100 with contributions near 1: c x 2^100 is past fixed64, where the conversion is undefined.
       {R"({"hpsf_table": 1, "capacity": 64})", "--fixed-point-bits: F 100 is too large for a contribution"},
   };
@@ -413,6 +419,51 @@ TEST(CaptureJudgement, ACaptureThatContradictsItsDeclarationIsBadInput) {
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(path + ": " + named), std::string::npos) << e.what();
     }
+  }
+}
+
+// A team's list of occupied slots, captured beside its table: the judge holds it to the table (kOccupiedList), and a
+// list the declaration does not call for is bad input.
+TEST(CaptureJudgement, ATeamsOccupiedListIsHeldToItsTable) {
+  const TeamCapture t = TeamFrame(64, 32, Bug::kNone);
+  capture::FrameCapture c = FrameOf(t);
+  c.declaration =
+      R"({"hpsf_table": 1, "capacity": 64, "probing": "bucket:8", "passes": {"compaction": "occupied-list"}})";
+  std::vector<std::uint32_t> occupied;
+  for (std::uint32_t s = 0; s < 64; ++s) {
+    if (c.after.tags[s] != 0) occupied.push_back(s);
+  }
+  std::reverse(occupied.begin(), occupied.end());  // in some order of the engine's: any is right
+  ASSERT_GT(occupied.size(), 4u);
+  const auto judge = [&](const std::vector<std::uint32_t>& list) {
+    const std::span<const std::uint32_t> view = list;
+    c.occupied = &view;
+    const std::string path = ::testing::TempDir() + "/listed.hpsfc";
+    EXPECT_EQ(capture::WriteCapture(path, c), "");
+    return Judged(path);
+  };
+  const CrosscheckReport right = judge(occupied);
+  EXPECT_TRUE(right.Passed()) << right.FirstFailure();
+  std::vector<std::uint32_t> repeated = occupied;
+  repeated.back() = occupied[2];  // one slot listed twice, another missed
+  const CrosscheckReport twice = judge(repeated);
+  EXPECT_EQ(FailedLevels(twice), std::set<int>{2});
+  EXPECT_NE(
+      twice.FirstFailure().find("occupied list differs from the occupied slots at slot " + std::to_string(occupied[2]) +
+                                ": entry " + std::to_string(occupied.size() - 1) + " lists it again"),
+      std::string::npos)
+      << twice.FirstFailure();
+  std::vector<std::uint32_t> short_list(occupied.begin() + 1, occupied.end());
+  EXPECT_NE(judge(short_list).FirstFailure().find("but not in the list"), std::string::npos);
+  c.declaration = R"({"hpsf_table": 1, "capacity": 64, "probing": "bucket:8"})";
+  try {
+    judge(occupied);
+    ADD_FAILURE() << "a list beside a table that does not compact was judged";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the capture holds an occupied list (OCCL), but its declaration does not "
+                                         "compact"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -36,6 +36,11 @@ void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
     fail("F " + std::to_string(c.fixed_point_bits) + " is outside [-126, 126]");
   }
   if (config.level_seed.enabled) fail("level seeding (passes.level_change) is not judged from a capture");
+  const bool compacting = config.compaction == Compaction::kOccupiedList;
+  if (compacting != c.occupied.has_value()) {
+    fail(compacting ? "its declaration compacts (passes.compaction occupied-list), but the capture holds no OCCL list"
+                    : "the capture holds an occupied list (OCCL), but its declaration does not compact");
+  }
   if (c.hpsf_records && c.key_words != 6) {
     fail("hpsf's records come with hpsf's key, of 6 words; the capture's keys have " + std::to_string(c.key_words));
   }
@@ -158,6 +163,10 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
               (capture.hpsf_records ? "; hpsf's key: every word against core's" : "");
 
   run.table = TableOf(capture.after, capture, config, fixed_point_bits);
+  if (capture.occupied) {
+    run.table.compacted = true;
+    run.table.occupied = *capture.occupied;
+  }
   run.placements = capture.placements;
   std::optional<HashTableDump> before;
   if (capture.before) before = TableOf(*capture.before, capture, config, fixed_point_bits);

@@ -57,6 +57,8 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   c.hpsf_records = &records;
   c.before = before ? &table_before : nullptr;
   c.after = BuffersOf(run.table);
+  const std::span<const std::uint32_t> occupied = run.table.occupied;
+  if (run.table.compacted) c.occupied = &occupied;
   if (const std::string error = capture::WriteCapture(path, c); !error.empty()) throw InputError(error);
 }
 
