@@ -467,5 +467,49 @@ TEST(CaptureJudgement, ATeamsOccupiedListIsHeldToItsTable) {
   }
 }
 
+// Level 4 between two captures of one frame: a rerun that repeats each record's count and sums passes, one whose
+// cell holds other sums fails naming the record, and a capture of other inputs is no rerun at all.
+TEST(CaptureJudgement, ARerunIsHeldToWhatARerunMustRepeat) {
+  const TeamCapture t = TeamFrame(1024, 32, Bug::kNone);  // roomy: nothing fails or aliases, so sums are promised
+  const std::string declaration = R"({"hpsf_table": 1, "capacity": 1024, "probing": "bucket:8"})";
+  const auto read = [&](const TeamCapture& frame, const std::string& name) {
+    capture::FrameCapture c = FrameOf(frame);
+    c.declaration = declaration;
+    const std::string path = ::testing::TempDir() + "/" + name + ".hpsfc";
+    EXPECT_EQ(capture::WriteCapture(path, c), "");
+    return ReadCapture(path);
+  };
+  const Capture first = read(t, "first");
+  FilterConfig config;
+  ApplyTableDeclarationText(declaration, "declaration", config);
+  EXPECT_FALSE(JudgeCapture(first, config).levels[3].applicable);
+  const CrosscheckReport same = JudgeCapture(first, config, &first);
+  ASSERT_TRUE(same.levels[3].applicable);
+  EXPECT_TRUE(same.Passed()) << same.FirstFailure();
+  TeamCapture other = t;  // the same inputs, one cell's sums otherwise in the rerun's table
+  std::uint32_t placed = 0;
+  while (placed < t.placements.size() && t.placements[placed] >= 1024u) ++placed;
+  ASSERT_LT(placed, t.placements.size());
+  other.sums[3 * t.placements[placed]] += 1;
+  const Capture rerun = read(other, "rerun");
+  const CrosscheckReport differs = JudgeCapture(first, config, &rerun);
+  EXPECT_EQ(FailedLevels(differs), std::set<int>{});  // levels 1 to 3 judge the first capture, which is right
+  EXPECT_FALSE(differs.levels[3].passed);
+  EXPECT_NE(differs.FirstFailure().find("record " + std::to_string(placed)), std::string::npos)
+      << differs.FirstFailure();
+  TeamCapture moved = t;  // other inputs: a record's contribution
+  moved.contributions[4] += 1.0f;
+  const Capture not_a_rerun = read(moved, "moved");
+  try {
+    JudgeCapture(first, config, &not_a_rerun);
+    ADD_FAILURE() << "a capture of other inputs was judged as a rerun";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("moved.hpsfc: not a rerun of " + first.path +
+                                         ": record 1's contribution, key, home slot, identity or status differs"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hpsf::testing

@@ -150,6 +150,18 @@ add_test(NAME HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DVARIANTS=${HPSF_SHADER_VARIANT_DIR}
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/judge_cli.cmake)
 set_tests_properties(HpsfJudge.CapturesOfTheHostGetItsVerdictAndBrokenOnesExit3 PROPERTIES LABELS "vulkan;schemes;untrusted")
+# Level 4 between captures: a capture is a rerun of itself; one of other inputs is no rerun, and --rerun pairs one
+# capture with each judged.
+hpsf_add_cli_test(HpsfJudge.ACaptureIsARerunOfItself "unit;schemes" 0 "level 4 determinism: PASS \\(against the rerun" ""
+  $<TARGET_FILE:hpsf> judge ${PROJECT_SOURCE_DIR}/examples/captures/team-sharc-like-buckets.hpsfc
+  --rerun ${PROJECT_SOURCE_DIR}/examples/captures/team-sharc-like-buckets.hpsfc)
+hpsf_add_cli_test(HpsfJudge.ARerunOfOtherInputsExits3 "unit;schemes;untrusted" 3
+  "hpsf-emulated-priority-frame-1.hpsfc: not a rerun of .*team-sharc-like-buckets.hpsfc: its declaration differs" ""
+  $<TARGET_FILE:hpsf> judge ${PROJECT_SOURCE_DIR}/examples/captures/team-sharc-like-buckets.hpsfc
+  --rerun ${PROJECT_SOURCE_DIR}/examples/captures/hpsf-emulated-priority-frame-1.hpsfc)
+hpsf_add_cli_test(HpsfJudge.RerunsNotOneForEachExit3 "unit;schemes;untrusted" 3
+  "--rerun: names 1 captures for the 2 judged" "" $<TARGET_FILE:hpsf> judge ${PROJECT_SOURCE_DIR}/examples/captures
+  --rerun ${PROJECT_SOURCE_DIR}/examples/captures/team-sharc-like-buckets.hpsfc)
 hpsf_add_cli_test(HpsfCrosscheck.TheSharcBucketsDeclarationPassesOnEveryBackend "vulkan;schemes" 0
   "level 2 tables: PASS" "" $<TARGET_FILE:hpsf> crosscheck cornell --size 32x32 --spp 2
   --table ${PROJECT_SOURCE_DIR}/examples/tables/sharc-buckets.json --repro-dir ${hpsf_out}/sharc-repro)

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
@@ -13,6 +15,7 @@
 #include "verifier/checker/classified_slots.h"
 #include "verifier/checker/table_checker.h"
 #include "verifier/contract/given_keys.h"
+#include "verifier/contract/rerun_check.h"
 
 namespace hpsf {
 namespace {
@@ -114,6 +117,61 @@ std::uint64_t JudgeKeys(const Capture& c, const FilterConfig& config, std::span<
   return judged;
 }
 
+template <typename T>
+bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Whether two tables hold the same cells: the same (tag, count, sums, last-seen) in their occupied slots, whichever
+// slots those are (an unordered run may place a cell's first record in either of two racing slots).
+bool SameCells(const CapturedTable& a, const CapturedTable& b) {
+  using Cell = std::tuple<std::uint32_t, std::uint64_t, std::array<std::uint64_t, 3>, std::array<std::uint32_t, 3>,
+                          std::uint32_t>;
+  const auto cells = [](const CapturedTable& t) {
+    std::vector<Cell> out;
+    for (std::size_t s = 0; s < t.tags.size(); ++s) {
+      if (t.tags[s] == 0) continue;
+      std::array<std::uint32_t, 3> float_bits{};
+      if (!t.float_sums.empty()) float_bits = std::bit_cast<std::array<std::uint32_t, 3>>(t.float_sums[s]);
+      out.emplace_back(t.tags[s], t.counts[s], t.fixed_sums.empty() ? std::array<std::uint64_t, 3>{} : t.fixed_sums[s],
+                       float_bits, t.last_seen.empty() ? 0u : t.last_seen[s]);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  return cells(a) == cells(b);
+}
+
+// A rerun judges determinism only of the same inputs: the first of them that differs, or "".
+std::string InputDifference(const Capture& a, const Capture& b) {
+  if (a.declaration != b.declaration) return "its declaration differs";
+  if (a.frame != b.frame) return "it is frame " + std::to_string(b.frame) + ", not " + std::to_string(a.frame);
+  if (a.capacity != b.capacity || a.key_words != b.key_words || a.float32_sums != b.float32_sums ||
+      a.last_seen != b.last_seen || (!a.float32_sums && a.fixed_point_bits != b.fixed_point_bits)) {
+    return "its frame header differs (capacity, key words, sums, F or last-seen frames)";
+  }
+  if (a.record_count() != b.record_count()) {
+    return "it holds " + std::to_string(b.record_count()) + " records, not " + std::to_string(a.record_count());
+  }
+  for (std::size_t i = 0; i < a.record_count(); ++i) {
+    const bool same = std::memcmp(&a.contributions[i], &b.contributions[i], sizeof a.contributions[i]) == 0 &&
+                      std::equal(a.keys.begin() + std::ptrdiff_t(i * a.key_words),
+                                 a.keys.begin() + std::ptrdiff_t((i + 1) * a.key_words),
+                                 b.keys.begin() + std::ptrdiff_t(i * a.key_words)) &&
+                      a.home_slots[i] == b.home_slots[i] && a.identities[i] == b.identities[i] &&
+                      a.statuses[i] == b.statuses[i];
+    if (!same) return "record " + std::to_string(i) + "'s contribution, key, home slot, identity or status differs";
+  }
+  if (a.hpsf_records.has_value() != b.hpsf_records.has_value() ||
+      (a.hpsf_records && !SameBytes(a.hpsf_records->records, b.hpsf_records->records))) {
+    return "its hpsf records differ";
+  }
+  if (a.before.has_value() != b.before.has_value() || (a.before && !SameCells(*a.before, *b.before))) {
+    return "its table before the frame holds other cells";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::vector<KeyResult> CapturedKeys(const Capture& c) {
@@ -130,8 +188,13 @@ std::vector<KeyResult> CapturedKeys(const Capture& c) {
   return keys;
 }
 
-CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
+CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config, const Capture* rerun) {
   CheckAgainstDeclaration(capture, config);
+  if (rerun) {
+    if (const std::string difference = InputDifference(capture, *rerun); !difference.empty()) {
+      throw InputError(rerun->path + ": not a rerun of " + capture.path + ": " + difference);
+    }
+  }
   config.frame = capture.frame;
   const std::vector<Record> records = RecordsToCheck(capture);
   // float32 sums: the F hpsf's range check assumes for the batch (the checker's exact sums use it), which float32
@@ -188,6 +251,27 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config) {
                (capture.float32_sums ? "counts" : "counts and fixed64 sums") +
                " of the frame equal to each cell's outside the classified slots; " + std::to_string(compared) +
                " records compared; no image in a capture";
+
+  if (rerun) {
+    // The rerun's run as the judge sees the capture's: its keys are the capture's (the inputs are the same).
+    HashedRun again;
+    again.keys = run.keys;
+    again.table = TableOf(rerun->after, *rerun, config, fixed_point_bits);
+    again.placements = rerun->placements;
+    ClassifiedSlots rerun_classes(config.eviction.by_priority(), false, config.normal_in_index);
+    rerun_classes.AddFrame(again);
+    CountProbes(again);
+    const bool failed_or_aliased =
+        run.probe_failures + again.probe_failures + classes.aliased_slots() + rerun_classes.aliased_slots() > 0;
+    const RerunPromise promise = RerunPromiseFor(false, config.accumulation, failed_or_aliased);
+    determinism = {4,
+                   "determinism",
+                   true,
+                   true,
+                   "against the rerun " + rerun->path + "; promised: " + ToString(promise) + " (no image in a capture)",
+                   {}};
+    for (const std::string& difference : CompareReruns(run, again, promise)) determinism.Fail(difference);
+  }
 
   CrosscheckReport report;
   report.levels = {keys, tables, ideal, determinism};

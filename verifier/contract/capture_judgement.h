@@ -8,7 +8,10 @@
 //   level 3  agreement with the exact map over the captured key words: each cell's records in one slot (or all
 //            failed), and outside the classified slots (aliases, failures) each slot's count, and in fixed64 its
 //            sums, equal to its cell's exact ones, for a slot empty before the frame or integrating its history
-//   level 4  not applicable: one capture is one run
+//   level 4  with a rerun (a capture of the same frame from another run of the same inputs: `hpsf judge A --rerun
+//            B`), what a rerun of an unordered run must repeat (verifier/contract/rerun_check.h): in fixed64 with
+//            nothing failed or aliased in either, each record's count and sums; in float32 its count; else nothing.
+//            Without one, not applicable: one capture is one run
 // Bits the capture holds no image for are not judged (the host's "image is the resolve of its table").
 #ifndef HPSF_VERIFIER_CONTRACT_CAPTURE_JUDGEMENT_H
 #define HPSF_VERIFIER_CONTRACT_CAPTURE_JUDGEMENT_H
@@ -20,8 +23,9 @@
 namespace hpsf {
 
 // `config` is the capture's declaration applied to hpsf's defaults. A capture that contradicts it (capacity, sums
-// encoding, last-seen frames with eviction) or that hpsf cannot judge is an InputError naming the capture.
-CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config);
+// encoding, last-seen frames with eviction) or that hpsf cannot judge is an InputError naming the capture; so is a
+// rerun whose inputs (declaration, frame, records and their keys, table before) are not the capture's.
+CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config, const Capture* rerun = nullptr);
 
 // The captured keys as core's KeyResult: the key words in order (zero past key_words), the home slot as slot0, the
 // identity as the fingerprint, the status as given, level 0.
