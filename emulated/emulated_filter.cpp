@@ -240,8 +240,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
                          simt::WeakCasPolicy{options.spurious_cas});
   };
   // With compaction, a pass over slots runs one thread per entry of the list: its count, read back, is the emulator's
-  // indirect dispatch.
-  // A count past the list (a broken kernel's) steps the whole list; the dump keeps as much and the checker names it.
+  // indirect dispatch. A count past the capacity (a broken kernel's) stands for the whole list.
   const auto list_count = [&] {
     return static_cast<std::uint32_t>(
         std::min<std::uint64_t>(std::as_const(memory).Words64(list.count)[0], config.capacity));
@@ -251,11 +250,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     const std::span<const std::uint32_t> entries = std::as_const(memory).Words32(list.slots);
     if (entry >= entries.size()) return;
     const std::uint32_t slot = entries[entry];
-    for (const std::uint32_t buffer : {b.tags, b.counts, temporal.previous_counts}) memory.Prefetch({buffer, slot});
+    memory.Prefetch({b.tags, slot});
+    memory.Prefetch({b.counts, slot});
+    memory.Prefetch({b.sums, std::uint64_t(slot) * 3});
+    memory.Prefetch({b.sums, std::uint64_t(slot) * 3 + 2});  // the three sums may straddle two lines
     if (tracking) memory.Prefetch({b.last_seen, slot});
-    for (const std::uint32_t sums : {b.sums, temporal.previous_sums}) {
-      memory.Prefetch({sums, std::uint64_t(slot) * 3});
-      memory.Prefetch({sums, std::uint64_t(slot) * 3 + 2});
+    if (blending) {
+      memory.Prefetch({temporal.previous_counts, slot});
+      memory.Prefetch({temporal.previous_sums, std::uint64_t(slot) * 3});
+      memory.Prefetch({temporal.previous_sums, std::uint64_t(slot) * 3 + 2});
     }
   };
   const auto launch_per_slot = [&](const simt::Kernel& kernel) {
@@ -320,7 +323,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   if (tracking) table.last_seen = memory.TakeWords32(b.last_seen);
   if (compacting) {
     table.compacted = true;
-    // The count as the device left it, which a broken kernel may have written past the list: the checker names it.
+    // The list as the kernels left it, up to its count, for the checker to hold to the table.
     const std::span<const std::uint32_t> slots = std::as_const(memory).Words32(list.slots);
     table.occupied.assign(slots.begin(), slots.begin() + list_count());
   }

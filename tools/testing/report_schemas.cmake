@@ -28,7 +28,7 @@ endfunction()
 set(small --size 16x16 --spp 2)
 report(render 0 render cornell ${small} -o r.exr --json)
 report(render 0 render cornell ${small} --backend emulated --mode faithful --warp-size 8 --frames 3 --eviction strict
-  --temporal ema:0.5 --variance --capacity 4096 -o r1.exr --json)
+  --temporal ema:0.5 --variance --capacity 4096 --compaction occupied-list --fixed-point-bits 40 -o r1.exr --json)
 report(render 0 render cornell ${small} --backend vulkan --level-change seed --frames 2 -o r2.exr --json)
 report(render 0 render cornell ${small} --seed 2 --no-filter -o r3.exr --json)
 report(replay 0 replay ${SOURCE}/tools/testing/data/seed_lookup_alias.hpsfv --backend vulkan -o p.exr --json)
@@ -44,6 +44,7 @@ execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference
   --mode faithful --capacity 4096 --capture captures-d9 --repro-dir bundle-d9 OUTPUT_QUIET ERROR_QUIET
   WORKING_DIRECTORY ${OUT})
 report(judge 0 judge captures --json)
+report(judge 0 judge captures --rerun captures --json)
 report(judge 2 judge captures-d9 --json)
 report(stats 0 stats captures/emulated-frame-1.hpsfc --json)
 report(diff 0 diff r.exr r.exr --json)
