@@ -496,6 +496,16 @@ void PlantCellSplitPastATombstone(Fixture& f) {
   f.run.placements[0] = 0;
 }
 
+// Compaction over two frames with eviction: the list after frame 1 loses the entry of a slot still occupied (a prune
+// that dropped it, or a gather that never listed it).
+void PlantSlotMissingFromTheList(Fixture& f) {
+  f.config.compaction = Compaction::kOccupiedList;
+  EvictingSecondFrame(f);
+  ASSERT_TRUE(f.run.table.compacted);
+  ASSERT_GT(f.run.table.occupied.size(), 1u);
+  f.run.table.occupied.pop_back();
+}
+
 struct IsolatedCase {
   const char* name;
   TableInvariant invariant;
@@ -534,6 +544,7 @@ const IsolatedCase kIsolatedCases[] = {
     {"UnneededTombstone", TableInvariant::kTombstoneKept, kRoomy, kFixed64, PlantUnneededTombstone},
     {"BlendOffByOne", TableInvariant::kTemporalBlend, kRoomy, kFixed64, PlantBlendOffByOne},
     {"CellSplitPastATombstone", TableInvariant::kCellSplit, kRoomy, kFixed64, PlantCellSplitPastATombstone},
+    {"SlotMissingFromTheList", TableInvariant::kOccupiedList, kRoomy, kFixed64, PlantSlotMissingFromTheList},
 };
 
 class IsolatedViolation : public ::testing::TestWithParam<IsolatedCase> {};

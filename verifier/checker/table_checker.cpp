@@ -96,7 +96,7 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
 }
 
 // With compaction: the list holds each slot whose tag is set once, and nothing else (Bevy #21904 listed a cell with
-// none active). The first few of each kind are named.
+// none active). The first eight offences are named, then how many more there are.
 void CheckOccupiedList(const HashTableDump& t, std::vector<TableViolation>& violations) {
   constexpr int kNamed = 8;
   int named = 0;
@@ -113,10 +113,11 @@ void CheckOccupiedList(const HashTableDump& t, std::vector<TableViolation>& viol
     if (slot >= t.capacity) {
       fail(0xFFFFFFFFu,
            "entry " + std::to_string(entry) + " names slot " + std::to_string(slot) + ", past the table's end");
-    } else if (seen[slot]++) {
+    } else if (seen[slot]) {
       fail(slot, "entry " + std::to_string(entry) + " lists it again");
-    } else if (t.tags[slot] == kEmptyTag) {
-      fail(slot, "entry " + std::to_string(entry) + " lists it, but it is empty");
+    } else {
+      seen[slot] = 1;
+      if (t.tags[slot] == kEmptyTag) fail(slot, "entry " + std::to_string(entry) + " lists it, but it is empty");
     }
   }
   for (std::uint32_t slot = 0; slot < t.capacity; ++slot) {

@@ -18,7 +18,7 @@ TEST(TableDeclaration, HpsfsOwnTableDeclaredIsTheDefaultConfig) {
   declared.capacity = 64;  // overwritten: the declaration names the capacity
   const std::vector<DeclaredSetting> made = ApplyTableDeclaration(HPSF_TABLES_DIR "/hpsf.json", declared);
   EXPECT_EQ(declared.ToString(), FilterConfig{}.ToString());
-  EXPECT_EQ(made.size(), 9u);
+  EXPECT_EQ(made.size(), 10u);  // every setting a declaration has
 }
 
 TEST(TableDeclaration, SetsWhatItNamesAndKeepsTheRest) {
@@ -30,6 +30,7 @@ TEST(TableDeclaration, SetsWhatItNamesAndKeepsTheRest) {
   EXPECT_EQ(config.probe_limit, 16u);
   EXPECT_EQ(config.capacity, 1u << 22);
   EXPECT_EQ(config.eviction.ToString(), "stale:8");
+  EXPECT_EQ(config.compaction, Compaction::kOccupiedList);
   EXPECT_EQ(config.seed, 77u);
   EXPECT_FALSE(config.lod);
   FilterConfig small;
