@@ -4,7 +4,8 @@
 // whose slot is still occupied is appended to the next list, one the reclaim emptied clears its flag; then one thread
 // moves the next list's count to the list's, and the host takes the next list's entries as the list's (the buffers
 // swap). The passes over slots launch one thread per entry (the count read back: the emulator's indirect dispatch)
-// and step the entry's slot.
+// and step the entry's slot. The dump carries the list alone: the next frame sets the flags of its entries again,
+// where a device keeps its flags from frame to frame.
 #ifndef HPSF_EMULATED_COMPACTION_KERNELS_H
 #define HPSF_EMULATED_COMPACTION_KERNELS_H
 
