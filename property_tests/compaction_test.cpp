@@ -19,11 +19,13 @@
 #include "core/shared/record_layout.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
+#include "emulated/emulated_filter.h"
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "tracer/scene_file.h"
 #include "verifier/checker/table_checker.h"
+#include "vulkan/vulkan_filter.h"
 
 namespace hpsf::testing {
 namespace {
@@ -145,6 +147,58 @@ TEST(Compaction, TheListedTableIsBitForBitTheUnlistedOneOnEveryHashedBackend) {
         EXPECT_EQ(shrank, config.eviction.enabled()) << name;
       }
     }
+  }
+}
+
+// A compacted table handed from the emulator to the device (VulkanFilter::LoadTable): its list and flags go with it,
+// and the device's next frames leave the emulator's bits, the list still the table's.
+TEST(Compaction, AListedTableLoadedOntoTheDeviceCarriesOn) {
+  constexpr std::uint32_t kFrames = 4;
+  const std::vector<RecordBatch> frames =
+      TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-animated.json"), 24, 2, kFrames);
+  FilterConfig config;
+  config.capacity = 1u << 12;
+  config.frames = kFrames;
+  config.eviction = ParseEviction("strict");
+  config.temporal = ParseTemporal("ema:0.5");
+  config.compaction = Compaction::kOccupiedList;
+  EmulatorOptions faithful;
+  faithful.mode = simt::Mode::kFaithful;
+  faithful.warp_size = 8;
+  faithful.schedule = "round-robin";
+  std::vector<EmulatedRun> emulated;
+  for (std::uint32_t k = 0; k < kFrames; ++k) {
+    config.frame = k;
+    emulated.push_back(
+        EmulatedFilter(frames[k], config, faithful, AccumulateKernel, k > 0 ? &emulated.back().table : nullptr));
+  }
+  for (const StagingPolicy staging : kStagingPolicies) {
+    VulkanFilter vulkan(TestDevice(staging));
+    vulkan.LoadTable(emulated[1].table);
+    HashTableDump before = emulated[1].table;
+    for (std::uint32_t k = 2; k < kFrames; ++k) {
+      config.frame = k;
+      const std::optional<VulkanRun> run = vulkan.Run(frames[k], config, true);
+      const std::string what = std::string("staging ") + ToString(staging) + ", frame " + std::to_string(k);
+      EXPECT_EQ(CellsOfRecords(*run), CellsOfRecords(emulated[k])) << what;
+      EXPECT_TRUE(run->image.pixels == emulated[k].image.pixels) << what;
+      const std::vector<TableViolation> violations = Check(*run, frames[k], config, &before);
+      EXPECT_TRUE(violations.empty()) << what << ": " << violations.front().ToString();
+      before = run->table;
+    }
+  }
+  HashTableDump unlisted = emulated[1].table;
+  unlisted.compacted = false;
+  unlisted.occupied.clear();
+  VulkanFilter vulkan(TestDevice(kStagingPolicies[0]));
+  vulkan.LoadTable(unlisted);
+  config.frame = 2;
+  try {
+    vulkan.Run(frames[2], config, true);
+    ADD_FAILURE() << "a table without a list carried on with compaction";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--compaction: the device table has no occupied list"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -407,6 +407,14 @@ hpsf_add_cli_test(HpsfFuzz.NotSpirvExits3 unit 3 "malformed.json: .*SPIR-V" ""
   $<TARGET_FILE:hpsf> fuzz --backend vulkan --accumulate-spv ${hpsf_data}/malformed.json --accum fixed64 --runs 1)
 hpsf_add_cli_test(HpsfCrosscheck.NotSpirvExits3 unit 3 "malformed.json: .*SPIR-V" ""
   $<TARGET_FILE:hpsf> ${variant_run} --accumulate-spv ${hpsf_data}/malformed.json)
+hpsf_add_cli_test(HpsfCrosscheck.ACompactionShaderThatIsNotSpirvExits3 "unit;schemes;untrusted" 3 "malformed.json: .*SPIR-V"
+  "" $<TARGET_FILE:hpsf> ${variant_run} --compaction occupied-list --compaction-spv ${hpsf_data}/malformed.json)
+# A team's compaction shader as a file, over a sequence that evicts and blends: the contract holds.
+hpsf_add_cli_test(HpsfCrosscheck.ATeamsCompactionShaderHoldsTheContract "vulkan;schemes" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS" "" $<TARGET_FILE:hpsf> crosscheck
+  ${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json --size 24x24 --frames 4 --eviction strict --temporal ema:0.5
+  --capacity 4096 --backends reference,vulkan --compaction occupied-list
+  --compaction-spv ${HPSF_SHADER_VARIANT_DIR}/compaction_correct.spv)
 hpsf_add_cli_test(HpsfRender.VulkanWithoutDriverExits3 unit 3 "no Vulkan driver could create an instance" "VK_ICD_FILENAMES=/nonexistent/icd.json"
   $<TARGET_FILE:hpsf> render cornell --size 32x24 --backend vulkan -o ${hpsf_out}/nodriver.exr ABSENT ${hpsf_out}/nodriver.exr)
 hpsf_add_cli_test(HpsfRender.VulkanWritesExr vulkan 0 "wrote .*vulkan.exr" ""
