@@ -160,7 +160,7 @@ hpsf_add_cli_test(HpsfJudge.ARerunOfOtherInputsExits3 "unit;schemes;untrusted" 3
   $<TARGET_FILE:hpsf> judge ${PROJECT_SOURCE_DIR}/examples/captures/team-sharc-like-buckets.hpsfc
   --rerun ${PROJECT_SOURCE_DIR}/examples/captures/hpsf-emulated-priority-frame-1.hpsfc)
 hpsf_add_cli_test(HpsfJudge.RerunsNotOneForEachExit3 "unit;schemes;untrusted" 3
-  "--rerun: names 1 captures for the 2 judged" "" $<TARGET_FILE:hpsf> judge ${PROJECT_SOURCE_DIR}/examples/captures
+  "--rerun: names 1 captures for the 3 judged" "" $<TARGET_FILE:hpsf> judge ${PROJECT_SOURCE_DIR}/examples/captures
   --rerun ${PROJECT_SOURCE_DIR}/examples/captures/team-sharc-like-buckets.hpsfc)
 hpsf_add_cli_test(HpsfCrosscheck.TheSharcBucketsDeclarationPassesOnEveryBackend "vulkan;schemes" 0
   "level 2 tables: PASS" "" $<TARGET_FILE:hpsf> crosscheck cornell --size 32x32 --spp 2
