@@ -226,40 +226,27 @@ struct VulkanFilter::Impl {
     }
     return *resolve[m];
   }
-  ComputeProgram& Eviction() {
-    if (!eviction) {
-      const std::span<const std::uint32_t> spirv = custom_eviction.empty()
-                                                       ? std::span<const std::uint32_t>(eviction_spv)
-                                                       : std::span<const std::uint32_t>(custom_eviction);
-      eviction = vulkan_internal::CreateComputeProgram(device, spirv, kEvictionBindings, sizeof(EvictionPush));
+  // A pass's program, created at its first use: a team's SPIR-V where one was given, else the built-in shader.
+  ComputeProgram& PassProgram(std::optional<ComputeProgram>& program, const std::vector<std::uint32_t>& custom,
+                              std::span<const std::uint32_t> built_in, std::span<const BindingKind> bindings,
+                              std::uint32_t push_constant_size) {
+    if (!program) {
+      program = vulkan_internal::CreateComputeProgram(device, custom.empty() ? built_in : custom, bindings,
+                                                      push_constant_size);
     }
-    return *eviction;
+    return *program;
+  }
+  ComputeProgram& Eviction() {
+    return PassProgram(eviction, custom_eviction, eviction_spv, kEvictionBindings, sizeof(EvictionPush));
   }
   ComputeProgram& LevelSeedProgram() {
-    if (!level_seed) {
-      level_seed =
-          vulkan_internal::CreateComputeProgram(device, level_seed_spv, kLevelSeedBindings, sizeof(LevelSeedPush));
-    }
-    return *level_seed;
+    return PassProgram(level_seed, {}, level_seed_spv, kLevelSeedBindings, sizeof(LevelSeedPush));
   }
-
   ComputeProgram& Temporal() {
-    if (!temporal) {
-      const std::span<const std::uint32_t> spirv = custom_temporal.empty()
-                                                       ? std::span<const std::uint32_t>(temporal_spv)
-                                                       : std::span<const std::uint32_t>(custom_temporal);
-      temporal = vulkan_internal::CreateComputeProgram(device, spirv, kTemporalBindings, sizeof(TemporalPush));
-    }
-    return *temporal;
+    return PassProgram(temporal, custom_temporal, temporal_spv, kTemporalBindings, sizeof(TemporalPush));
   }
   ComputeProgram& Compaction() {
-    if (!compaction) {
-      const std::span<const std::uint32_t> spirv = custom_compaction.empty()
-                                                       ? std::span<const std::uint32_t>(compaction_spv)
-                                                       : std::span<const std::uint32_t>(custom_compaction);
-      compaction = vulkan_internal::CreateComputeProgram(device, spirv, kCompactionBindings, sizeof(CompactionPush));
-    }
-    return *compaction;
+    return PassProgram(compaction, custom_compaction, compaction_spv, kCompactionBindings, sizeof(CompactionPush));
   }
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
