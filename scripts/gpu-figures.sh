@@ -9,11 +9,20 @@
 set -uo pipefail
 # Not hpsf itself: OpenImageIO's dependencies would take the bundle past what a device call carries (64 MiB).
 binaries=(key_identity_tests fixed_point_identity_tests vulkan_backend_tests vulkan_benchmark emulator_benchmark)
+# The property tests that run Vulkan (ctest label vulkan) but not the hpsf tool: on a GPU of subgroup size 32 they
+# check what lavapipe's 8 cannot (eviction, temporal, compaction and level-seed shaders on a real device).
+property_binaries=(broken_shader_tests compaction_tests eviction_tests priority_eviction_tests temporal_blend_tests
+  temporal_integration_tests crosscheck_frames_tests level_seed_tests probing_schemes_tests capture_judgement_tests
+  hard_case_tests count_overflow_tests fingerprint_alias_tests)
 
 case "${1:-}" in
   pack)
     set -e
-    scripts/gpu-bundle.sh build/default/bin "${binaries[@]}"
+    scripts/gpu-bundle.sh build/default/bin "${binaries[@]}" "${property_binaries[@]}"
+    # The property tests read scenes and shader variants at the paths they were built with: take the variants along
+    # and remember this checkout's path, which `run` links to the copy there.
+    rm -rf .gpu-bundle/shader_variants && cp -r build/default/shader_variants .gpu-bundle/
+    pwd > .gpu-bundle/source_dir
     ;;
   run)
     out=${OUT:-gpu-figures}
@@ -41,6 +50,11 @@ case "${1:-}" in
       --benchmark_out="$out/emulator_all_cores.json" --benchmark_out_format=json
     step emulator_2_cores taskset -c 0,1 bash .gpu-bundle/run.sh emulator_benchmark "${aggregates[@]}" \
       --benchmark_filter='Raw|Fast' --benchmark_out="$out/emulator_2_cores.json" --benchmark_out_format=json
+    source_dir=$(cat .gpu-bundle/source_dir 2>/dev/null)
+    if [ -n "$source_dir" ] && [ ! -e "$source_dir" ]; then mkdir -p "$(dirname "$source_dir")" && ln -s "$PWD" "$source_dir"; fi
+    mkdir -p build/default
+    [ -e build/default/shader_variants ] || ln -s "$PWD/.gpu-bundle/shader_variants" build/default/shader_variants
+    for b in "${property_binaries[@]}"; do step "$b" "${bundle[@]}" "$b" --gtest_brief=1; done
     cat "$out/status.txt"
     ;;
   *)
