@@ -98,6 +98,14 @@ void FilterConfig::Validate() const {
   if (fingerprint_bits < 8 || fingerprint_bits > 32) {
     throw ConfigError("--fingerprint-bits", "must lie in [8, 32]; got " + std::to_string(fingerprint_bits));
   }
+  if (key_identity == KeyIdentity::kFull && fingerprint_bits != 32) {
+    throw ConfigError("--fingerprint-bits", "a full key (--key-identity full) stores no fingerprint; got " +
+                                                std::to_string(fingerprint_bits) + " bits");
+  }
+  if (key_identity == KeyIdentity::kFull && normal.mode == NormalMode::kOctahedral && normal.octahedral_bits > 1) {
+    throw ConfigError("--normal", "a full key keeps 3 bits of normal bucket, so octahedral:1 at most; got " +
+                                      normal.ToString());
+  }
   if (fixed_point_bits &&
       (*fixed_point_bits < shared::kFixedPointBitsMin || *fixed_point_bits > shared::kFixedPointBitsMax)) {
     throw ConfigError("--fixed-point-bits", "must lie in [" + std::to_string(shared::kFixedPointBitsMin) + ", " +
@@ -111,7 +119,7 @@ void FilterConfig::Validate() const {
     throw ConfigError("--eviction", "is not a policy: " + eviction.ToString() + " with " +
                                         std::to_string(eviction.unseen_frames) + " frames unseen");
   }
-  if (eviction.by_priority() && fingerprint_bits > 31) {
+  if (eviction.by_priority() && key_identity == KeyIdentity::kFingerprint && fingerprint_bits > 31) {
     throw ConfigError("--eviction",
                       "priority reserves the tag 0xFFFFFFFF for its tombstones, so it needs "
                       "--fingerprint-bits 31 or fewer; got " +
@@ -147,7 +155,9 @@ std::string FilterConfig::ToString() const {
          " capacity: " + std::to_string(capacity) + " probe_limit: " + std::to_string(probe_limit) +
          // Only when not linear, so configs of hpsf's own table read as they always have (golden metadata).
          (probing != ProbeKind::kLinear ? " probing: " + hpsf::ToString(probing) : std::string()) +
-         " fingerprint_bits: " + std::to_string(fingerprint_bits) + " seed: " + std::to_string(seed) +
+         " fingerprint_bits: " + std::to_string(fingerprint_bits) +
+         (key_identity != KeyIdentity::kFingerprint ? " key_identity: " + hpsf::ToString(key_identity) : std::string()) +
+         " seed: " + std::to_string(seed) +
          " frame: " + std::to_string(frame) +
          // Only when set, so single-frame configs read as they always have (golden metadata holds them).
          (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
@@ -183,6 +193,7 @@ shared::KeyParams MakeKeyParams(const FilterConfig& config, float footprint_scal
   p.seed = config.seed;
   p.frame = config.frame;
   p.record_count = record_count;
+  p.key_identity = config.key_identity == KeyIdentity::kFull ? shared::kIdentityFull : shared::kIdentityFingerprint;
   return p;
 }
 

@@ -9,6 +9,7 @@
 #include "core/compaction.h"
 #include "core/effect_plan.h"
 #include "core/eviction.h"
+#include "core/key_identity.h"
 #include "core/level_seed.h"
 #include "core/probing.h"
 #include "core/shared/key_params.h"
@@ -46,6 +47,7 @@ struct FilterConfig {
   std::uint32_t probe_limit = 16;                      // --probe-limit: slots tried before a probe failure
   ProbeKind probing = ProbeKind::kLinear;              // --probing: the order of the slots tried
   std::uint32_t fingerprint_bits = 32;                 // --fingerprint-bits: 8..32
+  KeyIdentity key_identity = KeyIdentity::kFingerprint;  // --key-identity: a fingerprint or the full key per slot
   std::uint32_t seed = 1;                              // --seed
   std::uint32_t frame = 0;                             // in every random number of the key path (the jitter)
   // --fixed-point-bits: F of fixed64 for every frame; unset, the first frame of a table chooses it, leaving room

@@ -8,14 +8,19 @@
 #include <vector>
 
 #include "core/filter_config.h"
+#include "core/key_batch.h"
 #include "core/shared/table_params.h"
 
 namespace hpsf {
 
-// A slot's tag: 0 marks an empty slot, anything else is a reduced fingerprint. A named type so that a priority
-// field (Binder et al. §3.4.3) can widen it later.
-using SlotTag = std::uint32_t;
+// A slot's tag: 0 marks an empty slot, anything else is a key's stored identity (core/key_identity.h): a reduced
+// fingerprint of at most 32 bits, or a full key of 64. A named type so that a priority field (Binder et al.
+// §3.4.3) could widen it further.
+using SlotTag = std::uint64_t;
 inline constexpr SlotTag kEmptyTag = 0;
+
+// The identity a slot holding this key stores (core/shared/key.h).
+inline SlotTag StoredIdentity(const KeyResult& key) { return (SlotTag(key.identity_high) << 32) | key.fingerprint; }
 
 // Placement of a record: the slot it was added to, or one of these.
 inline constexpr std::uint32_t kNotPlaced = shared::kPlacementNotPlaced;        // no vertex, unkeyable or rejected
@@ -26,6 +31,7 @@ struct HashTableDump {
   std::uint32_t probe_limit = 0;
   ProbeKind probing = ProbeKind::kLinear;
   std::uint32_t fingerprint_bits = 32;
+  KeyIdentity key_identity = KeyIdentity::kFingerprint;  // kFull: every tag is a full key (64 bits)
   Accumulation accumulation = Accumulation::kFixed64;
   int fixed_point_bits = 0;
   std::vector<SlotTag> tags;

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/hash_table.h"
+#include "core/shared/full_key.h"
 #include "core/shared/level_seed.h"
 
 namespace hpsf {
@@ -59,12 +60,16 @@ std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const s
                                              bool normal_in_index) {
   const std::uint32_t mask = table.capacity - 1u;
   const std::uint32_t slot0 = shared::IndexHash(words, normal_in_index ? 1u : 0u) & mask;
-  const SlotTag fingerprint = shared::Fingerprint(words, table.fingerprint_bits);
+  const shared::StoredIdentity identity = shared::IdentityOfWords(
+      words, table.key_identity == KeyIdentity::kFull ? shared::kIdentityFull : shared::kIdentityFingerprint,
+      table.fingerprint_bits);
+  if (!identity.fits) return std::nullopt;  // beyond a full key's range: no record has these words
+  const SlotTag tag = shared::IdentityValue(identity.words);
   const shared::ProbeScheme scheme = ProbeSchemeOf(table);
   for (std::uint32_t probe = 0; probe < table.probe_limit; ++probe) {
     const std::uint32_t s = shared::CandidateSlot(scheme, slot0, probe);
     if (table.tags[s] == kEmptyTag) break;
-    if (table.tags[s] == fingerprint && table.counts[s] != 0) return s;
+    if (table.tags[s] == tag && table.counts[s] != 0) return s;
   }
   return std::nullopt;
 }

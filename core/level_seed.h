@@ -39,8 +39,9 @@ LevelSeed ParseLevelSeed(const std::string& text);
 using CellLookup = std::function<std::optional<CellState>(const shared::KeyWords&)>;
 CellState SeedOf(const shared::KeyWords& cell, const LevelSeed& seed, bool fixed, const CellLookup& lookup);
 
-// A hashed table's lookup: the first slot of the words' window holding their fingerprint with samples, up to the
-// first empty slot. With fingerprints of few bits that slot may hold another cell: the lookup aliased.
+// A hashed table's lookup: the first slot of the words' window holding their identity (a fingerprint or a full key)
+// with samples, up to the first empty slot. With fingerprints of few bits that slot may hold another cell: the
+// lookup aliased.
 std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const shared::KeyWords& words,
                                              bool normal_in_index);
 // That slot's state.

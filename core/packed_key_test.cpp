@@ -9,8 +9,8 @@
 namespace hpsf {
 namespace {
 
-KeyResult RoundTrip(const KeyResult& k) {
-  return shared::UnpackKey(shared::PackedKeyCell(k), shared::PackedKeyHashes(k));
+KeyResult RoundTrip(const KeyResult& k, shared::uint key_identity = shared::kIdentityFingerprint) {
+  return shared::UnpackKey(shared::PackedKeyCell(k), shared::PackedKeyHashes(k), key_identity);
 }
 
 TEST(PackedKey, RoundTripsEveryLevelAndStatus) {
@@ -41,11 +41,14 @@ TEST(PackedKey, RoundTripsComputedKeysOfEveryStatus) {
   FilterConfig unkeyable;
   unkeyable.lod = false;
   unkeyable.cell_size = 1e-30f;  // q far beyond 2^31
+  FilterConfig full = fine;  // a full key's high word is restored from the words
+  full.key_identity = KeyIdentity::kFull;
   int seen[3] = {0, 0, 0};
   bool negative_level = false;
-  for (const FilterConfig& config : {fine, unkeyable}) {
-    for (const KeyResult& k : ComputeKeys(records, MakeKeyParams(config, 1e-4f, 2))) {
-      EXPECT_EQ(KeyResultWords(RoundTrip(k)), KeyResultWords(k)) << ToString(k);
+  for (const FilterConfig& config : {fine, unkeyable, full}) {
+    const KeyParams params = MakeKeyParams(config, 1e-4f, 2);
+    for (const KeyResult& k : ComputeKeys(records, params)) {
+      EXPECT_EQ(KeyResultWords(RoundTrip(k, params.key_identity)), KeyResultWords(k)) << ToString(k);
       ++seen[k.status];
       negative_level |= k.status == shared::kKeyed && k.level < 0;
     }

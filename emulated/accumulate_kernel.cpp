@@ -17,6 +17,7 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     co_return;
   }
   const Record& r = args.records[i];
+  const SlotTag identity = StoredIdentity(key);
   const shared::ProbeScheme scheme = args.scheme();
   std::uint32_t slot = kProbeFailure;
   if (args.claim_tombstones) {
@@ -25,7 +26,7 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
       const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       const std::uint64_t tag = co_await ctx.Load(b.tags, s);
-      if (tag == key.fingerprint) slot = s;
+      if (tag == identity) slot = s;
       if (tag == kEmptyTag) break;
     }
     // ... then claim the first empty or tombstone slot; one that another record of this cell claimed meanwhile is
@@ -34,18 +35,18 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
       const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       std::uint64_t tag = co_await ctx.Load(b.tags, s);
       if (tag == kEmptyTag || tag == shared::kTombstoneTag) {
-        const std::uint64_t seen = co_await ctx.AtomicCas(b.tags, s, tag, key.fingerprint);
-        tag = seen == tag ? key.fingerprint : seen;
+        const std::uint64_t seen = co_await ctx.AtomicCas(b.tags, s, tag, identity);
+        tag = seen == tag ? identity : seen;
       }
-      if (tag == key.fingerprint) slot = s;
+      if (tag == identity) slot = s;
     }
   } else {
     for (std::uint32_t probe = 0; probe < args.probe_limit && slot == kProbeFailure; ++probe) {
       const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       std::uint64_t tag = co_await ctx.Load(b.tags, s);
-      if (tag == kEmptyTag) tag = co_await ctx.AtomicCas(b.tags, s, kEmptyTag, key.fingerprint);
-      // An empty slot we just claimed (CAS returned 0) or a slot that holds our fingerprint: add here, once.
-      if (tag == kEmptyTag || tag == key.fingerprint) slot = s;
+      if (tag == kEmptyTag) tag = co_await ctx.AtomicCas(b.tags, s, kEmptyTag, identity);
+      // An empty slot we just claimed (CAS returned 0) or a slot that holds our identity: add here, once.
+      if (tag == kEmptyTag || tag == identity) slot = s;
     }
   }
   if (slot == kProbeFailure) {

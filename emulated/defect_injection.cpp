@@ -38,9 +38,9 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
     co_return;
   }
   // D3: the reduced fingerprint without its 0 -> 1 fix.
-  const std::uint32_t fingerprint = defect == Defect::kD3ZeroFingerprint
-                                        ? shared::FullFingerprint(key.words) >> (32u - args.fingerprint_bits)
-                                        : key.fingerprint;
+  const SlotTag fingerprint = defect == Defect::kD3ZeroFingerprint
+                                  ? shared::FullFingerprint(key.words) >> (32u - args.fingerprint_bits)
+                                  : StoredIdentity(key);
   const Record& r = args.records[i];
   const bool fixed = args.accumulation == Accumulation::kFixed64;
   bool placed = false;
@@ -80,7 +80,10 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
         claimed = tag == kEmptyTag;
       }
     }
-    if (tag != kEmptyTag && tag != fingerprint) continue;
+    const bool matches = defect == Defect::kFullKeyLowWord
+                             ? std::uint32_t(tag) == std::uint32_t(fingerprint)  // the low words alone
+                             : tag == fingerprint;
+    if (tag != kEmptyTag && !matches) continue;
     for (int c = 0; c < 3; ++c) {
       const std::uint64_t index = std::uint64_t(slot) * 3 + c;
       if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
@@ -196,6 +199,9 @@ simt::KernelTask WindowPastTheEnd(simt::ThreadContext& c, const AccumulateArgs& 
 simt::KernelTask WeakCasOldValue(simt::ThreadContext& c, const AccumulateArgs& a) {
   return Mutant(c, a, Defect::kWeakCasOldValue);
 }
+simt::KernelTask FullKeyLowWord(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return Mutant(c, a, Defect::kFullKeyLowWord);
+}
 
 }  // namespace
 
@@ -234,12 +240,13 @@ simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const Eviction
   const TableBuffers& b = args.buffers;
   if (co_await ctx.Load(b.placements, i) != kProbeFailure) co_return;
   bool found = false;
-  std::uint32_t victim = 0, victim_tag = 0;
+  std::uint32_t victim = 0;
+  SlotTag victim_tag = 0;
   std::uint64_t victim_priority = 0;
   const shared::ProbeScheme scheme = args.scheme();
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
     const std::uint32_t slot = shared::CandidateSlot(scheme, args.keys[i].slot0, probe);
-    const auto tag = static_cast<std::uint32_t>(co_await ctx.Load(b.tags, slot));
+    const SlotTag tag = co_await ctx.Load(b.tags, slot);
     if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
     const std::uint64_t count = co_await ctx.Load(b.counts, slot);
     const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));
@@ -271,10 +278,11 @@ Defect ParseDefect(const std::string& text) {
   if (text == "full-bucket-masked") return Defect::kFullBucketMasked;
   if (text == "window-past-the-end") return Defect::kWindowPastTheEnd;
   if (text == "weak-cas-old-value") return Defect::kWeakCasOldValue;
+  if (text == "full-key-low-word") return Defect::kFullKeyLowWord;
   throw ConfigError("--inject-defect",
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
-                    "count-store-join-first, last-seen-claimer-only, full-bucket-masked, window-past-the-end or "
-                    "weak-cas-old-value; got '" +
+                    "count-store-join-first, last-seen-claimer-only, full-bucket-masked, window-past-the-end, "
+                    "weak-cas-old-value or full-key-low-word; got '" +
                         text + "'");
 }
 
@@ -308,6 +316,8 @@ std::string ToString(Defect defect) {
       return "window-past-the-end";
     case Defect::kWeakCasOldValue:
       return "weak-cas-old-value";
+    case Defect::kFullKeyLowWord:
+      return "full-key-low-word";
   }
   return "?";
 }
@@ -342,6 +352,8 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
       return WindowPastTheEnd;
     case Defect::kWeakCasOldValue:
       return WeakCasOldValue;
+    case Defect::kFullKeyLowWord:
+      return FullKeyLowWord;
   }
   return AccumulateKernel;
 }

@@ -27,11 +27,14 @@ enum class Defect {
   kFullBucketMasked,  // SHaRC #4: a full bucket's "invalid" index masked into slot capacity - 1, and added there
   kWindowPastTheEnd,  // SHaRC #5: bucket-window's window not clamped to the table: probes run past its end
   kWeakCasOldValue,   // Bevy #24767: a weak CAS's claim read from the old value alone: a spurious failure "claims"
+  // A full key's bug (--key-identity full): a 64-bit tag matched by its low word alone, as a 32-bit compare of a
+  // 64-bit key does, so cells that share the low word (the same x, and y modulo 2^15) share a slot.
+  kFullKeyLowWord,
 };
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
 // "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end",
-// "weak-cas-old-value"; a ConfigError naming --inject-defect otherwise.
+// "weak-cas-old-value", "full-key-low-word"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);

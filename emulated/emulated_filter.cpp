@@ -94,6 +94,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.probe_limit = config.probe_limit;
   table.probing = config.probing;
   table.fingerprint_bits = config.fingerprint_bits;
+  table.key_identity = config.key_identity;
   table.accumulation = config.accumulation;
   table.fixed_point_bits = previous                  ? previous->fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
@@ -115,7 +116,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   args.accumulation = config.accumulation;
   args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
   TableBuffers& b = args.buffers;
-  b.tags = memory.Allocate32("tags", config.capacity, std::move(kept.tags));
+  // A fingerprint fits 32 bits, a full key needs 64 (core/key_identity.h).
+  const bool full_keys = config.key_identity == KeyIdentity::kFull;
+  b.tags = full_keys ? memory.Allocate64("tags", config.capacity, std::move(kept.tags))
+                     : memory.Allocate32("tags", config.capacity, std::move(kept.device_tags32));
   b.sums = fixed ? memory.Allocate64("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums64))
                  : memory.Allocate32("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums32));
   b.counts = memory.Allocate64("counts", config.capacity, std::move(kept.counts));
@@ -144,7 +148,14 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     if (previous->capacity != config.capacity || previous->accumulation != config.accumulation) {
       throw ConfigError("--capacity", "the previous frame's table has another shape; start a new sequence");
     }
-    std::copy(previous->tags.begin(), previous->tags.end(), memory.Words32(b.tags).begin());
+    if (previous->key_identity != config.key_identity) {
+      throw ConfigError("--key-identity", "the previous frame's table stores other identities; start a new sequence");
+    }
+    if (full_keys) {
+      std::copy(previous->tags.begin(), previous->tags.end(), memory.Words64(b.tags).begin());
+    } else {
+      std::copy(previous->tags.begin(), previous->tags.end(), memory.Words32(b.tags).begin());  // each below 2^32
+    }
     std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
     if (blending)
       std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(temporal.previous_counts).begin());
@@ -272,6 +283,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     empty_table.probe_limit = config.probe_limit;
     empty_table.probing = config.probing;
     empty_table.fingerprint_bits = config.fingerprint_bits;
+    empty_table.key_identity = config.key_identity;
     empty_table.accumulation = config.accumulation;
     empty_table.tags.resize(config.capacity);
     empty_table.counts.resize(config.capacity);
@@ -329,7 +341,16 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
   run.timings.eviction_ms = evicting ? clock.LapMs() : 0.0;
   // The dump: the final state of the device buffers, moved out where the layouts agree.
-  table.tags = memory.TakeWords32(b.tags);
+  if (full_keys) {
+    table.tags = memory.TakeWords64(b.tags);
+  } else {
+    table.tags = ReuseForOverwrite(kept.tags, config.capacity);
+    const std::span<const std::uint32_t> tags = std::as_const(memory).Words32(b.tags);
+    ParallelFor(config.capacity, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      std::copy(tags.begin() + begin, tags.begin() + end, table.tags.begin() + begin);
+    });
+    kept.device_tags32 = memory.TakeWords32(b.tags);
+  }
   table.counts = memory.TakeWords64(b.counts);
   run.placements = memory.TakeWords32(b.placements);
   run.wraps = memory.Words64(b.wraps)[0];

@@ -13,6 +13,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/hash_table.h"
 #include "core/hashed_run.h"
 #include "core/huge_pages.h"
 #include "core/key_batch.h"
@@ -30,7 +31,8 @@ struct EmulatorWorkspace {
   std::vector<std::uint32_t> placements;
   std::vector<glm::vec3> pixels;
   // Per slot: device buffers, and the dump the read-back fills.
-  std::vector<std::uint32_t> tags;
+  std::vector<SlotTag> tags;                  // the dump's, and the device's with full keys
+  std::vector<std::uint32_t> device_tags32;  // the device's with fingerprints
   std::vector<std::uint64_t> counts;
   std::vector<std::uint64_t> device_sums64;  // fixed64
   std::vector<std::uint32_t> device_sums32;  // float32

@@ -12,12 +12,13 @@ simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArg
   const TableBuffers& b = args.buffers;
   if (co_await ctx.Load(b.placements, i) != kProbeFailure) co_return;
   bool found = false;
-  std::uint32_t victim = 0, victim_tag = 0;
+  std::uint32_t victim = 0;
+  SlotTag victim_tag = 0;
   std::uint64_t victim_priority = 0;
   const shared::ProbeScheme scheme = args.scheme();
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
     const std::uint32_t slot = shared::CandidateSlot(scheme, args.keys[i].slot0, probe);
-    const auto tag = static_cast<std::uint32_t>(co_await ctx.Load(b.tags, slot));
+    const SlotTag tag = co_await ctx.Load(b.tags, slot);
     if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
     const std::uint64_t count = co_await ctx.Load(b.counts, slot);
     const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));

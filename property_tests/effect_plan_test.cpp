@@ -139,7 +139,7 @@ double PhaseSeconds(const Backend& backend, Effect effect) {
 // float32 images and sums not at all.
 struct FrameBits {
   std::vector<float> pixels;
-  std::vector<std::uint32_t> tags;
+  std::vector<SlotTag> tags;
   std::vector<std::uint64_t> counts;
   std::vector<std::uint64_t> sums;  // fixed64 sums, or float32 sums' bits
   std::vector<std::uint32_t> last_seen;

@@ -24,6 +24,7 @@ struct KeyPass::Impl {
   DeviceBuffer keys;
   std::vector<vulkan_internal::StagingBuffer> staging;
   std::uint32_t count = 0;
+  std::uint32_t key_identity = 0;  // the last dispatch's: the packed keys leave out a full key's high word
 };
 
 constexpr vulkan_internal::BindingKind kKeyBindings[] = {vulkan_internal::BindingKind::kUniformTexelBuffer,
@@ -58,6 +59,7 @@ double KeyPass::Dispatch(const KeyParams& params) {
   Impl& p = *impl_;
   KeyParams pushed = params;
   pushed.record_count = p.count;
+  p.key_identity = params.key_identity;
   const std::uint32_t groups = vulkan_internal::WorkgroupsFor(p.count, kRecordsPerWorkgroup);
   return vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *p.program.pipeline);
@@ -73,7 +75,7 @@ std::vector<KeyResult> KeyPass::Download() {
   vulkan_internal::Transfer download(p.device, p.staging);
   const auto* packed = static_cast<const glm::uvec4*>(download.Download(p.keys, keys.size() * kPackedKeyBytes));
   download.Submit();
-  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = shared::UnpackKey(packed[2 * i], packed[2 * i + 1]);
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = shared::UnpackKey(packed[2 * i], packed[2 * i + 1], p.key_identity);
   return keys;
 }
 

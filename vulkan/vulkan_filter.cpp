@@ -68,8 +68,9 @@ struct EvictionPush {
   std::uint32_t by_priority;
   std::uint32_t probe_scheme;
   std::uint32_t compacted;  // 1: passes 0 and 1 step the occupied list, dispatched indirectly
+  std::uint32_t full_keys;  // 1: 64-bit tags (--key-identity full)
 };
-static_assert(sizeof(EvictionPush) == 40, "push constants of eviction.comp");
+static_assert(sizeof(EvictionPush) == 44, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct TemporalPush {
@@ -91,15 +92,16 @@ struct LevelSeedPush {
   std::uint32_t fixed64;
   std::uint32_t record_count;
   std::uint32_t probe_scheme;
+  std::uint32_t key_identity;
 };
-static_assert(sizeof(LevelSeedPush) == 32, "push constants of level_seed.comp");
+static_assert(sizeof(LevelSeedPush) == 36, "push constants of level_seed.comp");
 constexpr std::uint32_t kLevelSeedRecordsPerWorkgroup = 64;
 
 struct CompactionPush {
   std::uint32_t pass;  // 0 gather, 1 prune, 2 finish the prune, 3 the indirect dispatch
   std::uint32_t record_count;
   std::uint32_t capacity;
-  std::uint32_t reserved;
+  std::uint32_t full_keys;  // 1: 64-bit tags (--key-identity full)
 };
 static_assert(sizeof(CompactionPush) == 16, "push constants of compaction.comp");
 constexpr std::uint32_t kCompactionItemsPerWorkgroup = 64;
@@ -154,6 +156,26 @@ void ParallelCopy(const CopyOut& copy) {
   });
 }
 
+std::uint32_t KeyIdentityWord(KeyIdentity identity) {
+  return identity == KeyIdentity::kFull ? shared::kIdentityFull : shared::kIdentityFingerprint;
+}
+
+// The tags binding holds 32-bit fingerprints or 64-bit full keys (core/key_identity.h); a dump's tags are 64-bit.
+std::size_t TagBytes(KeyIdentity identity) { return identity == KeyIdentity::kFull ? 8 : 4; }
+
+void CopyTagsOut(std::vector<SlotTag>& tags, const void* from, KeyIdentity identity) {
+  if (identity == KeyIdentity::kFull) return ParallelCopy({tags.data(), from, tags.size() * sizeof(SlotTag)});
+  const auto* words = static_cast<const std::uint32_t*>(from);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tags.size(), std::size_t(1) << 16), [&](const auto& range) {
+    std::copy(words + range.begin(), words + range.end(), tags.begin() + std::ptrdiff_t(range.begin()));
+  });
+}
+
+void CopyTagsIn(void* to, const std::vector<SlotTag>& tags, KeyIdentity identity) {
+  if (identity == KeyIdentity::kFull) return std::memcpy(to, tags.data(), tags.size() * sizeof(SlotTag)), void();
+  std::copy(tags.begin(), tags.end(), static_cast<std::uint32_t*>(to));  // a fingerprint table's, each below 2^32
+}
+
 // Reads a SPIR-V binary; InputError naming the file when it is missing, empty or not SPIR-V.
 std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -199,6 +221,7 @@ struct VulkanFilter::Impl {
   struct TableShape {
     std::uint32_t capacity;
     Accumulation accumulation;
+    KeyIdentity key_identity;
     int fixed_point_bits;
     bool compacted;  // the occupied list and its flags are the table's
   };
@@ -337,12 +360,13 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   const bool fixed = table.accumulation == Accumulation::kFixed64;
   const std::size_t slots = table.capacity;
   const std::size_t sum_bytes = slots * (fixed ? 24 : 12);
-  p.Ensure(p.tags, vk::DeviceSize(slots) * 4);
+  const std::size_t tag_bytes = slots * TagBytes(table.key_identity);
+  p.Ensure(p.tags, vk::DeviceSize(tag_bytes));
   p.Ensure(p.sums, vk::DeviceSize(sum_bytes));
   p.Ensure(p.counts, vk::DeviceSize(slots) * 8);
   p.Ensure(p.last_seen, vk::DeviceSize(slots) * 4);
   vulkan_internal::Transfer upload(p.device, p.staging);
-  std::memcpy(upload.Upload(p.tags, slots * 4), table.tags.data(), slots * 4);
+  CopyTagsIn(upload.Upload(p.tags, tag_bytes), table.tags, table.key_identity);
   const void* sums =
       fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data());
   std::memcpy(upload.Upload(p.sums, sum_bytes), sums, sum_bytes);
@@ -371,7 +395,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
     std::memcpy(upload.Upload(p.occupied_header, kOccupiedHeaderBytes), header, kOccupiedHeaderBytes);
   }
   upload.Submit();
-  p.table = Impl::TableShape{table.capacity, table.accumulation, table.fixed_point_bits, table.compacted};
+  p.table = Impl::TableShape{table.capacity, table.accumulation, table.key_identity, table.fixed_point_bits,
+                             table.compacted};
 }
 
 VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table,
@@ -391,8 +416,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                      ": it resolves " + ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
-  if (keep_table &&
-      !(p.table && p.table->capacity == config.capacity && p.table->accumulation == config.accumulation)) {
+  if (keep_table && !(p.table && p.table->capacity == config.capacity && p.table->accumulation == config.accumulation &&
+                      p.table->key_identity == config.key_identity)) {
     throw ConfigError("--capacity", "no device table of this shape to carry on from; start a new sequence");
   }
   const int kept_fixed_point_bits = keep_table ? p.table->fixed_point_bits : 0;
@@ -423,6 +448,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   table.probe_limit = config.probe_limit;
   table.probing = config.probing;
   table.fingerprint_bits = config.fingerprint_bits;
+  table.key_identity = config.key_identity;
   table.accumulation = config.accumulation;
 
   // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record),
@@ -430,7 +456,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   auto start = std::chrono::steady_clock::now();
   p.Ensure(p.records, batch.records.size() * sizeof(Record));
   p.Ensure(p.keys, vk::DeviceSize(n) * sizeof(KeyResult));
-  p.Ensure(p.tags, vk::DeviceSize(config.capacity) * 4);
+  const std::size_t tag_bytes = std::size_t(config.capacity) * TagBytes(config.key_identity);
+  p.Ensure(p.tags, vk::DeviceSize(tag_bytes));
   p.Ensure(p.sums, vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4));
   p.Ensure(p.counts, vk::DeviceSize(config.capacity) * 8);
   p.Ensure(p.placements, vk::DeviceSize(n) * 4);
@@ -485,7 +512,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.previous_sums, double_buffer ? sum_bytes_on_device : 8);
   p.Ensure(p.previous_counts, double_buffer ? vk::DeviceSize(config.capacity) * 8 : 8);
   if (seeding) {
-    p.Ensure(p.previous_tags, vk::DeviceSize(config.capacity) * 4);
+    p.Ensure(p.previous_tags, vk::DeviceSize(tag_bytes));
     p.Ensure(p.seeded, vk::DeviceSize(config.capacity) * 4);
     p.Ensure(p.seeded_count, 8);
   }
@@ -506,8 +533,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
     if (seeding) {
       if (keep_table) {
-        cb.copyBuffer(*p.tags.buffer, *p.previous_tags.buffer,
-                      vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 4));
+        cb.copyBuffer(*p.tags.buffer, *p.previous_tags.buffer, vk::BufferCopy(0, 0, tag_bytes));
       } else {
         cb.fillBuffer(*p.previous_tags.buffer, 0, VK_WHOLE_SIZE, 0);
       }
@@ -555,7 +581,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                   config.level_seed.shift,
                                   fixed ? 1u : 0u,
                                   n,
-                                  SharedProbeKind(config.probing)};
+                                  SharedProbeKind(config.probing),
+                                  KeyIdentityWord(config.key_identity)};
     run.timings.level_seed_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -577,7 +604,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect;
   DeviceBuffer* const compaction_buffers[] = {&p.placements,      &p.tags,         &p.listed, &p.occupied,
                                               &p.occupied_header, &p.next_occupied};
-  CompactionPush compaction_push{0, n, config.capacity, 0};
+  CompactionPush compaction_push{0, n, config.capacity, config.key_identity == KeyIdentity::kFull ? 1u : 0u};
   const auto compaction_pass = [&](vk::raii::CommandBuffer& cb, ComputeProgram& compaction, std::uint32_t pass) {
     compaction_push.pass = pass;
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *compaction.pipeline);
@@ -647,7 +674,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                n,
                                by_priority ? 1u : 0u,
                                SharedProbeKind(config.probing),
-                               compacting ? 1u : 0u};
+                               compacting ? 1u : 0u,
+                               config.key_identity == KeyIdentity::kFull ? 1u : 0u};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -704,7 +732,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_pixels = download.Download(p.pixels, pixel_bytes);
   const void* from_keys = download.Download(p.keys, std::size_t(n) * sizeof(KeyResult));
   const void* from_placements = download.Download(p.placements, std::size_t(n) * 4);
-  const void* from_tags = download.Download(p.tags, std::size_t(config.capacity) * 4);
+  const void* from_tags = download.Download(p.tags, tag_bytes);
   const void* from_counts = download.Download(p.counts, std::size_t(config.capacity) * 8);
   const void* from_sums = download.Download(p.sums, sum_bytes);
   const void* from_stats = download.Download(p.stats, 16);
@@ -730,13 +758,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
       CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
       CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
-      CopyOut{table.tags.data(), from_tags, std::size_t(config.capacity) * 4},
       CopyOut{table.counts.data(), from_counts, std::size_t(config.capacity) * 8},
       CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()),
               from_sums, sum_bytes},
       CopyOut{&run.wraps, from_stats, 8},
       CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
+  CopyTagsOut(table.tags, from_tags, config.key_identity);
   if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
   if (evicting) std::memcpy(&run.evicted, from_evicted, 8);
   if (compacting) {
@@ -754,7 +782,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.read_back_ms = MillisecondsSince(start);
   // Every word came from a shader, perhaps a team's: checked before any is used as an index.
   FinishReadBack(run, config.frame, p.ShaderNames());
-  p.table = Impl::TableShape{config.capacity, config.accumulation, table.fixed_point_bits, compacting};
+  p.table =
+      Impl::TableShape{config.capacity, config.accumulation, config.key_identity, table.fixed_point_bits, compacting};
   return run;
 }
 

@@ -4,6 +4,7 @@
 #define HPSF_CORE_SHARED_KEY_H
 
 #include "cell.h"
+#include "full_key.h"
 #include "jitter.h"
 #include "key_params.h"
 #include "key_words.h"
@@ -19,14 +20,16 @@ const uint kKeyNoVertex = 1u;   // sky hit or path ended: the record carries rad
 const uint kKeyUnkeyable = 2u;  // |q| >= 2^31 in some axis: falls back to its own contribution
 
 // 48 bytes, so a shader writes it as three 16-byte vectors (lavapipe stores per lane and per store).
+// What a slot stores for the key (its identity) is (identity_high << 32) | fingerprint: the reduced fingerprint
+// with --key-identity fingerprint (identity_high 0), the full key's two words with full (core/shared/full_key.h).
 struct KeyResult {
   KeyWords words;
   uint slot0;
-  uint fingerprint;
-  int level;      // l' after jitter (the fixed level of the cell size with level of detail off)
-  uint status;    // kKeyed, kKeyNoVertex or kKeyUnkeyable
-  uint padding0;  // always 0
-  uint padding1;  // always 0
+  uint fingerprint;    // the identity's low word
+  int level;           // l' after jitter (the fixed level of the cell size with level of detail off)
+  uint status;         // kKeyed, kKeyNoVertex or kKeyUnkeyable
+  uint identity_high;  // the identity's high word: 0 with a fingerprint
+  uint padding1;       // always 0
 };
 
 HPSF_FN KeyResult EmptyKeyResult(uint status) {
@@ -41,7 +44,7 @@ HPSF_FN KeyResult EmptyKeyResult(uint status) {
   k.fingerprint = 0u;
   k.level = 0;
   k.status = status;
-  k.padding0 = 0u;
+  k.identity_high = 0u;
   k.padding1 = 0u;
   return k;
 }
@@ -82,24 +85,28 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   float inverse_size = lod ? inverse_after : p.inverse_cell_size;
 
   Cell cell = CellOf(jittered, inverse_size);
-  if (!cell.keyable) {
+  KeyWords words;
+  words.cell_x = uint(cell.index.x);
+  words.cell_y = uint(cell.index.y);
+  words.cell_z = uint(cell.index.z);
+  words.level = uint(level + int(kLevelWordBias));
+  words.normal = NormalBucket(p, r);
+  words.extra = 0u;
+  StoredIdentity identity = IdentityOfWords(words, p.key_identity, p.fingerprint_bits);
+  // A cell beyond the full key's 17 bits has no identity: unkeyable, as one beyond int32 is.
+  if (!cell.keyable || !identity.fits) {
     KeyResult unkeyable = EmptyKeyResult(kKeyUnkeyable);
     unkeyable.level = level;
     return unkeyable;
   }
 
   KeyResult k;
-  k.words.cell_x = uint(cell.index.x);
-  k.words.cell_y = uint(cell.index.y);
-  k.words.cell_z = uint(cell.index.z);
-  k.words.level = uint(level + int(kLevelWordBias));
-  k.words.normal = NormalBucket(p, r);
-  k.words.extra = 0u;
+  k.words = words;
   k.slot0 = IndexHash(k.words, p.normal_in_index) & p.capacity_mask;
-  k.fingerprint = Fingerprint(k.words, p.fingerprint_bits);
+  k.fingerprint = identity.words.x;
   k.level = level;
   k.status = kKeyed;
-  k.padding0 = 0u;
+  k.identity_high = identity.words.y;
   k.padding1 = 0u;
   return k;
 }

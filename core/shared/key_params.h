@@ -27,7 +27,7 @@ struct KeyParams {
   uint seed;
   uint frame;
   uint record_count;
-  uint reserved;
+  uint key_identity;  // kIdentityFingerprint or kIdentityFull (core/shared/full_key.h): what a slot stores
 };
 
 HPSF_SHARED_END

@@ -3,7 +3,8 @@
 // took 67 ms instead of 72 for 2M records. The four words left out carry nothing the shader computes: the
 // reserved key word `extra` and the two padding words are always 0, and level and status share one word.
 // Unpacking is one-to-one: it restores a C++ KeyResult exactly, and a shader that wrote any other words
-// unpacks to a different result, so the comparison with the C++ one fails.
+// unpacks to a different result, so the comparison with the C++ one fails. A full key's high word is not packed:
+// it is a function of the key words (core/shared/full_key.h), and its low word, the fingerprint's place, is.
 #ifndef HPSF_CORE_SHARED_PACKED_KEY_H
 #define HPSF_CORE_SHARED_PACKED_KEY_H
 
@@ -26,7 +27,7 @@ HPSF_FN uvec4 PackedKeyHashes(KeyResult k) {
   return uvec4(k.words.normal, k.slot0, k.fingerprint, level_and_status);
 }
 
-HPSF_FN KeyResult UnpackKey(uvec4 cell, uvec4 hashes) {
+HPSF_FN KeyResult UnpackKey(uvec4 cell, uvec4 hashes, uint key_identity) {
   KeyResult k;
   k.words.cell_x = cell.x;
   k.words.cell_y = cell.y;
@@ -38,7 +39,7 @@ HPSF_FN KeyResult UnpackKey(uvec4 cell, uvec4 hashes) {
   k.fingerprint = hashes.z;
   k.level = int(hashes.w << kPackedStatusShift) >> int(kPackedStatusShift);  // sign-extends the low 16 bits
   k.status = hashes.w >> kPackedStatusShift;
-  k.padding0 = 0u;
+  k.identity_high = key_identity == kIdentityFull && k.status == kKeyed ? FullKey(k.words).y : 0u;
   k.padding1 = 0u;
   return k;
 }

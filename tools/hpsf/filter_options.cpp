@@ -41,6 +41,12 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                      "option it stands for (docs/reference/table-declaration.md)");
   command.add_option("--fingerprint-bits", c.fingerprint_bits, "Fingerprint width, 8..32")->capture_default_str();
   command
+      .add_option("--key-identity", o.key_identity,
+                  "What a slot stores to tell keys apart: fingerprint (--fingerprint-bits of a hash, 32-bit tags) or "
+                  "full (the whole key, 64-bit tags: no two cells share a slot; cells within 2^16 of the origin per "
+                  "axis, normals at most 3 bits)")
+      ->capture_default_str();
+  command
       .add_option("--fixed-point-bits", o.fixed_point_bits,
                   "F, fixed64's fraction bits, in [-126, 126]; auto: the largest the first frame's totals allow")
       ->capture_default_str();
@@ -100,6 +106,7 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   config.level_seed = ParseLevelSeed(o.level_change);
   config.temporal = ParseTemporal(o.temporal);
   config.compaction = ParseCompaction(o.compaction);
+  config.key_identity = ParseKeyIdentity(o.key_identity);
   for (const std::string& name : o.force_effects) config.forced.Add(ParseEffect(name));
   if (!o.table.empty()) {
     for (const DeclaredSetting& d : ApplyTableDeclaration(o.table, config)) {
@@ -138,6 +145,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"probe_limit", c.probe_limit},
           {"probing", ToString(c.probing)},
           {"fingerprint_bits", c.fingerprint_bits},
+          {"key_identity", ToString(c.key_identity)},
           {"seed", c.seed},
           {"frame", c.frame},
           {"frames", c.frames},

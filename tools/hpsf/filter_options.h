@@ -25,6 +25,7 @@ struct FilterOptions {
   std::string level_change = "none";
   std::string temporal = "integrate";
   std::string compaction = "none";
+  std::string key_identity = "fingerprint";
   std::string probing = "linear";
   std::string table;                                // --table: a table declaration (verifier/gate/table_declaration.h)
   const CLI::Option* probe_limit_option = nullptr;  // to tell --probe-limit given from its default

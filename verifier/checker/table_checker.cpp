@@ -216,6 +216,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   std::vector<std::vector<std::uint32_t>> placed(t.capacity);
   for (std::uint32_t i = 0; i < in.records.size(); ++i) {
     const KeyResult& key = in.keys[i];
+    const SlotTag identity = StoredIdentity(key);  // a fingerprint, or a full key (core/key_identity.h)
     const std::uint32_t slot = in.placements[i];
     const bool keyed = key.status == shared::kKeyed && CheckRecordInputs(in.records[i]) == InputVerdict::kAccepted;
     if (!keyed || slot == kNotPlaced) {
@@ -234,7 +235,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (slot == kProbeFailure) {
       for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
         const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
-        if (window_tag(s) == kEmptyTag || window_tag(s) == key.fingerprint || tombstone_tag(window_tag(s))) {
+        if (window_tag(s) == kEmptyTag || window_tag(s) == identity || tombstone_tag(window_tag(s))) {
           violate(TableInvariant::kFailureWindowNotFull, s, {i},
                   "tag " + std::to_string(window_tag(s)) + " at probe " + std::to_string(probe));
           break;
@@ -252,20 +253,22 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
               "slot0 " + std::to_string(key.slot0) + ", not among its " + ToString(t.probing) + ":" +
                   std::to_string(t.probe_limit) + " candidates");
     }
-    if (t.tags[slot] != key.fingerprint) {
+    if (t.tags[slot] != identity) {
       violate(TableInvariant::kTagIsNotTheFingerprint, slot, {i},
-              "tag " + std::to_string(t.tags[slot]) + ", fingerprint " + std::to_string(key.fingerprint));
+              "tag " + std::to_string(t.tags[slot]) +
+                  (t.key_identity == KeyIdentity::kFull ? ", full key " : ", fingerprint ") +
+                  std::to_string(identity));
     }
     // With priority, an insertion claims the first tombstone, but a cell that lived before the frame is found past
     // one.
-    const bool new_cell = tag_before(slot) != key.fingerprint;
+    const bool new_cell = tag_before(slot) != identity;
     // A live slot holding the fingerprint before the frame, with no empty slot before it in the window, is where
     // the record belongs (its cell, or an alias): a record that claimed another slot split it (past a priority
     // tombstone). Past an empty slot it may be an alias from another slot0 (D7's hole the reclaim check catches).
     for (std::uint32_t probe = 0; new_cell && probe < t.probe_limit; ++probe) {
       const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       if (tag_before(s) == kEmptyTag) break;
-      if (s != slot && tag_before(s) == key.fingerprint && count_before(s) > 0) {
+      if (s != slot && tag_before(s) == identity && count_before(s) > 0) {
         violate(TableInvariant::kCellSplit, slot, {i}, "the fingerprint lived at slot " + std::to_string(s));
         break;
       }
@@ -273,7 +276,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     for (std::uint32_t probe = 0; probe < std::min(distance, t.probe_limit); ++probe) {
       const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       const SlotTag seen = window_tag(s);
-      if (seen == kEmptyTag || seen == key.fingerprint || (new_cell && tombstone_tag(seen))) {
+      if (seen == kEmptyTag || seen == identity || (new_cell && tombstone_tag(seen))) {
         violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
                 "tag " + std::to_string(window_tag(s)) + " before slot " + std::to_string(slot));
         break;

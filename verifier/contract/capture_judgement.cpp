@@ -57,7 +57,7 @@ HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConf
   d.fingerprint_bits = config.fingerprint_bits;
   d.accumulation = config.accumulation;
   d.fixed_point_bits = fixed_point_bits;
-  d.tags = t.tags;
+  d.tags.assign(t.tags.begin(), t.tags.end());
   d.fixed_sums = t.fixed_sums;
   d.float_sums = t.float_sums;
   d.counts = t.counts;

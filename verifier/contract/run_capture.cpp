@@ -11,9 +11,11 @@ namespace {
 
 static_assert(sizeof(std::array<std::uint64_t, 3>) == 24 && sizeof(std::array<float, 3>) == 12);
 
-capture::TableBuffers BuffersOf(const HashTableDump& t) {
+// The format's tags are 32-bit words: a fingerprint table's tags, each below 2^32, narrowed into `tags32`.
+capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_t>& tags32) {
   capture::TableBuffers b;
-  b.tags = t.tags;
+  tags32.assign(t.tags.begin(), t.tags.end());
+  b.tags = tags32;
   b.fixed_sums = {reinterpret_cast<const std::uint64_t*>(t.fixed_sums.data()), 3 * t.fixed_sums.size()};
   b.float_sums = {reinterpret_cast<const float*>(t.float_sums.data()), 3 * t.float_sums.size()};
   b.counts = t.counts;
@@ -25,6 +27,9 @@ capture::TableBuffers BuffersOf(const HashTableDump& t) {
 
 void WriteRunCapture(const std::string& path, const std::string& declaration, const RecordBatch& batch,
                      std::uint32_t frame, const HashedRun& run, const HashTableDump* before) {
+  if (run.table.key_identity == KeyIdentity::kFull) {
+    throw ConfigError("--capture", "a capture holds 32-bit identities; full keys (--key-identity full) are not captured");
+  }
   const std::size_t n = batch.records.size();
   std::vector<float> contributions(3 * n);
   std::vector<std::uint32_t> keys(6 * n), home(n), identities(n), statuses(n);
@@ -40,7 +45,8 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   }
   const capture::RecordView records{batch.width, batch.height, batch.samples_per_pixel, batch.fov_y_radians,
                                     std::as_bytes(std::span<const Record>(batch.records))};
-  const capture::TableBuffers table_before = before ? BuffersOf(*before) : capture::TableBuffers{};
+  std::vector<std::uint32_t> tags_before, tags_after;
+  const capture::TableBuffers table_before = before ? BuffersOf(*before, tags_before) : capture::TableBuffers{};
   capture::FrameCapture c;
   c.declaration = declaration;
   c.frame = frame;
@@ -56,7 +62,7 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   c.placements = run.placements;
   c.hpsf_records = &records;
   c.before = before ? &table_before : nullptr;
-  c.after = BuffersOf(run.table);
+  c.after = BuffersOf(run.table, tags_after);
   const std::span<const std::uint32_t> occupied = run.table.occupied;
   if (run.table.compacted) c.occupied = &occupied;
   if (const std::string error = capture::WriteCapture(path, c); !error.empty()) throw InputError(error);

@@ -34,6 +34,8 @@ const std::vector<Setting>& Settings() {
          c.probing = p.kind;
          c.probe_limit = *p.size;  // the schema requires KIND:N
        }},
+      {"/key/identity", "--key-identity",
+       [](const json& v, FilterConfig& c) { c.key_identity = ParseKeyIdentity(v.get<std::string>()); }},
       {"/key/fingerprint_bits", "--fingerprint-bits",
        [](const json& v, FilterConfig& c) { c.fingerprint_bits = v.get<std::uint32_t>(); }},
       {"/key/normal_in_index", "--normal-in-fingerprint-only",
@@ -115,10 +117,7 @@ std::string TableDeclarationText(const FilterConfig& config) {
       {"name", "written by hpsf"},
       {"capacity", config.capacity},
       {"probing", ToString(config.probing) + ":" + std::to_string(config.probe_limit)},
-      {"key",
-       {{"identity", "fingerprint"},
-        {"fingerprint_bits", config.fingerprint_bits},
-        {"normal_in_index", config.normal_in_index}}},
+      {"key", {{"identity", ToString(config.key_identity)}, {"normal_in_index", config.normal_in_index}}},
       {"sums", {{"encoding", ToString(config.accumulation)}}},
       {"passes",
        {{"eviction", config.eviction.ToString()},
@@ -126,6 +125,7 @@ std::string TableDeclarationText(const FilterConfig& config) {
         {"level_change", config.level_seed.ToString()},
         {"compaction", ToString(config.compaction)}}},
   };
+  if (config.key_identity == KeyIdentity::kFingerprint) document["key"]["fingerprint_bits"] = config.fingerprint_bits;
   if (config.fixed_point_bits) {
     document["sums"]["fixed_point_bits"] = *config.fixed_point_bits;
   } else {

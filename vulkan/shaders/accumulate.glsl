@@ -20,6 +20,7 @@
 #endif
 #include "subgroup_runs.glsl"
 #include "table_interface.glsl"
+#include "slot_tags.glsl"
 
 // The host dispatches ceil(n / (128 * 16)) workgroups, at most 65535 (vulkan/vulkan_filter.cpp).
 const uint kRecordsPerInvocation = 16u;
@@ -27,7 +28,7 @@ layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of docs/design/defects.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
 // _D12, _D13, each exactly one change), per bug a production cache shipped (_FULL_BUCKET_MASKED, SHaRC #4;
-// _WINDOW_PAST_THE_END, SHaRC #5) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
+// _WINDOW_PAST_THE_END, SHaRC #5), of a full key (_FULL_KEY_LOW_WORD, matched by its low word) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
 // --accumulate-spv: the gate must catch each. HPSF_DEFECT_D11, _COUNT_STORE_CLAIM_FIRST, _COUNT_STORE_JOIN_FIRST
 // and _LAST_SEEN_CLAIMER_ONLY are the classes `hpsf fuzz` must find unaided (a rounding defect the automatic F
 // hides, a race one execution order hides, a frame-state defect one frame hides). HPSF_DEFECT_SLOT0_FOR_FAILURE and HPSF_DEFECT_GARBAGE_* write words
@@ -144,21 +145,21 @@ void BlendDuringAccumulate(uint slot, TableParams t) {
 // looked for first, up to the first empty slot, since a claimable tombstone may lie before it; then the first empty
 // or tombstone slot is claimed by compare-and-swap, and one that a record of the same cell claimed meanwhile is
 // joined. Returns the slot, or kPlacementProbeFailure.
-uint FindOrClaim(uint slot0, uint fingerprint, TableParams t) {
+uint FindOrClaim(uint slot0, uint64_t identity, TableParams t, bool full) {
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
     uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
-    uint tag = tags[slot];
-    if (tag == fingerprint) return slot;
-    if (tag == 0u) break;
+    uint64_t tag = LoadTag(slot, full);
+    if (tag == identity) return slot;
+    if (tag == 0ul) break;
   }
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
     uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
-    uint tag = tags[slot];
-    if (tag == 0u || tag == kTombstoneTag) {
-      uint seen = atomicCompSwap(tags[slot], tag, fingerprint);
-      tag = seen == tag ? fingerprint : seen;
+    uint64_t tag = LoadTag(slot, full);
+    if (tag == 0ul || tag == uint64_t(kTombstoneTag)) {
+      uint64_t seen = SwapTag(slot, tag, identity, full);
+      tag = seen == tag ? identity : seen;
     }
-    if (tag == fingerprint) return slot;
+    if (tag == identity) return slot;
   }
   return kPlacementProbeFailure;
 }
@@ -181,6 +182,7 @@ KeyResult TeamKey(KeyResult k, KeyParams p) {
   identity = max(identity, 1u);
 #endif
   k.fingerprint = identity;
+  k.identity_high = 0u;  // a 32-bit identity, under either --key-identity
   return k;
 }
 #endif
@@ -203,13 +205,14 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
   uint placement = kPlacementNotPlaced;
   if (k.status == kKeyed) {
     placement = kPlacementProbeFailure;
+    bool full = p.key_identity == kIdentityFull;
 #if defined(HPSF_DEFECT_D3)  // the reduced fingerprint without its 0 -> 1 fix: may equal the empty tag
-    uint fingerprint = FullFingerprint(k.words) >> (32u - p.fingerprint_bits);
+    uint64_t identity = uint64_t(FullFingerprint(k.words) >> (32u - p.fingerprint_bits));
 #else
-    uint fingerprint = k.fingerprint;
+    uint64_t identity = (uint64_t(k.identity_high) << 32) | uint64_t(k.fingerprint);
 #endif
     if (t.claim_tombstones != 0u) {
-      placement = FindOrClaim(k.slot0, fingerprint, t);
+      placement = FindOrClaim(k.slot0, identity, t, full);
       if (placement != kPlacementProbeFailure) {
         AddToSlot(placement, r, t.fixed_point_scale, false);
         last_seen[placement] = t.frame;
@@ -223,18 +226,22 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
 #else
       uint slot = CandidateSlot(ProbeSchemeOf(t), k.slot0, probe);
 #endif
-      uint tag = tags[slot];
+      uint64_t tag = LoadTag(slot, full);
       bool claimed = false;
 #if defined(HPSF_DEFECT_D13)  // claimed by a plain store after the load: two keys race for one empty slot
-      if (tag == 0u) tags[slot] = fingerprint;
+      if (tag == 0ul) StoreTag(slot, identity, full);
 #else
-      if (tag == 0u) {
-        tag = atomicCompSwap(tags[slot], 0u, fingerprint);
-        claimed = tag == 0u;
+      if (tag == 0ul) {
+        tag = SwapTag(slot, 0ul, identity, full);
+        claimed = tag == 0ul;
       }
 #endif
-      // An empty slot we just claimed (the swap returned 0) or a slot that holds our fingerprint: add here, once.
-      if (tag != 0u && tag != fingerprint) continue;
+      // An empty slot we just claimed (the swap returned 0) or a slot that holds our identity: add here, once.
+#if defined(HPSF_DEFECT_FULL_KEY_LOW_WORD)  // a 64-bit key matched by its low word alone
+      if (tag != 0ul && uint(tag) != uint(identity)) continue;
+#else
+      if (tag != 0ul && tag != identity) continue;
+#endif
       AddToSlot(slot, r, t.fixed_point_scale, claimed);
 #if defined(HPSF_DEFECT_LAST_SEEN_CLAIMER_ONLY)  // a slot joined in a later frame keeps its old frame: looks stale
       if (t.track_last_seen != 0u && claimed) last_seen[slot] = t.frame;

@@ -16,6 +16,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 1) readonly buffer Tags { uint tags[]; };
+layout(std430, binding = 1) readonly buffer FullTags { uint64_t full_tags[]; };  // the same buffer, with full_keys
 layout(std430, binding = 2) buffer Listed { uint listed[]; };  // per slot: 1 while in the list
 layout(std430, binding = 3) buffer Occupied { uint occupied[]; };
 layout(std430, binding = 4) buffer Header {
@@ -32,8 +33,10 @@ layout(push_constant) uniform Params {  // vulkan_filter.cpp's CompactionPush
   uint pass;  // 0 gather, 1 prune, 2 finish the prune, 3 the dispatch
   uint record_count;
   uint capacity;
-  uint reserved;
+  uint full_keys;  // 1 with --key-identity full: 64-bit tags (slot_tags.glsl)
 };
+#define HPSF_TAGS_READONLY
+#include "slot_tags.glsl"
 
 void main() {
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
@@ -49,7 +52,7 @@ void main() {
   } else if (pass == 1u) {
     for (uint entry = gl_GlobalInvocationID.x; entry < count; entry += stride) {
       uint slot = occupied[entry];
-      if (tags[slot] == 0u) {
+      if (LoadTag(slot, full_keys != 0u) == 0ul) {
         listed[slot] = 0u;
       } else {
         next_occupied[atomicAdd(next_count, 1u)] = slot;

@@ -20,6 +20,7 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) buffer Tags { uint tags[]; };
+layout(std430, binding = 0) buffer FullTags { uint64_t full_tags[]; };  // the same buffer, with full_keys
 layout(std430, binding = 1) buffer SumWords { uint sum_words[]; };  // fixed64 or float32 sums, as 32-bit words
 layout(std430, binding = 2) buffer Counts { uint64_t counts[]; };
 layout(std430, binding = 3) readonly buffer LastSeen { uint last_seen[]; };
@@ -42,7 +43,9 @@ layout(push_constant) uniform Params {
   uint by_priority;         // 1 with --eviction priority
   uint probe_scheme;        // kProbeLinear, kProbeBucket or kProbeBucketWindow
   uint compacted;           // 1: dispatched indirectly, one invocation per entry of the occupied list
+  uint full_keys;           // 1 with --key-identity full: 64-bit tags (slot_tags.glsl)
 };
+#include "slot_tags.glsl"
 
 ProbeScheme Scheme() { return MakeProbeScheme(probe_scheme, capacity, probe_limit); }
 
@@ -50,12 +53,13 @@ void SelectVictim(uint i) {
   if (placements[i] != kPlacementProbeFailure) return;
   uint slot0 = key_vectors[i * 3u + 1u].z;
   bool found = false;
-  uint victim = 0u, victim_tag = 0u;
+  uint victim = 0u;
+  uint64_t victim_tag = 0ul;
   uint64_t victim_priority = 0ul;
   for (uint probe = 0u; probe < probe_limit; ++probe) {
     uint slot = CandidateSlot(Scheme(), slot0, probe);
-    uint tag = tags[slot];
-    if (tag == 0u || tag == kTombstoneTag) continue;
+    uint64_t tag = LoadTag(slot, full_keys != 0u);
+    if (tag == 0ul || tag == uint64_t(kTombstoneTag)) continue;
     uint64_t count = counts[slot];
     if (count == 0ul || last_seen[slot] == frame) continue;  // a tombstone of another policy, or touched this frame
     uint64_t priority = EvictionPriority(last_seen[slot], count);
@@ -74,7 +78,7 @@ void SelectVictim(uint i) {
 }
 
 void Evict(uint slot) {
-  if (tags[slot] == 0u || counts[slot] == 0ul) return;
+  if (LoadTag(slot, full_keys != 0u) == 0ul || counts[slot] == 0ul) return;
   if (by_priority != 0u) {
     if (victims[slot] == 0u) return;
   } else if (frame - last_seen[slot] < unseen_frames) {
@@ -82,20 +86,21 @@ void Evict(uint slot) {
   }
   for (uint w = 0u; w < sum_words_per_slot; ++w) sum_words[slot * sum_words_per_slot + w] = 0u;
   counts[slot] = 0ul;
-  if (by_priority != 0u) tags[slot] = kTombstoneTag;
+  if (by_priority != 0u) StoreTag(slot, uint64_t(kTombstoneTag), full_keys != 0u);
   atomicAdd(evicted, 1ul);
 }
 
 void Reclaim(uint slot) {
-  if (tags[slot] == 0u || counts[slot] != 0ul) return;
+  bool full = full_keys != 0u;
+  if (LoadTag(slot, full) == 0ul || counts[slot] != 0ul) return;
 #if !defined(HPSF_DEFECT_D7)  // D7 empties every tombstone: a hole on a live slot's probe path
   for (uint distance = 1u; distance < probe_limit; ++distance) {
     uint next = SlotAfter(Scheme(), slot, distance);
-    if (next == kNoCandidate || tags[next] == 0u) break;
+    if (next == kNoCandidate || LoadTag(next, full) == 0ul) break;
     if (counts[next] != 0ul) return;  // a live slot may have probed past this one: keep the tombstone
   }
 #endif
-  tags[slot] = 0u;
+  StoreTag(slot, 0ul, full);
 }
 
 void main() {

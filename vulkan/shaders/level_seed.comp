@@ -10,7 +10,7 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
-#include "../../core/shared/key_words.h"
+#include "../../core/shared/full_key.h"
 #include "../../core/shared/level_seed.h"
 #include "../../core/shared/probe_scheme.h"
 
@@ -20,7 +20,9 @@ layout(std430, binding = 0) readonly buffer Keys { uvec4 key_vectors[]; };  // t
 layout(std430, binding = 1) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 2) buffer SumWords { uint sum_words[]; };  // fixed64 or float32 sums, as 32-bit words
 layout(std430, binding = 3) buffer Counts { uint64_t counts[]; };
-layout(std430, binding = 4) readonly buffer PreviousTags { uint previous_tags[]; };
+// The table before the frame's tags, read through slot_tags.glsl as 32-bit fingerprints or 64-bit full keys.
+layout(std430, binding = 4) readonly buffer PreviousTags { uint tags[]; };
+layout(std430, binding = 4) readonly buffer PreviousFullTags { uint64_t full_tags[]; };
 layout(std430, binding = 5) readonly buffer PreviousSumWords { uint previous_sum_words[]; };
 layout(std430, binding = 6) readonly buffer PreviousCounts { uint64_t previous_counts[]; };
 layout(std430, binding = 7) buffer Seeded { uint seeded[]; };  // per slot, zeroed: 1 claimed, 2 seeded
@@ -34,7 +36,10 @@ layout(push_constant) uniform Params {  // vulkan_filter.cpp's LevelSeedPush
   uint fixed64;  // 1: sums are 64-bit fixed point (two words per channel); 0: float32
   uint record_count;
   uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow
+  uint key_identity;  // kIdentityFingerprint or kIdentityFull (core/shared/full_key.h)
 };
+#define HPSF_TAGS_READONLY
+#include "slot_tags.glsl"
 
 struct Neighbour {
   bool found;
@@ -43,20 +48,23 @@ struct Neighbour {
   float float_sum[3];
 };
 
-// The first slot of the words' window in the table before the frame holding their fingerprint with samples, up to
-// the first empty slot (core/level_seed.cpp's FindInTable).
+// The first slot of the words' window in the table before the frame holding their identity with samples, up to
+// the first empty slot (core/level_seed.cpp's FindInTable). Words beyond a full key's range are in no slot.
 Neighbour Find(KeyWords words) {
   Neighbour n;
   n.found = false;
   n.count = 0ul;
+  StoredIdentity identity = IdentityOfWords(words, key_identity, fingerprint_bits);
+  if (!identity.fits) return n;
   uint slot0 = IndexHash(words, normal_in_index) & (capacity - 1u);
-  uint fingerprint = Fingerprint(words, fingerprint_bits);
+  uint64_t wanted = IdentityValue(identity.words);
+  bool full = key_identity == kIdentityFull;
   ProbeScheme scheme = MakeProbeScheme(probe_scheme, capacity, probe_limit);
   for (uint probe = 0u; probe < probe_limit; ++probe) {
     uint slot = CandidateSlot(scheme, slot0, probe);
-    uint tag = previous_tags[slot];
-    if (tag == 0u) break;
-    if (tag != fingerprint || previous_counts[slot] == 0ul) continue;
+    uint64_t tag = LoadTag(slot, full);
+    if (tag == 0ul) break;
+    if (tag != wanted || previous_counts[slot] == 0ul) continue;
     n.found = true;
     n.count = previous_counts[slot];
     for (uint c = 0u; c < 3u; ++c) {

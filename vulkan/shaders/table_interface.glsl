@@ -3,7 +3,7 @@
 // the host reads the table back from them and judges it with the table checker.
 //   0 records     uniform texel buffer, RGBA32UI, 9 texels per record (record_texels.glsl)   read
 //   1 keys        uvec4[3 n]: KeyResult per record (key words, slot0, fingerprint, level, status) write
-//   2 tags        uint[capacity], zeroed                                                      atomics
+//   2 tags        uint[capacity] (fingerprints) or uint64_t[capacity] (full keys), zeroed      atomics
 //   3 sums        uint64_t[3 capacity] (fixed64) or float[3 capacity] (float32), slot * 3 + c, zeroed
 //   4 counts      uint64_t[capacity], zeroed                                                  atomics
 //   5 placements  uint[n]: slot, kPlacementProbeFailure or kPlacementNotPlaced                write
@@ -25,6 +25,8 @@
 
 layout(std430, binding = 1) writeonly buffer Keys { uvec4 key_vectors[]; };
 layout(std430, binding = 2) buffer Tags { uint tags[]; };
+// The same buffer, with params.key_identity kIdentityFull: 64-bit tags (slot_tags.glsl).
+layout(std430, binding = 2) buffer FullTags { uint64_t full_tags[]; };
 layout(std430, binding = 3) buffer Sums { HPSF_SUMS_TYPE sums[]; };
 layout(std430, binding = 4) buffer Counts { uint64_t counts[]; };
 layout(std430, binding = 5) writeonly buffer Placements { uint placements[]; };
@@ -54,5 +56,5 @@ void StoreKeyResult(uint i, KeyResult k) {
   uint first = i * 3u;
   key_vectors[first] = uvec4(k.words.cell_x, k.words.cell_y, k.words.cell_z, k.words.level);
   key_vectors[first + 1u] = uvec4(k.words.normal, k.words.extra, k.slot0, k.fingerprint);
-  key_vectors[first + 2u] = uvec4(uint(k.level), k.status, k.padding0, k.padding1);
+  key_vectors[first + 2u] = uvec4(uint(k.level), k.status, k.identity_high, k.padding1);
 }
