@@ -39,6 +39,7 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.probe_limit == next.probe_limit, "--probe-limit");
   require(first.probing == next.probing, "--probing");
   require(first.fingerprint_bits == next.fingerprint_bits, "--fingerprint-bits");
+  require(first.key_identity == next.key_identity, "--key-identity");
   require(first.seed == next.seed, "--seed");
   require(first.fixed_point_bits == next.fixed_point_bits, "--fixed-point-bits");
   require(first.frames == next.frames, "--frames");

@@ -103,8 +103,8 @@ void FilterConfig::Validate() const {
                                                 std::to_string(fingerprint_bits) + " bits");
   }
   if (key_identity == KeyIdentity::kFull && normal.mode == NormalMode::kOctahedral && normal.octahedral_bits > 1) {
-    throw ConfigError("--normal", "a full key keeps 3 bits of normal bucket, so octahedral:1 at most; got " +
-                                      normal.ToString());
+    throw ConfigError("--normal",
+                      "a full key keeps 3 bits of normal bucket, so octahedral:1 at most; got " + normal.ToString());
   }
   if (fixed_point_bits &&
       (*fixed_point_bits < shared::kFixedPointBitsMin || *fixed_point_bits > shared::kFixedPointBitsMax)) {
@@ -156,9 +156,9 @@ std::string FilterConfig::ToString() const {
          // Only when not linear, so configs of hpsf's own table read as they always have (golden metadata).
          (probing != ProbeKind::kLinear ? " probing: " + hpsf::ToString(probing) : std::string()) +
          " fingerprint_bits: " + std::to_string(fingerprint_bits) +
-         (key_identity != KeyIdentity::kFingerprint ? " key_identity: " + hpsf::ToString(key_identity) : std::string()) +
-         " seed: " + std::to_string(seed) +
-         " frame: " + std::to_string(frame) +
+         (key_identity != KeyIdentity::kFingerprint ? " key_identity: " + hpsf::ToString(key_identity)
+                                                    : std::string()) +
+         " seed: " + std::to_string(seed) + " frame: " + std::to_string(frame) +
          // Only when set, so single-frame configs read as they always have (golden metadata holds them).
          (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
          (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) +

@@ -42,14 +42,14 @@ struct FilterConfig {
   float cell_size = 1.0f;        // --cell-size: the cell edge when level of detail is off
   int level_min = -126;          // --level-min, --level-max: clamp of the level, inside [-126, 126]
   int level_max = 126;
-  Accumulation accumulation = Accumulation::kFixed64;  // --accum
-  std::uint32_t capacity = 1u << 22;                   // --capacity: slots, a power of two
-  std::uint32_t probe_limit = 16;                      // --probe-limit: slots tried before a probe failure
-  ProbeKind probing = ProbeKind::kLinear;              // --probing: the order of the slots tried
-  std::uint32_t fingerprint_bits = 32;                 // --fingerprint-bits: 8..32
+  Accumulation accumulation = Accumulation::kFixed64;    // --accum
+  std::uint32_t capacity = 1u << 22;                     // --capacity: slots, a power of two
+  std::uint32_t probe_limit = 16;                        // --probe-limit: slots tried before a probe failure
+  ProbeKind probing = ProbeKind::kLinear;                // --probing: the order of the slots tried
+  std::uint32_t fingerprint_bits = 32;                   // --fingerprint-bits: 8..32
   KeyIdentity key_identity = KeyIdentity::kFingerprint;  // --key-identity: a fingerprint or the full key per slot
-  std::uint32_t seed = 1;                              // --seed
-  std::uint32_t frame = 0;                             // in every random number of the key path (the jitter)
+  std::uint32_t seed = 1;                                // --seed
+  std::uint32_t frame = 0;                               // in every random number of the key path (the jitter)
   // --fixed-point-bits: F of fixed64 for every frame; unset, the first frame of a table chooses it, leaving room
   // for `frames` frames like it (core/fixed_point_scale.h).
   std::optional<int> fixed_point_bits;

@@ -25,7 +25,7 @@ std::array<std::uint32_t, 12> KeyResultWords(const KeyResult& key) {
 }
 
 const char* KeyResultWordName(int index) {
-  static const char* const kNames[12] = {"cell_x", "cell_y",      "cell_z", "level_word", "normal",   "extra",
+  static const char* const kNames[12] = {"cell_x", "cell_y",      "cell_z", "level_word", "normal",        "extra",
                                          "slot0",  "fingerprint", "level",  "status",     "identity_high", "padding1"};
   return index >= 0 && index < 12 ? kNames[index] : "?";
 }

@@ -41,7 +41,7 @@ TEST(PackedKey, RoundTripsComputedKeysOfEveryStatus) {
   FilterConfig unkeyable;
   unkeyable.lod = false;
   unkeyable.cell_size = 1e-30f;  // q far beyond 2^31
-  FilterConfig full = fine;  // a full key's high word is restored from the words
+  FilterConfig full = fine;      // a full key's high word is restored from the words
   full.key_identity = KeyIdentity::kFull;
   int seen[3] = {0, 0, 0};
   bool negative_level = false;

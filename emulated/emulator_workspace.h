@@ -31,7 +31,7 @@ struct EmulatorWorkspace {
   std::vector<std::uint32_t> placements;
   std::vector<glm::vec3> pixels;
   // Per slot: device buffers, and the dump the read-back fills.
-  std::vector<SlotTag> tags;                  // the dump's, and the device's with full keys
+  std::vector<SlotTag> tags;                 // the dump's, and the device's with full keys
   std::vector<std::uint32_t> device_tags32;  // the device's with fingerprints
   std::vector<std::uint64_t> counts;
   std::vector<std::uint64_t> device_sums64;  // fixed64

@@ -356,6 +356,30 @@ hpsf_add_cli_test(HpsfCrosscheck.SpuriousCasInFastModeExits3 "unit;schemes" 3
   "--spurious-cas: needs --mode faithful" "" $<TARGET_FILE:hpsf> crosscheck cornell --spurious-cas 0.25)
 hpsf_add_cli_test(HpsfCrosscheck.SpuriousCasOfOneExits3 "unit;schemes" 3
   "--spurious-cas: must lie in \\[0, 1\\)" "" $<TARGET_FILE:hpsf> crosscheck cornell --mode faithful --spurious-cas 1)
+# A full key (--key-identity full) matched by its low word alone: two cells of one column share a slot, which the
+# checker names with both keys; with fingerprints (high word 0) the same kernel is correct.
+set(full_key_run crosscheck cornell --size 32x32 --spp 2 --capacity 256 --key-identity full --repro-dir
+  ${hpsf_out}/full-key)
+hpsf_add_cli_test(HpsfCrosscheck.AFullKeyMatchedByItsLowWordIsNamed "unit;schemes" 2
+  "emulated: tag is not the record's fingerprint at slot [0-9]+, records [0-9, ]+: tag [0-9]+, full key [0-9]+" ""
+  $<TARGET_FILE:hpsf> ${full_key_run} --backends reference,emulated --inject-defect full-key-low-word)
+hpsf_add_cli_test(HpsfCrosscheck.AFullKeyShaderMatchingByItsLowWordIsNamed "vulkan;schemes" 2
+  "vulkan: tag is not the record's fingerprint at slot [0-9]+, records [0-9, ]+: tag [0-9]+, full key [0-9]+" ""
+  $<TARGET_FILE:hpsf> ${full_key_run} --backends reference,vulkan
+  --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/accumulate_FULL_KEY_LOW_WORD.spv)
+hpsf_add_cli_test(HpsfCrosscheck.AFullKeyWithAFingerprintWidthExits3 "unit;schemes" 3
+  "--fingerprint-bits: a full key \\(--key-identity full\\) stores no fingerprint; got 16 bits" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --key-identity full --fingerprint-bits 16)
+add_test(NAME HpsfFuzz.FindsAFullKeyMatchedByItsLowWordInTheEmulator
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_full_key -DMAX_RECORDS=2
+    "-DARGS=--backend;emulated;--inject-defect;full-key-low-word;--runs;400;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsAFullKeyMatchedByItsLowWordInTheEmulator PROPERTIES LABELS "unit;schemes;untrusted")
+add_test(NAME HpsfFuzz.FindsAFullKeyMatchedByItsLowWordInAShader
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_vulkan_full_key -DMAX_RECORDS=2
+    "-DARGS=--backend;vulkan;--accumulate-spv;${HPSF_SHADER_VARIANT_DIR}/accumulate_FULL_KEY_LOW_WORD.spv;--accum;fixed64;--runs;400;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsAFullKeyMatchedByItsLowWordInAShader PROPERTIES LABELS "vulkan;schemes;untrusted")
 foreach(bug full-bucket-masked window-past-the-end weak-cas-old-value)
   add_test(NAME HpsfFuzz.FindsShippedBug${bug}InTheEmulator
     COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_${bug} -DMAX_RECORDS=2

@@ -75,7 +75,8 @@ std::vector<KeyResult> KeyPass::Download() {
   vulkan_internal::Transfer download(p.device, p.staging);
   const auto* packed = static_cast<const glm::uvec4*>(download.Download(p.keys, keys.size() * kPackedKeyBytes));
   download.Submit();
-  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = shared::UnpackKey(packed[2 * i], packed[2 * i + 1], p.key_identity);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    keys[i] = shared::UnpackKey(packed[2 * i], packed[2 * i + 1], p.key_identity);
   return keys;
 }
 

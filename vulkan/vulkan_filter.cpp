@@ -395,8 +395,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
     std::memcpy(upload.Upload(p.occupied_header, kOccupiedHeaderBytes), header, kOccupiedHeaderBytes);
   }
   upload.Submit();
-  p.table = Impl::TableShape{table.capacity, table.accumulation, table.key_identity, table.fixed_point_bits,
-                             table.compacted};
+  p.table =
+      Impl::TableShape{table.capacity, table.accumulation, table.key_identity, table.fixed_point_bits, table.compacted};
 }
 
 VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table,

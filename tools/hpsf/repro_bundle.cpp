@@ -122,6 +122,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
   if (c.compaction != Compaction::kNone) a.insert(a.end(), {"--compaction", ToString(c.compaction)});
+  if (c.key_identity != KeyIdentity::kFingerprint) a.insert(a.end(), {"--key-identity", ToString(c.key_identity)});
   const bool faithful = emulator.mode == simt::Mode::kFaithful;
   a.insert(a.end(), {"--mode", faithful ? "faithful" : "fast"});
   if (faithful) a.insert(a.end(), {"--warp-size", std::to_string(emulator.warp_size), "--schedule", emulator.schedule});

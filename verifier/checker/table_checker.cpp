@@ -256,8 +256,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (t.tags[slot] != identity) {
       violate(TableInvariant::kTagIsNotTheFingerprint, slot, {i},
               "tag " + std::to_string(t.tags[slot]) +
-                  (t.key_identity == KeyIdentity::kFull ? ", full key " : ", fingerprint ") +
-                  std::to_string(identity));
+                  (t.key_identity == KeyIdentity::kFull ? ", full key " : ", fingerprint ") + std::to_string(identity));
     }
     // With priority, an insertion claims the first tombstone, but a cell that lived before the frame is found past
     // one.

@@ -28,7 +28,8 @@ capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_
 void WriteRunCapture(const std::string& path, const std::string& declaration, const RecordBatch& batch,
                      std::uint32_t frame, const HashedRun& run, const HashTableDump* before) {
   if (run.table.key_identity == KeyIdentity::kFull) {
-    throw ConfigError("--capture", "a capture holds 32-bit identities; full keys (--key-identity full) are not captured");
+    throw ConfigError("--capture",
+                      "a capture holds 32-bit identities; full keys (--key-identity full) are not captured");
   }
   const std::size_t n = batch.records.size();
   std::vector<float> contributions(3 * n);

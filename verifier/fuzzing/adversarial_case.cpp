@@ -260,7 +260,9 @@ void DrawSequenceConfig(RecordGenerator& g, FilterConfig& c) {
   const char* const temporals[] = {"integrate", "ema:0.5", "ema:0.25:8", "adaptive"};
   c.eviction = ParseEviction(evictions[g.Bits() % 6u]);
   c.temporal = ParseTemporal(temporals[g.Bits() % 4u]);
-  if (c.eviction.by_priority() && c.fingerprint_bits > 24) c.fingerprint_bits = 24;
+  if (c.eviction.by_priority() && c.key_identity == KeyIdentity::kFingerprint && c.fingerprint_bits > 24) {
+    c.fingerprint_bits = 24;
+  }
 }
 
 }  // namespace
@@ -352,6 +354,19 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
                      : draw == 3u    ? ProbeKind::kBucketWindow
                                      : ProbeKind::kLinear;
   if (a.config.probing == ProbeKind::kBucket) a.config.probe_limit = std::bit_floor(a.config.probe_limit);
+  // A case in four stores full keys (core/key_identity.h), from a generator of its own too; where a normal bucket
+  // fits one. Half of those whose cells were drawn move them into one column (the first cell's x and y), where every
+  // key has the same low word, so that a slot of another cell of the column lies in a record's window.
+  RecordGenerator identity_draws(
+      shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 2u, 0u}, 0xADF2u));
+  const bool normal_fits = a.config.normal.mode != NormalMode::kOctahedral || a.config.normal.octahedral_bits <= 1;
+  if (identity_draws.Bits() % 4u == 0u && normal_fits) {
+    a.config.key_identity = KeyIdentity::kFull;
+    a.config.fingerprint_bits = 32;
+    if (identity_draws.Bits() % 2u == 0u) {
+      for (glm::ivec3& cell : cells) cell = {cells.front().x, cells.front().y, cell.z};
+    }
+  }
   if (a.family != AdversarialFamily::kKeyPath && a.family != AdversarialFamily::kSpread) {
     if (cells.empty()) cells.push_back(RandomCell(g, 8));  // a search that found nothing still gives a batch
     a.batch.records = RecordsOverCells(g, cells, count);

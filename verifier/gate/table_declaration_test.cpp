@@ -18,7 +18,7 @@ TEST(TableDeclaration, HpsfsOwnTableDeclaredIsTheDefaultConfig) {
   declared.capacity = 64;  // overwritten: the declaration names the capacity
   const std::vector<DeclaredSetting> made = ApplyTableDeclaration(HPSF_TABLES_DIR "/hpsf.json", declared);
   EXPECT_EQ(declared.ToString(), FilterConfig{}.ToString());
-  EXPECT_EQ(made.size(), 10u);  // every setting a declaration has
+  EXPECT_EQ(made.size(), 11u);  // every setting a declaration has
 }
 
 TEST(TableDeclaration, SetsWhatItNamesAndKeepsTheRest) {
@@ -31,6 +31,7 @@ TEST(TableDeclaration, SetsWhatItNamesAndKeepsTheRest) {
   EXPECT_EQ(config.capacity, 1u << 22);
   EXPECT_EQ(config.eviction.ToString(), "stale:8");
   EXPECT_EQ(config.compaction, Compaction::kOccupiedList);
+  EXPECT_EQ(config.key_identity, KeyIdentity::kFull);
   EXPECT_EQ(config.seed, 77u);
   EXPECT_FALSE(config.lod);
   FilterConfig small;
@@ -57,7 +58,8 @@ TEST(TableDeclaration, EveryBadDeclarationNamesTheFileAndThePlace) {
       {R"({"hpsf_table": 1, "probing": "linear:9999999999"})", "t.json: /probing: the size"},
       {R"({"hpsf_table": 1, "capacity": 1000})", "t.json: /capacity: must be a power of two"},
       {R"({"hpsf_table": 1, "capacity": 64, "probing": "bucket-window:128"})", "t.json: /probing: must lie in [1"},
-      {R"({"hpsf_table": 1, "key": {"identity": "full"}})", "t.json: /key/identity"},
+      {R"({"hpsf_table": 1, "key": {"identity": "hash"}})", "t.json: /key/identity"},
+      {R"({"hpsf_table": 1, "key": {"identity": "full", "fingerprint_bits": 32}})", "t.json: /key"},
       {R"({"hpsf_table": 1, "key": {"fingerprint_bits": 40}})", "t.json: /key/fingerprint_bits"},
       {R"({"hpsf_table": 1, "sums": {"encoding": "packed"}})", "t.json: /sums/encoding"},
       {R"({"hpsf_table": 1, "sums": {"fixed_point_bits": 300}})", "t.json: /sums/fixed_point_bits"},
