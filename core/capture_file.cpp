@@ -62,6 +62,7 @@ class CaptureParser {
     c.fixed_point_bits = std::bit_cast<std::int32_t>(f[4]);
     c.float32_sums = (f[5] & capture::kFlagFloat32Sums) != 0;
     c.last_seen = (f[5] & capture::kFlagLastSeen) != 0;
+    c.full_keys = (f[5] & capture::kFlagFullKeys) != 0;
     if (n > kMaxCapturedRecords) throw Fail(chunk_, "FRAM: " + std::to_string(n) + " records, more than 2^28");
     if (c.capacity == 0 || c.capacity > (1u << 31) || !std::has_single_bit(c.capacity)) {
       throw Fail(chunk_, "FRAM: capacity " + std::to_string(c.capacity) + " is not a power of two up to 2^31");
@@ -69,7 +70,8 @@ class CaptureParser {
     if (c.key_words < 1 || c.key_words > capture::kMaxKeyWords) {
       throw Fail(chunk_, "FRAM: " + std::to_string(c.key_words) + " key words, not 1 to 6");
     }
-    if ((f[5] & ~(capture::kFlagFloat32Sums | capture::kFlagLastSeen)) != 0 || f[6] != 0 || f[7] != 0) {
+    if ((f[5] & ~(capture::kFlagFloat32Sums | capture::kFlagLastSeen | capture::kFlagFullKeys)) != 0 || f[6] != 0 ||
+        f[7] != 0) {
       throw Fail(chunk_, "FRAM: unknown flags or reserved words set");
     }
 
@@ -78,7 +80,7 @@ class CaptureParser {
     Values(*next("CONT", false), std::uint64_t(n) * 12, "CONT", c.contributions, n);
     Values(*next("KEYW", false), std::uint64_t(n) * 4 * c.key_words, "KEYW", c.keys, std::size_t(n) * c.key_words);
     Values(*next("HOME", false), std::uint64_t(n) * 4, "HOME", c.home_slots, n);
-    Values(*next("IDEN", false), std::uint64_t(n) * 4, "IDEN", c.identities, n);
+    Identities(*next("IDEN", false), c.full_keys, "IDEN", c.identities, n);
     Values(*next("STAT", false), std::uint64_t(n) * 4, "STAT", c.statuses, n);
     Values(*next("PLAC", false), std::uint64_t(n) * 4, "PLAC", c.placements, n);
     if (const auto records = next("RECD", true)) {
@@ -161,10 +163,20 @@ class CaptureParser {
     if (count != 0) std::memcpy(out.data(), payload.data(), payload.size());
   }
 
+  // 64-bit words, or 32-bit words widened.
+  void Identities(std::string_view payload, bool full_keys, const char* type, std::vector<std::uint64_t>& out,
+                  std::size_t count) const {
+    if (full_keys) return Values(payload, std::uint64_t(count) * 8, type, out, count);
+    std::vector<std::uint32_t> words;
+    Values(payload, std::uint64_t(count) * 4, type, words, count);
+    out.assign(words.begin(), words.end());
+  }
+
   CapturedTable Table(std::string_view payload, const Capture& c, const char* type) const {
     const std::uint64_t slots = c.capacity;
     const std::uint64_t sum_bytes = slots * 3 * (c.float32_sums ? 4 : 8);
-    const std::uint64_t expected = slots * 4 + sum_bytes + slots * 8 + (c.last_seen ? slots * 4 : 0);
+    const std::uint64_t tag_bytes = slots * (c.full_keys ? 8 : 4);
+    const std::uint64_t expected = tag_bytes + sum_bytes + slots * 8 + (c.last_seen ? slots * 4 : 0);
     if (payload.size() != expected) {
       throw Fail(chunk_, std::string(type) + ": " + std::to_string(payload.size()) + " bytes, not " +
                              std::to_string(expected) + " for " + std::to_string(slots) + " slots");
@@ -176,7 +188,8 @@ class CaptureParser {
       std::memcpy(out.data(), payload.data() + at, std::size_t(bytes));
       at += std::size_t(bytes);
     };
-    take(t.tags, slots * 4);
+    Identities(payload.substr(0, std::size_t(tag_bytes)), c.full_keys, type, t.tags, std::size_t(slots));
+    at += std::size_t(tag_bytes);
     if (c.float32_sums) {
       take(t.float_sums, sum_bytes);
     } else {

@@ -17,7 +17,7 @@
 namespace hpsf {
 
 struct CapturedTable {
-  std::vector<std::uint32_t> tags;
+  std::vector<std::uint64_t> tags;                       // 64-bit full keys, or 32-bit identities widened
   std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64
   std::vector<std::array<float, 3>> float_sums;          // float32
   std::vector<std::uint64_t> counts;
@@ -38,10 +38,12 @@ struct Capture {
   std::int32_t fixed_point_bits = 0;
   bool float32_sums = false;
   bool last_seen = false;
+  bool full_keys = false;   // identities and tags were written as 64-bit words
   std::string declaration;  // JSON text
   std::vector<std::array<float, 3>> contributions;
   std::vector<std::uint32_t> keys;  // key_words per record
-  std::vector<std::uint32_t> home_slots, identities, statuses, placements;
+  std::vector<std::uint32_t> home_slots, statuses, placements;
+  std::vector<std::uint64_t> identities;  // 64-bit full keys, or 32-bit identities widened
   std::optional<CapturedRecords> hpsf_records;
   std::optional<CapturedTable> before;
   CapturedTable after;

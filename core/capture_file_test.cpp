@@ -39,6 +39,10 @@ struct Arrays {
   std::vector<std::uint32_t> last_seen = {4, 4, 0, 0, 0, 0, 0, 2};
   std::vector<std::uint32_t> tags_before = std::vector<std::uint32_t>(8);
   std::vector<std::uint32_t> occupied = {7, 0, 1};
+  // With full keys: 64-bit identities and tags whose high words are set.
+  std::vector<std::uint64_t> full_identities = {0x1'0000'0011ull, 0x2'0000'0012ull, 13, 0xFFFF'FFFF'0000'0014ull, 15};
+  std::vector<std::uint64_t> full_tags = {0x1'0000'0011ull, 0x2'0000'0012ull, 0, 0, 0, 0, 0, 7};
+  std::vector<std::uint64_t> full_tags_before = std::vector<std::uint64_t>(8);
   std::span<const std::uint32_t> occupied_view = occupied;
   Arrays() {
     std::iota(sums.begin(), sums.end(), std::uint64_t(1) << 40);
@@ -68,7 +72,8 @@ capture::FrameCapture Written(const Arrays& a, const capture::RecordView* record
              a.sums,
              {},
              a.counts,
-             last_seen ? std::span<const std::uint32_t>(a.last_seen) : std::span<const std::uint32_t>()};
+             last_seen ? std::span<const std::uint32_t>(a.last_seen) : std::span<const std::uint32_t>(),
+             {}};
   return c;
 }
 
@@ -83,7 +88,7 @@ std::string Bytes(const std::string& path) {
 std::string FullCaptureBytes() {
   const Arrays a;
   const capture::RecordView records{32, 16, 2, 0.75, a.records};
-  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen};
+  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}};
   const std::string path = TempPath("full.hpsfc");
   capture::FrameCapture c = Written(a, &records, &before, true);
   c.occupied = &a.occupied_view;
@@ -105,7 +110,7 @@ void ExpectInputError(const std::string& bytes, const std::string& expected) {
 TEST(CaptureFile, EveryArrayRoundTripsBitForBit) {
   const Arrays a;
   const capture::RecordView records{32, 16, 2, 0.75, a.records};
-  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen};
+  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}};
   const std::string path = TempPath("round_trip.hpsfc");
   capture::FrameCapture written = Written(a, &records, &before, true);
   written.occupied = &a.occupied_view;
@@ -124,7 +129,8 @@ TEST(CaptureFile, EveryArrayRoundTripsBitForBit) {
   }
   EXPECT_EQ(c.keys, a.keys);
   EXPECT_EQ(c.home_slots, a.home);
-  EXPECT_EQ(c.identities, a.identities);
+  EXPECT_EQ(c.identities, std::vector<std::uint64_t>(a.identities.begin(), a.identities.end()));
+  EXPECT_FALSE(c.full_keys);
   EXPECT_EQ(c.statuses, a.statuses);
   EXPECT_EQ(c.placements, a.placements);
   ASSERT_TRUE(c.hpsf_records);
@@ -135,8 +141,8 @@ TEST(CaptureFile, EveryArrayRoundTripsBitForBit) {
   ASSERT_EQ(c.hpsf_records->records.size(), 5u);
   EXPECT_EQ(std::memcmp(c.hpsf_records->records.data(), a.records.data(), a.records.size()), 0);
   ASSERT_TRUE(c.before);
-  EXPECT_EQ(c.before->tags, a.tags_before);
-  EXPECT_EQ(c.after.tags, a.tags);
+  EXPECT_EQ(c.before->tags, std::vector<std::uint64_t>(a.tags_before.begin(), a.tags_before.end()));
+  EXPECT_EQ(c.after.tags, std::vector<std::uint64_t>(a.tags.begin(), a.tags.end()));
   EXPECT_EQ(c.after.counts, a.counts);
   EXPECT_EQ(c.after.last_seen, a.last_seen);
   ASSERT_EQ(c.after.fixed_sums.size(), 8u);
@@ -197,13 +203,50 @@ TEST(CaptureFile, Float32SumsWithoutTheOptionalChunksRoundTrip) {
   EXPECT_TRUE(read.after.fixed_sums.empty());
 }
 
+// A table of full keys (flag bit 2): identities and tags as 64-bit words, their high words kept; the writer refuses
+// the 32-bit arrays in their place, and a table of the other width.
+TEST(CaptureFile, FullKeysRoundTripAs64BitWords) {
+  const Arrays a;
+  const capture::TableBuffers before{{}, a.sums, {}, a.counts, {}, a.full_tags_before};
+  capture::FrameCapture c = Written(a, nullptr, &before, false);
+  c.full_keys = true;
+  c.identities = {};
+  c.full_identities = a.full_identities;
+  c.after.tags = {};
+  c.after.full_tags = a.full_tags;
+  const std::string path = TempPath("full_keys.hpsfc");
+  ASSERT_EQ(capture::WriteCapture(path, c), "");
+  const Capture read = ReadCapture(path);
+  EXPECT_TRUE(read.full_keys);
+  EXPECT_EQ(read.identities, a.full_identities);
+  EXPECT_EQ(read.after.tags, a.full_tags);
+  ASSERT_TRUE(read.before);
+  EXPECT_EQ(read.before->tags, a.full_tags_before);
+  EXPECT_EQ(read.after.counts, a.counts);
+  capture::FrameCapture narrow = c;
+  narrow.identities = a.identities;  // both widths
+  EXPECT_NE(capture::WriteCapture(TempPath("both.hpsfc"), narrow).find("not one per record"), std::string::npos);
+  capture::FrameCapture narrow_table = c;
+  narrow_table.after.tags = a.tags;
+  EXPECT_NE(capture::WriteCapture(TempPath("both.hpsfc"), narrow_table).find("after.full_tags: not one per slot"),
+            std::string::npos);
+  // The flag cleared (and FRAM's checksum made right): the 64-bit chunks are of the wrong length for 32-bit words,
+  // named, not misread.
+  std::string bytes = Bytes(path);
+  const std::size_t frame = 16 + 16;  // the file's header, FRAM's chunk header
+  bytes[frame + 20] = char(bytes[frame + 20] & ~capture::kFlagFullKeys);
+  const std::uint64_t checksum = Fnv1a(bytes.data() + frame, 32);
+  std::memcpy(bytes.data() + frame + 32, &checksum, 8);
+  ExpectInputError(bytes, "IDEN: 40 bytes, not 20 for the frame's records");
+}
+
 TEST(CaptureFile, TheWriterRefusesArraysOfTheWrongLengthAndLeavesNoFile) {
   Arrays a;
   a.identities.pop_back();
   const std::string path = TempPath("refused.hpsfc");
   std::filesystem::remove(path);
   const std::string error = capture::WriteCapture(path, Written(a, nullptr, nullptr, false));
-  EXPECT_NE(error.find("identities, statuses and placements: not one per record"), std::string::npos) << error;
+  EXPECT_NE(error.find("statuses and placements: not one per record"), std::string::npos) << error;
   EXPECT_FALSE(std::filesystem::exists(path));
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
 }
@@ -279,7 +322,8 @@ TEST(CaptureFile, InconsistentFramesAreNamedBeforeAnythingIsAllocated) {
   ExpectInputError(with_frame_word(bytes, 2, 12), "capacity 12 is not a power of two");
   ExpectInputError(with_frame_word(bytes, 2, 1u << 30), "TAFT: ");
   ExpectInputError(with_frame_word(bytes, 3, 7), "7 key words, not 1 to 6");
-  ExpectInputError(with_frame_word(bytes, 5, 4), "unknown flags");
+  ExpectInputError(with_frame_word(bytes, 5, 8), "unknown flags");
+  ExpectInputError(with_frame_word(bytes, 5, capture::kFlagFullKeys), "IDEN: 20 bytes, not 40 for the frame's records");
   ExpectInputError(with_frame_word(bytes, 5, capture::kFlagLastSeen), "TAFT: ");
 }
 

@@ -36,6 +36,7 @@ inline constexpr std::uint32_t kProbeFailure = 0xFFFFFFFEu;  // probed every can
 // FRAM flags.
 inline constexpr std::uint32_t kFlagFloat32Sums = 1u << 0;  // sums are float32 (else fixed64 at 2^F)
 inline constexpr std::uint32_t kFlagLastSeen = 1u << 1;     // each table carries a last-seen frame per slot
+inline constexpr std::uint32_t kFlagFullKeys = 1u << 2;     // identities and tags are 64-bit words (full keys)
 
 // A chunk's type: four ASCII characters, the first in the lowest byte.
 constexpr std::uint32_t ChunkType(const char (&name)[5]) {
@@ -45,11 +46,12 @@ constexpr std::uint32_t ChunkType(const char (&name)[5]) {
 
 // One state of the table, in the buffer interface's layout (docs/reference/buffer-interface.md).
 struct TableBuffers {
-  std::span<const std::uint32_t> tags;        // capacity: 0 empty, else the stored identity
+  std::span<const std::uint32_t> tags;        // capacity: 0 empty, else the stored identity; empty with full keys
   std::span<const std::uint64_t> fixed_sums;  // 3 x capacity, fixed64 at 2^F; empty with float32 sums
   std::span<const float> float_sums;          // 3 x capacity, float32; empty with fixed64 sums
   std::span<const std::uint64_t> counts;      // capacity
   std::span<const std::uint32_t> last_seen;   // capacity with eviction (the frame a record last reached it), else empty
+  std::span<const std::uint64_t> full_tags;   // capacity, with full keys (64-bit tags), instead of tags
 };
 
 // What a team's camera made of the frame, for a record file's key inputs (hpsf's own key only).
@@ -65,17 +67,21 @@ struct FrameCapture {
   std::uint32_t capacity = 0;
   std::int32_t fixed_point_bits = 0;  // F of fixed64 sums; ignored with float32
   bool float32_sums = false;
+  // A table that stores full keys (key.identity "full"): 64-bit identities and tags, in full_identities and
+  // full_tags instead of identities and tags.
+  bool full_keys = false;
   std::uint32_t key_words = 0;  // 1 to kMaxKeyWords words per key
   // Per record (n records):
   std::span<const float> contributions;       // 3 x n: what the record adds to its cell's sums
   std::span<const std::uint32_t> keys;        // key_words x n: the cell's key, opaque; records of one cell share it
   std::span<const std::uint32_t> home_slots;  // n: the slot its candidates start from
-  std::span<const std::uint32_t> identities;  // n: what a slot holding its cell stores as its tag
-  std::span<const std::uint32_t> statuses;    // n: kKeyed, kNoVertex or kUnkeyable
-  std::span<const std::uint32_t> placements;  // n: a slot, kNotPlaced or kProbeFailure
-  const RecordView* hpsf_records = nullptr;   // optional: the records, when the key is hpsf's (judged at level 1)
-  const TableBuffers* before = nullptr;       // optional: the table before the frame; none means it started empty
-  TableBuffers after;                         // the table after the frame and its passes
+  std::span<const std::uint32_t> identities;  // n: what a slot holding its cell stores as its tag; or, with full keys,
+  std::span<const std::uint64_t> full_identities;  // n of these
+  std::span<const std::uint32_t> statuses;         // n: kKeyed, kNoVertex or kUnkeyable
+  std::span<const std::uint32_t> placements;       // n: a slot, kNotPlaced or kProbeFailure
+  const RecordView* hpsf_records = nullptr;        // optional: the records, when the key is hpsf's (judged at level 1)
+  const TableBuffers* before = nullptr;            // optional: the table before the frame; none means it started empty
+  TableBuffers after;                              // the table after the frame and its passes
   // With compaction (passes.compaction "occupied-list"): the list of occupied slots after the frame, in the engine's
   // order, at most capacity entries; the judge holds it to the table's occupied slots.
   const std::span<const std::uint32_t>* occupied = nullptr;
@@ -118,7 +124,9 @@ class ChunkStream {
 inline std::string CheckTable(const TableBuffers& t, const FrameCapture& c, const char* which) {
   const std::size_t n = c.capacity;
   const std::string name(which);
-  if (t.tags.size() != n) return name + ".tags: " + std::to_string(t.tags.size()) + " words, not the capacity";
+  if (c.full_keys ? t.full_tags.size() != n || !t.tags.empty() : t.tags.size() != n || !t.full_tags.empty()) {
+    return name + (c.full_keys ? ".full_tags" : ".tags") + ": not one per slot, or tags of the other width too";
+  }
   if (t.counts.size() != n) return name + ".counts: " + std::to_string(t.counts.size()) + " words, not the capacity";
   if (c.float32_sums ? t.float_sums.size() != 3 * n || !t.fixed_sums.empty()
                      : t.fixed_sums.size() != 3 * n || !t.float_sums.empty()) {
@@ -129,13 +137,17 @@ inline std::string CheckTable(const TableBuffers& t, const FrameCapture& c, cons
 }
 
 inline std::uint64_t TableBytes(const FrameCapture& c, bool last_seen) {
-  return std::uint64_t(c.capacity) * (4 + 3 * (c.float32_sums ? 4 : 8) + 8 + (last_seen ? 4 : 0));
+  return std::uint64_t(c.capacity) * ((c.full_keys ? 8 : 4) + 3 * (c.float32_sums ? 4 : 8) + 8 + (last_seen ? 4 : 0));
 }
 
 inline void WriteTable(ChunkStream& s, std::uint32_t type, const TableBuffers& t, const FrameCapture& c,
                        bool last_seen) {
   s.Begin(type, TableBytes(c, last_seen));
-  s.Add(t.tags);
+  if (c.full_keys) {
+    s.Add(t.full_tags);
+  } else {
+    s.Add(t.tags);
+  }
   if (c.float32_sums) {
     s.Add(t.float_sums);
   } else {
@@ -156,8 +168,10 @@ inline std::string CaptureProblem(const FrameCapture& c) {
   if (n > 0xFFFFFFFFu) return "more than 2^32 - 1 records";
   if (c.contributions.size() != 3 * n) return "contributions: not 3 per record";
   if (c.keys.size() != std::size_t(c.key_words) * n) return "keys: not key_words per record";
-  if (c.identities.size() != n || c.statuses.size() != n || c.placements.size() != n) {
-    return "identities, statuses and placements: not one per record";
+  if ((c.full_keys ? c.full_identities.size() != n || !c.identities.empty()
+                   : c.identities.size() != n || !c.full_identities.empty()) ||
+      c.statuses.size() != n || c.placements.size() != n) {
+    return "identities (full_identities with full keys), statuses and placements: not one per record";
   }
   if (c.hpsf_records && c.hpsf_records->records.size() != std::size_t(kRecordBytes) * n) {
     return "hpsf_records: not 144 bytes per record";
@@ -186,7 +200,8 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
     out.write(reinterpret_cast<const char*>(&chunks), 4);
     detail::ChunkStream s(out);
     const std::uint32_t n = std::uint32_t(c.home_slots.size());
-    const std::uint32_t flags = (c.float32_sums ? kFlagFloat32Sums : 0u) | (last_seen ? kFlagLastSeen : 0u);
+    const std::uint32_t flags = (c.float32_sums ? kFlagFloat32Sums : 0u) | (last_seen ? kFlagLastSeen : 0u) |
+                                (c.full_keys ? kFlagFullKeys : 0u);
     const std::uint32_t frame[8] = {
         c.frame, n, c.capacity, c.key_words, std::bit_cast<std::uint32_t>(c.fixed_point_bits), flags, 0, 0};
     s.Begin(ChunkType("FRAM"), sizeof frame);
@@ -203,7 +218,11 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
     words("CONT", c.contributions);
     words("KEYW", c.keys);
     words("HOME", c.home_slots);
-    words("IDEN", c.identities);
+    if (c.full_keys) {
+      words("IDEN", c.full_identities);
+    } else {
+      words("IDEN", c.identities);
+    }
     words("STAT", c.statuses);
     words("PLAC", c.placements);
     if (c.hpsf_records) {

@@ -8,6 +8,7 @@
 #include "core/format.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/float_bits.h"
+#include "core/shared/full_key.h"
 
 namespace hpsf {
 namespace {

@@ -304,7 +304,7 @@ capture::FrameCapture FrameOf(const TeamCapture& t) {
   c.identities = t.identities;
   c.statuses = t.statuses;
   c.placements = t.placements;
-  c.after = {t.tags, t.sums, {}, t.counts, {}};
+  c.after = {t.tags, t.sums, {}, t.counts, {}, {}};
   return c;
 }
 

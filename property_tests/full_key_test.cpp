@@ -159,7 +159,8 @@ std::vector<TableViolation> Check(const HashedRun& run, const RecordBatch& batch
                      config.temporal, config.level_seed, config.normal_in_index});
 }
 
-// Per record: its slot's count and sums, or its placement where it has no slot.
+// Per record: its slot's count and sums, or its placement where it has no slot. Not the slot: which of two cells
+// that share a home slot claims it first is the order of atomics, which no run promises.
 std::vector<std::vector<std::uint64_t>> CellsOfRecords(const HashedRun& run) {
   std::vector<std::vector<std::uint64_t>> cells;
   for (const std::uint32_t slot : run.placements) {
@@ -168,7 +169,7 @@ std::vector<std::vector<std::uint64_t>> CellsOfRecords(const HashedRun& run) {
       continue;
     }
     const auto& sums = run.table.fixed_sums[slot];
-    cells.push_back({slot, run.table.counts[slot], sums[0], sums[1], sums[2]});
+    cells.push_back({run.table.counts[slot], sums[0], sums[1], sums[2]});
   }
   return cells;
 }

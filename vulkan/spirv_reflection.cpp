@@ -1,5 +1,8 @@
 #include "vulkan/spirv_reflection.h"
 
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <set>
 
@@ -31,10 +34,10 @@ std::string TypeName(spvc_type type) {
   }
 }
 
-}  // namespace
-
-Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file,
-                              std::uint32_t sums_binding) {
+// The element type of every declaration of a storage buffer at `binding` of set 0 (a shader may alias a binding, e.g.
+// as 32-bit words).
+std::set<std::string> ElementTypes(std::span<const std::uint32_t> spirv, const std::string& file,
+                                   std::uint32_t binding) {
   spvc_context raw_context = nullptr;
   if (spvc_context_create(&raw_context) != SPVC_SUCCESS) throw InputError(file + ": cannot reflect the SPIR-V");
   const std::unique_ptr<spvc_context_s, void (*)(spvc_context)> context(raw_context, spvc_context_destroy);
@@ -51,27 +54,64 @@ Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::s
           SPVC_SUCCESS) {
     throw InputError(file + ": the SPIR-V does not reflect: " + spvc_context_get_last_error_string(raw_context));
   }
-  // Every declaration of the binding (a shader may alias a binding, e.g. as 32-bit words): the element types.
   std::set<std::string> types;
   for (std::size_t b = 0; b < count; ++b) {
     if (spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationDescriptorSet) != 0 ||
-        spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationBinding) != sums_binding) {
+        spvc_compiler_get_decoration(compiler, buffers[b].id, SpvDecorationBinding) != binding) {
       continue;
     }
     const spvc_type block = spvc_compiler_get_type_handle(compiler, buffers[b].base_type_id);
     if (spvc_type_get_num_member_types(block) == 0) continue;
     types.insert(TypeName(spvc_compiler_get_type_handle(compiler, spvc_type_get_member_type(block, 0))));
   }
+  return types;
+}
+
+std::string Listed(const std::set<std::string>& types) {
+  std::string found;
+  for (const std::string& type : types) found += (found.empty() ? "" : " and ") + type;
+  return found;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the SPIR-V file");
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty() || bytes.size() % 4 != 0) {
+    throw InputError(path + ": " + std::to_string(bytes.size()) +
+                     " bytes is not a whole number of 32-bit SPIR-V words");
+  }
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  if (words[0] != 0x07230203u) throw InputError(path + ": byte 0: not SPIR-V (magic number 0x07230203 expected)");
+  return words;
+}
+
+Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file,
+                              std::uint32_t sums_binding) {
+  const std::set<std::string> types = ElementTypes(spirv, file, sums_binding);
   if (types.empty()) {
     throw InputError(file + ": declares no storage buffer at binding " + std::to_string(sums_binding) +
                      " (the sums of the stable buffer interface)");
   }
   if (types == std::set<std::string>{"uint64_t"}) return Accumulation::kFixed64;
   if (types == std::set<std::string>{"float"}) return Accumulation::kFloat32;
-  std::string found;
-  for (const std::string& type : types) found += (found.empty() ? "" : " and ") + type;
-  throw InputError(file + ": binding " + std::to_string(sums_binding) + " (sums) holds " + found +
+  throw InputError(file + ": binding " + std::to_string(sums_binding) + " (sums) holds " + Listed(types) +
                    "; the stable buffer interface takes uint64_t (fixed64) or float (float32)");
+}
+
+TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t tags_binding) {
+  std::set<std::string> types = ElementTypes(spirv, file, tags_binding);
+  TagViews views;
+  views.fingerprint = types.erase("uint") > 0;
+  views.full = types.erase("uint64_t") > 0;
+  if (!types.empty()) {
+    throw InputError(file + ": binding " + std::to_string(tags_binding) + " (tags) holds " + Listed(types) +
+                     "; the stable buffer interface takes uint (fingerprints) or uint64_t (full keys)");
+  }
+  return views;
 }
 
 }  // namespace hpsf

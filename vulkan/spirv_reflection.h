@@ -1,23 +1,39 @@
-// What a user's accumulate shader declares, read from its SPIR-V with SPIRV-Cross's reflection (Debian's
+// What a team's shader declares, read from its SPIR-V with SPIRV-Cross's reflection (Debian's
 // libspirv-cross-c-shared): the element type of binding 3 of set 0, the table's sums, decides the mode the shader
-// accumulates in (uint64_t: fixed64, float: float32). A shader run in the other mode would read its sums with the
-// wrong layout and report nonsense, so a mismatch is refused before anything runs.
+// accumulates in (uint64_t: fixed64, float: float32), and the element types of its tags binding the key identities
+// it reads. A shader run in another mode, or with tags of another width, would read its buffers with the wrong
+// layout and report nonsense, so a mismatch is refused before anything runs.
 #ifndef HPSF_VULKAN_SPIRV_REFLECTION_H
 #define HPSF_VULKAN_SPIRV_REFLECTION_H
 
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/filter_config.h"
 
 namespace hpsf {
+
+// A SPIR-V binary's words; InputError naming the file when it is missing, empty or not SPIR-V.
+std::vector<std::uint32_t> ReadSpirvFile(const std::string& path);
 
 // The mode of the sums binding of `spirv` (the contents of `file`, named in messages): binding 3 of an accumulate
 // shader, 1 of a resolve shader. InputError when the module does not parse, declares no storage buffer at that
 // binding, or declares it with another element type (or with both), naming the types found.
 Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file,
                               std::uint32_t sums_binding = 3);
+
+// The views a shader declares of a table's tags binding (vulkan/shaders/slot_tags.glsl): uint reads 32-bit
+// fingerprints, uint64_t the 64-bit full keys of --key-identity full; hpsf's shaders declare both. A shader run
+// with tags of the width it does not declare would read them with the wrong stride, so VulkanFilter refuses it.
+// InputError when the module does not parse or declares the binding with another element type.
+struct TagViews {
+  bool fingerprint = false;  // uint
+  bool full = false;         // uint64_t
+  bool Declares(KeyIdentity identity) const { return identity == KeyIdentity::kFull ? full : fingerprint; }
+};
+TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t tags_binding);
 
 }  // namespace hpsf
 

@@ -5,8 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <optional>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -176,21 +176,6 @@ void CopyTagsIn(void* to, const std::vector<SlotTag>& tags, KeyIdentity identity
   std::copy(tags.begin(), tags.end(), static_cast<std::uint32_t*>(to));  // a fingerprint table's, each below 2^32
 }
 
-// Reads a SPIR-V binary; InputError naming the file when it is missing, empty or not SPIR-V.
-std::vector<std::uint32_t> ReadSpirvFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the SPIR-V file");
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty() || bytes.size() % 4 != 0) {
-    throw InputError(path + ": " + std::to_string(bytes.size()) +
-                     " bytes is not a whole number of 32-bit SPIR-V words");
-  }
-  std::vector<std::uint32_t> words(bytes.size() / 4);
-  std::memcpy(words.data(), bytes.data(), bytes.size());
-  if (words[0] != 0x07230203u) throw InputError(path + ": byte 0: not SPIR-V (magic number 0x07230203 expected)");
-  return words;
-}
-
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -293,6 +278,13 @@ struct VulkanFilter::Impl {
   std::string compaction_name;
   std::optional<ComputeProgram> compaction;
   DeviceBuffer listed, occupied, next_occupied, occupied_header;
+  // The tag views each team shader that reads tags declares (spirv_reflection.h), held to --key-identity per run.
+  struct TeamTags {
+    std::string name;
+    std::uint32_t binding;
+    TagViews views;
+  };
+  std::vector<TeamTags> team_tags;
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
@@ -339,6 +331,7 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {},
                      {},
                      {},
+                     {},
                      {}}) {
   if (!impl_->custom_accumulate.empty()) {
     impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
@@ -349,6 +342,14 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
   if (!compaction_spv.empty()) {
     impl_->custom_compaction = ReadSpirvFile(compaction_spv);
     impl_->compaction_name = compaction_spv;
+  }
+  // The tags bindings of table_interface.glsl (accumulate), eviction.comp and compaction.comp.
+  const std::tuple<const std::vector<std::uint32_t>&, const std::string&, std::uint32_t> readers[] = {
+      {impl_->custom_accumulate, accumulate_spv, 2},
+      {impl_->custom_eviction, eviction_spv, 0},
+      {impl_->custom_compaction, compaction_spv, 1}};
+  for (const auto& [spirv, name, binding] : readers) {
+    if (!spirv.empty()) impl_->team_tags.push_back({name, binding, DeclaredTagViews(spirv, name, binding)});
   }
 }
 
@@ -415,6 +416,15 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                      (p.custom_resolve_accumulation == Accumulation::kFixed64 ? "uint64_t" : "float") +
                                      ": it resolves " + ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
+  }
+  for (const Impl::TeamTags& team : p.team_tags) {
+    if (!(team.views.fingerprint || team.views.full) || team.views.Declares(config.key_identity)) continue;
+    throw ConfigError("--key-identity",
+                      team.name + " declares its tags (binding " + std::to_string(team.binding) + ") as " +
+                          (team.views.full ? "uint64_t" : "uint") + " only: it reads " +
+                          (team.views.full ? "full keys" : "fingerprints") + ", not the " +
+                          (config.key_identity == KeyIdentity::kFull ? "64-bit full keys" : "32-bit fingerprints") +
+                          " of --key-identity " + ToString(config.key_identity));
   }
   if (keep_table && !(p.table && p.table->capacity == config.capacity && p.table->accumulation == config.accumulation &&
                       p.table->key_identity == config.key_identity)) {

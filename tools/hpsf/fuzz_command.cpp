@@ -22,6 +22,7 @@
 #include "verifier/contract/crosscheck.h"
 #include "verifier/fuzzing/adversarial_case.h"
 #include "verifier/fuzzing/case_shrinker.h"
+#include "vulkan/spirv_reflection.h"
 
 namespace hpsf {
 namespace {
@@ -185,7 +186,16 @@ int Run(FuzzOptions& o, bool options_only) {
   const std::vector<std::string> backends = {"reference", o.backend};
   Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
   // A broken kernel's races must replay from the schedule, which the emulator's fast mode does not promise.
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing};
+  // Full keys only where every team shader that reads tags declares a 64-bit view of them (spirv_reflection.h).
+  bool full_keys = true;
+  for (const auto& [path, binding] : {std::pair{o.vulkan.accumulate_spv, 2u}, std::pair{o.vulkan.eviction_spv, 0u},
+                                      std::pair{o.vulkan.compaction_spv, 1u}}) {
+    if (path.empty()) continue;
+    const TagViews views = DeclaredTagViews(ReadSpirvFile(path), path, binding);
+    if (views.fingerprint || views.full) full_keys &= views.full;
+  }
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing,
+                                    full_keys};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

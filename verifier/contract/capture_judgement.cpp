@@ -38,6 +38,10 @@ void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
       (c.fixed_point_bits < shared::kFixedPointBitsMin || c.fixed_point_bits > shared::kFixedPointBitsMax)) {
     fail("F " + std::to_string(c.fixed_point_bits) + " is outside [-126, 126]");
   }
+  if (c.full_keys != (config.key_identity == KeyIdentity::kFull)) {
+    fail(c.full_keys ? "the identities and tags are 64-bit full keys, but its declaration stores fingerprints"
+                     : "its declaration stores full keys (key.identity full), but the identities and tags are 32-bit");
+  }
   if (config.level_seed.enabled) fail("level seeding (passes.level_change) is not judged from a capture");
   const bool compacting = config.compaction == Compaction::kOccupiedList;
   if (compacting != c.occupied.has_value()) {
@@ -55,9 +59,10 @@ HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConf
   d.probe_limit = config.probe_limit;
   d.probing = config.probing;
   d.fingerprint_bits = config.fingerprint_bits;
+  d.key_identity = config.key_identity;
   d.accumulation = config.accumulation;
   d.fixed_point_bits = fixed_point_bits;
-  d.tags.assign(t.tags.begin(), t.tags.end());
+  d.tags = t.tags;
   d.fixed_sums = t.fixed_sums;
   d.float_sums = t.float_sums;
   d.counts = t.counts;
@@ -125,7 +130,7 @@ bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
 // Whether two tables hold the same cells: the same (tag, count, sums, last-seen) in their occupied slots, whichever
 // slots those are (an unordered run may place a cell's first record in either of two racing slots).
 bool SameCells(const CapturedTable& a, const CapturedTable& b) {
-  using Cell = std::tuple<std::uint32_t, std::uint64_t, std::array<std::uint64_t, 3>, std::array<std::uint32_t, 3>,
+  using Cell = std::tuple<std::uint64_t, std::uint64_t, std::array<std::uint64_t, 3>, std::array<std::uint32_t, 3>,
                           std::uint32_t>;
   const auto cells = [](const CapturedTable& t) {
     std::vector<Cell> out;
@@ -183,7 +188,8 @@ std::vector<KeyResult> CapturedKeys(const Capture& c) {
     key = shared::EmptyKeyResult(c.statuses[i]);
     key.words = {w[0], w[1], w[2], w[3], w[4], w[5]};
     key.slot0 = c.home_slots[i];
-    key.fingerprint = c.identities[i];
+    key.fingerprint = std::uint32_t(c.identities[i]);
+    key.identity_high = std::uint32_t(c.identities[i] >> 32);
   }
   return keys;
 }

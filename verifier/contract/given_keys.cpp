@@ -50,18 +50,21 @@ std::uint64_t JudgeGivenKeys(std::span<const KeyResult> keys, std::span<const Re
       verdict.Fail(record + ": home slot " + std::to_string(k.slot0) + " outside the table of " +
                    std::to_string(capacity) + " slots");
     }
-    if (k.fingerprint == 0) {
+    // A fingerprint is at most `bits` wide; a full key is any 64-bit word but 0 (core/key_identity.h).
+    const SlotTag identity = StoredIdentity(k);
+    const unsigned width = config.key_identity == KeyIdentity::kFull ? 64u : bits;
+    if (identity == 0) {
       verdict.Fail(record + ": identity 0, the empty slot's marker: its cell can never be told from an empty slot");
-    } else if (bits < 32 && (k.fingerprint >> bits) != 0) {
-      verdict.Fail(record + ": identity " + std::to_string(k.fingerprint) + " wider than the declared " +
+    } else if (width < 64 && (identity >> width) != 0) {
+      verdict.Fail(record + ": identity " + std::to_string(identity) + " wider than the declared " +
                    std::to_string(bits) + " bits");
-    } else if (config.eviction.by_priority() && k.fingerprint == shared::kTombstoneTag) {
+    } else if (config.eviction.by_priority() && identity == shared::kTombstoneTag) {
       verdict.Fail(record + ": identity 0xFFFFFFFF, priority eviction's tombstone marker");
     }
     const auto [first, inserted] = first_of.emplace(WordsOf(k), i);
     if (!inserted) {
       const KeyResult& f = keys[first->second];
-      if (f.slot0 != k.slot0 || f.fingerprint != k.fingerprint) {
+      if (f.slot0 != k.slot0 || StoredIdentity(f) != identity) {
         verdict.Fail(record + " and " + RecordName(first->second) + " share their key words but not their " +
                      (f.slot0 != k.slot0 ? "home slot" : "identity") + ": the key is not a function of the cell");
       }

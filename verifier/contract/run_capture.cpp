@@ -11,11 +11,15 @@ namespace {
 
 static_assert(sizeof(std::array<std::uint64_t, 3>) == 24 && sizeof(std::array<float, 3>) == 12);
 
-// The format's tags are 32-bit words: a fingerprint table's tags, each below 2^32, narrowed into `tags32`.
+// A table of full keys as 64-bit tags; a fingerprint table's tags, each below 2^32, narrowed into `tags32`.
 capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_t>& tags32) {
   capture::TableBuffers b;
-  tags32.assign(t.tags.begin(), t.tags.end());
-  b.tags = tags32;
+  if (t.key_identity == KeyIdentity::kFull) {
+    b.full_tags = t.tags;
+  } else {
+    tags32.assign(t.tags.begin(), t.tags.end());
+    b.tags = tags32;
+  }
   b.fixed_sums = {reinterpret_cast<const std::uint64_t*>(t.fixed_sums.data()), 3 * t.fixed_sums.size()};
   b.float_sums = {reinterpret_cast<const float*>(t.float_sums.data()), 3 * t.float_sums.size()};
   b.counts = t.counts;
@@ -27,13 +31,11 @@ capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_
 
 void WriteRunCapture(const std::string& path, const std::string& declaration, const RecordBatch& batch,
                      std::uint32_t frame, const HashedRun& run, const HashTableDump* before) {
-  if (run.table.key_identity == KeyIdentity::kFull) {
-    throw ConfigError("--capture",
-                      "a capture holds 32-bit identities; full keys (--key-identity full) are not captured");
-  }
+  const bool full_keys = run.table.key_identity == KeyIdentity::kFull;
   const std::size_t n = batch.records.size();
   std::vector<float> contributions(3 * n);
-  std::vector<std::uint32_t> keys(6 * n), home(n), identities(n), statuses(n);
+  std::vector<std::uint32_t> keys(6 * n), home(n), identities(full_keys ? 0 : n), statuses(n);
+  std::vector<std::uint64_t> full_identities(full_keys ? n : 0);
   for (std::size_t i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) contributions[3 * i + std::size_t(c)] = batch.records[i].contribution[c];
     const KeyResult& k = run.keys[i];
@@ -41,7 +43,11 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
                                     k.words.level,  k.words.normal, k.words.extra};
     std::copy(words, words + 6, keys.begin() + std::ptrdiff_t(6 * i));
     home[i] = k.slot0;
-    identities[i] = k.fingerprint;
+    if (full_keys) {
+      full_identities[i] = StoredIdentity(k);
+    } else {
+      identities[i] = k.fingerprint;
+    }
     statuses[i] = k.status;
   }
   const capture::RecordView records{batch.width, batch.height, batch.samples_per_pixel, batch.fov_y_radians,
@@ -54,11 +60,13 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   c.capacity = run.table.capacity;
   c.fixed_point_bits = run.table.fixed_point_bits;
   c.float32_sums = run.table.accumulation == Accumulation::kFloat32;
+  c.full_keys = full_keys;
   c.key_words = 6;
   c.contributions = contributions;
   c.keys = keys;
   c.home_slots = home;
   c.identities = identities;
+  c.full_identities = full_identities;
   c.statuses = statuses;
   c.placements = run.placements;
   c.hpsf_records = &records;

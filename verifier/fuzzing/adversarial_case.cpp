@@ -354,16 +354,20 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
                      : draw == 3u    ? ProbeKind::kBucketWindow
                                      : ProbeKind::kLinear;
   if (a.config.probing == ProbeKind::kBucket) a.config.probe_limit = std::bit_floor(a.config.probe_limit);
-  // A case in four stores full keys (core/key_identity.h), from a generator of its own too; where a normal bucket
-  // fits one. Half of those whose cells were drawn move them into one column (the first cell's x and y), where every
-  // key has the same low word, so that a slot of another cell of the column lies in a record's window.
+  // A case in four of the families whose aim is not a fingerprint's stores full keys (core/key_identity.h), where a
+  // normal bucket fits one, from a generator of its own too. Half of the crowded ones move their cells into one
+  // column (the first cell's x and y), where every key has the same low word, so that a slot of another cell of the
+  // column lies in a record's window.
   RecordGenerator identity_draws(
       shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 2u, 0u}, 0xADF2u));
   const bool normal_fits = a.config.normal.mode != NormalMode::kOctahedral || a.config.normal.octahedral_bits <= 1;
-  if (identity_draws.Bits() % 4u == 0u && normal_fits) {
+  const bool fingerprint_aim = a.family == AdversarialFamily::kZeroFingerprint ||
+                               a.family == AdversarialFamily::kSharedFingerprint ||
+                               a.family == AdversarialFamily::kWrappingWindows;
+  if (identity_draws.Bits() % 4u == 0u && normal_fits && !fingerprint_aim && options.full_keys) {
     a.config.key_identity = KeyIdentity::kFull;
     a.config.fingerprint_bits = 32;
-    if (identity_draws.Bits() % 2u == 0u) {
+    if (a.family == AdversarialFamily::kCrowded && identity_draws.Bits() % 2u == 0u) {
       for (glm::ivec3& cell : cells) cell = {cells.front().x, cells.front().y, cell.z};
     }
   }

@@ -55,6 +55,8 @@ struct AdversarialOptions {
   // The probing scheme of every case; unset, each case draws one (half linear, a quarter each bucket and
   // bucket-window), its size from the family (a bucket's rounded down to a power of two).
   std::optional<ProbeKind> probing = std::nullopt;
+  // Whether a case may store full keys (core/key_identity.h): false where a team's shader reads 32-bit tags only.
+  bool full_keys = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

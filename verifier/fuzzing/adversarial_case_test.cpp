@@ -2,6 +2,7 @@
 // family reaching what it is built for in nearly every case (else the fuzzer's power is luck).
 #include "verifier/fuzzing/adversarial_case.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <map>
@@ -169,6 +170,35 @@ TEST(AdversarialCase, AGivenModeHoldsInEveryFamily) {
     }
     EXPECT_EQ(families.size(), std::size_t(kAdversarialFamilies));
   }
+}
+
+// A quarter of the cases of the families whose aim is not a fingerprint's store full keys, and half of the crowded
+// ones among them put two distinct cells whose keys share their low word (a column) into a table.
+TEST(AdversarialCase, FullKeysAreDrawnAndAColumnSharesTheLowWord) {
+  int full = 0, eligible = 0, columns = 0, crowded = 0;
+  for (std::uint64_t run = 0; run < 2000; ++run) {
+    const AdversarialCase c = MakeAdversarialCase(2, run);
+    const bool fingerprint_aim = c.family == AdversarialFamily::kZeroFingerprint ||
+                                 c.family == AdversarialFamily::kSharedFingerprint ||
+                                 c.family == AdversarialFamily::kWrappingWindows;
+    if (c.config.key_identity == KeyIdentity::kFull) {
+      ASSERT_FALSE(fingerprint_aim) << c.ToString();
+      ++full;
+    }
+    eligible += !fingerprint_aim;
+    if (c.config.key_identity != KeyIdentity::kFull || c.family != AdversarialFamily::kCrowded) continue;
+    ++crowded;
+    std::map<std::uint32_t, std::set<Words>> by_low_word;
+    for (const KeyResult& k : Keys(c)) {
+      if (k.status == shared::kKeyed) by_low_word[k.fingerprint].insert(WordsOf(k));
+    }
+    columns += std::any_of(by_low_word.begin(), by_low_word.end(), [](const auto& w) { return w.second.size() >= 2; });
+  }
+  std::printf("full keys in %d of %d cases that may have them; a shared low word in %d of %d crowded ones\n", full,
+              eligible, columns, crowded);
+  EXPECT_GT(full, eligible / 5);
+  EXPECT_LT(full, eligible / 3);
+  EXPECT_GT(columns, crowded / 3);
 }
 
 TEST(AdversarialCase, EachFamilyReachesItsAim) {
