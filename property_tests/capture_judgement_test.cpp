@@ -112,6 +112,15 @@ std::vector<HostCase> EmulatorCases() {
   cases.push_back({"last-seen-claimer-only, 3 frames", Defect::kLastSeenClaimerOnly, stale, 3, 0.0, true});
   cases.push_back({"full-bucket-masked", Defect::kFullBucketMasked, buckets, 1, 0.0, true});
   cases.push_back({"weak-cas-old-value", Defect::kWeakCasOldValue, buckets, 1, 0.25, true});
+  // Full keys: 64-bit identities and tags in the capture (flag bit 2), clean and matched by their low word.
+  FilterConfig full = evicting;
+  full.fingerprint_bits = 32;
+  full.key_identity = KeyIdentity::kFull;
+  cases.push_back({"clean crowded full keys stale:1 ema, 3 frames", Defect::kNone, full, 3});
+  FilterConfig full_one_frame = Crowded();
+  full_one_frame.fingerprint_bits = 32;
+  full_one_frame.key_identity = KeyIdentity::kFull;
+  cases.push_back({"full-key-low-word", Defect::kFullKeyLowWord, full_one_frame, 1, 0.0, true});
   return cases;
 }
 
@@ -403,6 +412,8 @@ TEST(CaptureJudgement, ACaptureThatContradictsItsDeclarationIsBadInput) {
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"eviction": "strict"}})",
        "its declaration evicts, but the tables carry no last-seen frames"},
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"level_change": "seed"}})", "level seeding"},
+      {R"({"hpsf_table": 1, "capacity": 64, "key": {"identity": "full"}})",
+       "its declaration stores full keys (key.identity full), but the identities and tags are 32-bit"},
       {R"({"hpsf_table": 1, "capacity": 64, "passes": {"compaction": "occupied-list"}})",
        "its declaration compacts (passes.compaction occupied-list), but the capture holds no OCCL list"},
       // F 100 with contributions near 1: c x 2^100 is past fixed64, where the conversion is undefined.

@@ -370,6 +370,15 @@ hpsf_add_cli_test(HpsfCrosscheck.AFullKeyShaderMatchingByItsLowWordIsNamed "vulk
 hpsf_add_cli_test(HpsfCrosscheck.AFullKeyWithAFingerprintWidthExits3 "unit;schemes" 3
   "--fingerprint-bits: a full key \\(--key-identity full\\) stores no fingerprint; got 16 bits" ""
   $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --key-identity full --fingerprint-bits 16)
+hpsf_add_cli_test(HpsfCrosscheck.AShaderReadingFingerprintsOnlyIsRefusedFullKeys "vulkan;schemes;untrusted" 3
+  "--key-identity: .*tutorial_accumulate.spv declares its tags \\(binding 2\\) as uint only: it reads fingerprints, not the 64-bit full keys of --key-identity full" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --backends reference,vulkan --key-identity full
+  --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/tutorial_accumulate.spv)
+# Fuzzing it draws fingerprints alone: with full keys it would fail from the first case of them.
+hpsf_add_cli_test(HpsfFuzz.DrawsNoFullKeysForAShaderReadingFingerprintsOnly "vulkan;schemes;untrusted" 0
+  "every table passed the checker and the contract" ""
+  $<TARGET_FILE:hpsf> fuzz --backend vulkan --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/tutorial_accumulate.spv
+  --accum fixed64 --runs 60 --seed 1)
 add_test(NAME HpsfFuzz.FindsAFullKeyMatchedByItsLowWordInTheEmulator
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_full_key -DMAX_RECORDS=2
     "-DARGS=--backend;emulated;--inject-defect;full-key-low-word;--runs;400;--seed;1"

@@ -35,9 +35,9 @@ std::string TypeName(spvc_type type) {
 }
 
 // The element type of every declaration of a storage buffer at `binding` of set 0 (a shader may alias a binding, e.g.
-// as 32-bit words).
-std::set<std::string> ElementTypes(std::span<const std::uint32_t> spirv, const std::string& file,
-                                   std::uint32_t binding) {
+// as 32-bit words); with used_only, of those the entry point uses (statically), not merely declares.
+std::set<std::string> ElementTypes(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t binding,
+                                   bool used_only = false) {
   spvc_context raw_context = nullptr;
   if (spvc_context_create(&raw_context) != SPVC_SUCCESS) throw InputError(file + ": cannot reflect the SPIR-V");
   const std::unique_ptr<spvc_context_s, void (*)(spvc_context)> context(raw_context, spvc_context_destroy);
@@ -46,10 +46,16 @@ std::set<std::string> ElementTypes(std::span<const std::uint32_t> spirv, const s
   spvc_resources resources = nullptr;
   const spvc_reflected_resource* buffers = nullptr;
   std::size_t count = 0;
+  spvc_set used = nullptr;
+  const auto create_resources = [&] {
+    if (!used_only) return spvc_compiler_create_shader_resources(compiler, &resources);
+    if (spvc_compiler_get_active_interface_variables(compiler, &used) != SPVC_SUCCESS) return SPVC_ERROR_INVALID_SPIRV;
+    return spvc_compiler_create_shader_resources_for_active_variables(compiler, &resources, used);
+  };
   if (spvc_context_parse_spirv(raw_context, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS ||
       spvc_context_create_compiler(raw_context, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler) !=
           SPVC_SUCCESS ||
-      spvc_compiler_create_shader_resources(compiler, &resources) != SPVC_SUCCESS ||
+      create_resources() != SPVC_SUCCESS ||
       spvc_resources_get_resource_list_for_type(resources, SPVC_RESOURCE_TYPE_STORAGE_BUFFER, &buffers, &count) !=
           SPVC_SUCCESS) {
     throw InputError(file + ": the SPIR-V does not reflect: " + spvc_context_get_last_error_string(raw_context));
@@ -103,7 +109,8 @@ Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::s
 }
 
 TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t tags_binding) {
-  std::set<std::string> types = ElementTypes(spirv, file, tags_binding);
+  // A shader written against table_interface.glsl declares both views; the ones it uses are the widths it handles.
+  std::set<std::string> types = ElementTypes(spirv, file, tags_binding, true);
   TagViews views;
   views.fingerprint = types.erase("uint") > 0;
   views.full = types.erase("uint64_t") > 0;

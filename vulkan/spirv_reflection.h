@@ -24,9 +24,10 @@ std::vector<std::uint32_t> ReadSpirvFile(const std::string& path);
 Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::string& file,
                               std::uint32_t sums_binding = 3);
 
-// The views a shader declares of a table's tags binding (vulkan/shaders/slot_tags.glsl): uint reads 32-bit
-// fingerprints, uint64_t the 64-bit full keys of --key-identity full; hpsf's shaders declare both. A shader run
-// with tags of the width it does not declare would read them with the wrong stride, so VulkanFilter refuses it.
+// The views a shader uses of a table's tags binding (vulkan/shaders/slot_tags.glsl): uint reads 32-bit
+// fingerprints, uint64_t the 64-bit full keys of --key-identity full; hpsf's shaders use both, by a push constant.
+// A shader run with tags of a width it does not use would read them with the wrong stride, so VulkanFilter refuses
+// it. Declared but unused views (table_interface.glsl declares both) do not count.
 // InputError when the module does not parse or declares the binding with another element type.
 struct TagViews {
   bool fingerprint = false;  // uint
