@@ -73,6 +73,24 @@ void BM_EmulatedFast(benchmark::State& state) {
 }
 BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The same with each key identity (0 fingerprints, 32-bit tags; 1 full keys, 64-bit tags, core/key_identity.h), so
+// that their costs are read side by side in one run.
+void BM_EmulatedKeyIdentity(benchmark::State& state) {
+  const RecordBatch& batch = CornellFrame();
+  FilterConfig config = TableConfig();
+  config.key_identity = state.range(0) == 0 ? KeyIdentity::kFingerprint : KeyIdentity::kFull;
+  EmulatedBackend backend{EmulatorOptions{}};
+  backend.FilterFrame(batch, config);
+  for (auto _ : state) {
+    backend.Reset();
+    benchmark::DoNotOptimize(backend.FilterFrame(batch, config).pixels.data());
+    ReportRun(state, backend.run());
+  }
+  state.SetLabel(ToString(config.key_identity));
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
+}
+BENCHMARK(BM_EmulatedKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // What the Vulkan host adds to every frame: the read-back check of core/read_back_check.h (and the probe statistics
 // it hands on to) over the 2M-record frame's run, one thread, beside the whole backend above.
 void BM_ReadBackCheck(benchmark::State& state) {

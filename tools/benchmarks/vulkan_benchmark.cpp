@@ -70,6 +70,27 @@ void BM_Vulkan(benchmark::State& state) {
 }
 BENCHMARK(BM_Vulkan)->ArgsProduct({{0, 1}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// fixed64 under the staging policy auto with each key identity (0 fingerprints, 32-bit tags; 1 full keys, 64-bit
+// tags), side by side in one run: the accumulate's cost of the wider tags and their read-back.
+void BM_VulkanKeyIdentity(benchmark::State& state) {
+  VulkanFilter* filter = benchmarks::FilterOn(state, StagingPolicy::kAuto);
+  if (!filter) return;
+  FilterConfig config = TableConfig(Accumulation::kFixed64);
+  config.key_identity = state.range(0) == 0 ? KeyIdentity::kFingerprint : KeyIdentity::kFull;
+  state.SetLabel(ToString(config.key_identity));
+  double accumulate_ms = 0, read_back_ms = 0;
+  for (auto _ : state) {
+    VulkanRun run = filter->Run(CornellFrame(), config);
+    benchmark::DoNotOptimize(run.image.pixels.data());
+    accumulate_ms += run.timings.accumulate_ms;
+    read_back_ms += run.timings.read_back_copy_ms + run.timings.read_back_ms;
+  }
+  state.counters["accumulate_ms"] = accumulate_ms / double(state.iterations());
+  state.counters["read_back_ms"] = read_back_ms / double(state.iterations());
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
+}
+BENCHMARK(BM_VulkanKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 }  // namespace
 }  // namespace hpsf
 
