@@ -156,8 +156,13 @@ TableStatistics MeasureStatistics(std::uint64_t records, std::span<const KeyResu
   // Failures under the table's own scheme. Linear probing and aligned buckets have exact theories (upper bounds,
   // since an aliasing key takes no slot); bucket-window's windows pile up against the table's end, which no closed
   // form here follows, so its rates are reported and not judged.
+  // A table of full keys stores each key whole, so no two keys alias: each is inserted with a tag of its own.
+  std::vector<KeyResult> whole = distinct;
+  if (config.key_identity == KeyIdentity::kFull) {
+    for (std::size_t i = 0; i < whole.size(); ++i) whole[i].fingerprint = std::uint32_t(i + 1);
+  }
   for (const std::uint32_t limit : limits) {
-    const AliasTally t = InsertAndCountAliases(distinct, s.capacity, limit, config.fingerprint_bits, config.probing);
+    const AliasTally t = InsertAndCountAliases(whole, s.capacity, limit, config.fingerprint_bits, config.probing);
     RateFigure failures = Rate(t.failed, t.keys, 0.0, alpha);
     if (config.probing == ProbeKind::kLinear) {
       failures.theory = std::min(1.0, window_full(limit));

@@ -73,6 +73,31 @@ TEST(TableStatistics, WarnsWhenProbeFailuresExceedTheTheory) {
   EXPECT_TRUE(failures_exceed) << s.ToJson().dump(2);
 }
 
+// Full keys alias nothing: keys that share their identity's low word (one row of cells, whose full keys differ in
+// their high words alone) fail their probes as distinct keys do, where 32-bit fingerprints equal to those low words
+// would alias them and take no slot.
+TEST(TableStatistics, FullKeysAreInsertedWhole) {
+  GridKeys grid;
+  grid.config.capacity = 1024;  // 3000 keys into 1024 slots: many fail
+  FilterConfig full = grid.config;
+  full.key_identity = KeyIdentity::kFull;
+  std::vector<KeyResult> keys = grid.keys;
+  for (KeyResult& k : keys) {
+    k.slot0 &= 1023u;
+    k.fingerprint = 7u;  // every key's low word alike
+    k.identity_high = k.words.cell_x * 64u + k.words.cell_y + 1u;
+  }
+  const TableStatistics aliased = MeasureTableStatistics(grid.records, keys, grid.config);
+  const TableStatistics whole = MeasureTableStatistics(grid.records, keys, full);
+  ASSERT_FALSE(whole.probe_limits.empty());
+  for (std::size_t i = 0; i < whole.probe_limits.size(); ++i) {
+    // A key that aliases takes no slot and never fails; inserted whole, every key beyond the table's slots fails.
+    EXPECT_GT(whole.probe_limits[i].failures.events, aliased.probe_limits[i].failures.events)
+        << whole.probe_limits[i].probe_limit;
+    EXPECT_GE(whole.probe_limits[i].failures.events, 3000u - 1024u) << whole.probe_limits[i].probe_limit;
+  }
+}
+
 // murmur3's 32-bit finalizer: slot0s spread as a uniform hash would, independent of the key path's own hash.
 std::uint32_t Mix(std::uint32_t h) {
   h ^= h >> 16;
