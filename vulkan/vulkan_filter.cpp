@@ -278,7 +278,7 @@ struct VulkanFilter::Impl {
   std::string compaction_name;
   std::optional<ComputeProgram> compaction;
   DeviceBuffer listed, occupied, next_occupied, occupied_header;
-  // The tag views each team shader that reads tags declares (spirv_reflection.h), held to --key-identity per run.
+  // The tag views each team shader that reads tags uses (spirv_reflection.h), held to --key-identity per run.
   struct TeamTags {
     std::string name;
     std::uint32_t binding;
