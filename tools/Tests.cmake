@@ -105,6 +105,10 @@ hpsf_add_cli_test(HpsfCrosscheck.AResolveOfTheOtherModeExits3 vulkan 3
 # hpsf stats on a team's own keys from a capture (written by a second writer, from the format's description alone):
 # its home slots and identities against uniform hashing; the capture's table is its declaration's, so a filter
 # option beside it is bad input.
+# A table of full keys aliases nothing: stats says its alias rates are what fingerprints would give.
+hpsf_add_cli_test(HpsfStats.FullKeysAliasRatesAreWhatFingerprintsWouldGive "unit;schemes" 0
+  "fingerprint aliases per width \\(probe limit 16; what fingerprints would alias: this table stores full keys\\)" ""
+  $<TARGET_FILE:hpsf> stats furnace --size 64x64 --key-identity full)
 hpsf_add_cli_test(HpsfStats.ATeamsCapturedKeysAgainstUniformHashing "unit;schemes" 0
   "24 records, 24 keyed, 21 distinct keys; capacity 16.*under bucket probing.*jitter tests: none \\(the keys are not hpsf's\\)"
   "" $<TARGET_FILE:hpsf> stats ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_capture/team-keys-buckets.hpsfc)

@@ -55,8 +55,10 @@ void PrintText(const TableStatistics& s, const std::string& input) {
       ToString(s.probing).c_str(), s.probing == ProbeKind::kBucketWindow ? "; bucket-window has none, not judged" : "",
       "limit", "rate", "bound", "interval");
   for (const ProbeLimitFigure& f : s.probe_limits) PrintRate(f.probe_limit, f.failures);
-  std::printf("fingerprint aliases per width (probe limit %u):\n  %-9s %12s %12s   %s\n", s.probe_limit, "bits", "rate",
-              "predicted", "interval");
+  std::printf(
+      "fingerprint aliases per width (probe limit %u%s):\n  %-9s %12s %12s   %s\n", s.probe_limit,
+      s.key_identity == KeyIdentity::kFull ? "; what fingerprints would alias: this table stores full keys" : "",
+      "bits", "rate", "predicted", "interval");
   for (const AliasFigure& f : s.fingerprints) PrintRate(f.fingerprint_bits, f.aliases);
   std::printf("  32 bits extrapolated: %.3g aliases per key\n", s.extrapolated_alias_rate_32);
   std::printf("records per cell: max %llu;", (unsigned long long)s.max_records_per_cell);

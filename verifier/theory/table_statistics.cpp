@@ -115,6 +115,7 @@ TableStatistics MeasureStatistics(std::uint64_t records, std::span<const KeyResu
   s.probe_limit = config.probe_limit;
   s.probing = config.probing;
   s.fingerprint_bits = config.fingerprint_bits;
+  s.key_identity = config.key_identity;
 
   std::vector<std::uint64_t> per_key;
   const std::vector<KeyResult> distinct = DistinctKeys(keys, &per_key);

@@ -46,6 +46,8 @@ struct AliasFigure {
 struct TableStatistics {
   std::uint64_t records = 0, keyed_records = 0, distinct_keys = 0;
   std::uint32_t capacity = 0, probe_limit = 0, fingerprint_bits = 0;
+  // With full keys the table aliases nothing: the alias rates are what fingerprints of each width would give.
+  KeyIdentity key_identity = KeyIdentity::kFingerprint;
   ProbeKind probing = ProbeKind::kLinear;
   double load = 0.0;  // distinct keys / capacity
   // Probes of a successful search per key, inserted without a limit (empty when the keys fill the table).
