@@ -31,6 +31,7 @@ struct FrameTimings {
   double accumulate_ms = 0;       // clearing or preparing the table and the adds
   double level_seed_ms = 0;       // the seed pass of resolution changes (core/level_seed.h)
   double compaction_ms = 0;       // the gather into the occupied list (core/compaction.h)
+  double settle_ms = 0;           // packed-decimal's settle: frame counters and halving (core/shared/packed_sums.h)
   double temporal_ms = 0;         // the temporal blend (core/temporal.h)
   double eviction_ms = 0;         // the evict and reclaim passes (core/eviction.h)
   double resolve_ms = 0;          // the table's dump and the resolve into pixels

@@ -46,16 +46,6 @@ NormalKey ParseNormalKey(const std::string& text) {
   throw ConfigError("--normal", "expected none, sign or octahedral:B; got '" + text + "'");
 }
 
-Accumulation ParseAccumulation(const std::string& text) {
-  if (text == "fixed64") return Accumulation::kFixed64;
-  if (text == "float32") return Accumulation::kFloat32;
-  throw ConfigError("--accum", "expected fixed64 or float32; got '" + text + "'");
-}
-
-std::string ToString(Accumulation accumulation) {
-  return accumulation == Accumulation::kFixed64 ? "fixed64" : "float32";
-}
-
 void FilterConfig::Validate() const {
   if (!(std::isfinite(filter_width_px) && filter_width_px > 0.0f)) {
     throw ConfigError("--filter-width",
@@ -144,6 +134,21 @@ void FilterConfig::Validate() const {
   }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
+  }
+  // packed-decimal sums keep their own window, by halving (core/shared/packed_sums.h). The passes that rewrite a
+  // cell from fixed64 or float32 sums are not built for them yet.
+  if (accumulation == Accumulation::kPackedDecimal) {
+    if (fixed_point_bits) {
+      throw ConfigError("--fixed-point-bits", "applies to fixed64; packed-decimal sums are at the scale 1000");
+    }
+    if (temporal.blends()) {
+      throw ConfigError("--temporal", "packed-decimal sums integrate and halve; " + temporal.ToString() +
+                                          " blends fixed64 or float32 sums only");
+    }
+    if (level_seed.enabled) throw ConfigError("--level-change", "seeds fixed64 or float32 sums only, not packed-decimal");
+    if (eviction.by_priority()) {
+      throw ConfigError("--eviction", "priority is built for fixed64 and float32 counts, not packed-decimal's");
+    }
   }
 }
 

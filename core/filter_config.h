@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/accumulation.h"
 #include "core/compaction.h"
 #include "core/effect_plan.h"
 #include "core/eviction.h"
@@ -18,7 +19,6 @@
 namespace hpsf {
 
 enum class NormalMode { kNone, kSign, kOctahedral };
-enum class Accumulation { kFixed64, kFloat32 };
 
 struct NormalKey {
   NormalMode mode = NormalMode::kSign;
@@ -28,8 +28,6 @@ struct NormalKey {
 
 // Parses "none", "sign" or "octahedral:B"; a ConfigError naming --normal otherwise.
 NormalKey ParseNormalKey(const std::string& text);
-Accumulation ParseAccumulation(const std::string& text);
-std::string ToString(Accumulation accumulation);
 
 inline constexpr std::uint32_t kMaxFrames = 1u << 20;  // --frames
 

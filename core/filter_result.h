@@ -17,10 +17,11 @@ inline constexpr std::uint32_t kNoCell = 0xFFFFFFFFu;
 // One cell of the table: its key words and what was accumulated into it.
 struct TableCell {
   std::array<std::uint32_t, 6> key;
-  std::array<std::uint64_t, 3> fixed_sum{};  // fixed64: exact sums with F fraction bits
+  std::array<std::uint64_t, 3> fixed_sum{};  // fixed64: exact sums with F fraction bits; packed-decimal: at 1000
   std::array<float, 3> float_sum{};          // float32: sums in record order
   std::uint64_t count = 0;
   std::uint32_t last_seen = 0;  // the last frame a record was added to the cell (core/eviction.h)
+  std::uint32_t frames = 0;     // packed-decimal: the frames the cell has lived, saturating (core/shared/packed_sums.h)
 };
 
 struct FilterStats {
@@ -34,8 +35,9 @@ struct FilterStats {
   std::uint64_t max_records_per_cell = 0;
   double mean_records_per_cell = 0.0;
   int fixed_point_bits = 0;             // F of fixed64 for this batch
-  std::uint64_t fixed_point_wraps = 0;  // fixed64 adds whose cell sum wrapped (a sequence outgrew its F)
-  std::uint64_t count_wraps = 0;        // adds whose 64-bit count wrapped (docs/design/defects.md, D12)
+  std::uint64_t fixed_point_wraps = 0;  // integer adds whose cell sum wrapped (fixed64: a sequence outgrew its F)
+  std::uint64_t count_wraps = 0;        // adds whose count wrapped (64-bit, D12; packed-decimal's 24 bits)
+  std::uint64_t cells_halved = 0;       // packed-decimal cells the frame's settle halved
   std::uint64_t cells_evicted = 0;      // cells the frame's eviction removed (core/eviction.h)
   std::uint64_t cells_seeded = 0;       // cells new in the frame seeded from another level (core/level_seed.h)
 };

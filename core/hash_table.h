@@ -35,9 +35,11 @@ struct HashTableDump {
   Accumulation accumulation = Accumulation::kFixed64;
   int fixed_point_bits = 0;
   std::vector<SlotTag> tags;
-  std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64
+  std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64, and packed-decimal's 32-bit words
   std::vector<std::array<float, 3>> float_sums;          // float32
-  std::vector<std::uint64_t> counts;
+  std::vector<std::uint64_t> counts;                     // packed-decimal: the count word's 24-bit count
+  // packed-decimal (core/shared/packed_sums.h): the frame counter of each slot's count word. Empty otherwise.
+  std::vector<std::uint32_t> frame_counters;
   // With eviction (core/eviction.h): the last frame a record was added to each slot. A slot whose tag is set
   // and whose count is 0 is a tombstone: an evicted cell that still holds its tag, so that a lookup probing past
   // it never stops at a hole (docs/design/defects.md, D7). Empty without eviction.

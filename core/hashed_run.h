@@ -18,12 +18,13 @@ struct HashedRun {
   std::vector<KeyResult> keys;            // per record
   std::vector<std::uint32_t> placements;  // per record: a slot, kProbeFailure or kNotPlaced
   std::uint64_t probe_failures = 0;
-  std::uint64_t wraps = 0;                   // fixed64 adds whose sum wrapped
-  std::uint64_t count_wraps = 0;             // adds whose 64-bit count wrapped (docs/design/defects.md, D12)
+  std::uint64_t wraps = 0;                   // integer adds whose sum wrapped (64 bits, or packed-decimal's 32)
+  std::uint64_t count_wraps = 0;             // adds whose count wrapped (64 bits, D12, or packed-decimal's 24)
   std::vector<std::uint64_t> probe_lengths;  // [k]: records placed after probing k + 1 slots
   std::uint64_t evicted = 0;                 // live slots this frame's eviction made tombstones
   std::uint64_t tombstones = 0;              // tombstones left after the frame (core/hash_table.h)
   std::uint64_t seeded = 0;                  // new slots seeded from another level (core/level_seed.h)
+  std::uint64_t halved = 0;                  // packed-decimal slots the settle halved (core/shared/packed_sums.h)
   // Where the backend chooses the interleaving (the faithful emulator): a hash of the schedule's trace, equal on
   // two runs of one seed; 0 elsewhere. And in float32 there, for slot s and channel c, [3 s + c] lists the
   // records in the order their adds applied, and with --level-change seed the slots a seed was added to (after

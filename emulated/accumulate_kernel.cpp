@@ -54,16 +54,17 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
     co_return;
   }
   for (int c = 0; c < 3; ++c) {
-    if (args.accumulation == Accumulation::kFixed64) {
+    if (IntegerSums(args.accumulation)) {
       const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
       const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
-      if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
+      if (SumAddWrapped(args.accumulation, old, add)) co_await ctx.AtomicAdd(b.wraps, 0, 1);
     } else {
       co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c, std::bit_cast<std::uint32_t>(r.contribution[c]));
     }
   }
   // A count of 2^64 - 1 wraps to 0 (D12): no frame sequence gets there, but a table loaded with one can.
-  if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) co_await ctx.AtomicAdd(b.wraps, 1, 1);
+  // packed-decimal's count word adds 1 too; its 24-bit count carries into the frame counter at 2^24.
+  if (CountAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.counts, slot, 1))) co_await ctx.AtomicAdd(b.wraps, 1, 1);
   if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
   co_await ctx.Store(b.placements, i, slot);
 }

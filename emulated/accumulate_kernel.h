@@ -21,8 +21,9 @@ namespace hpsf {
 struct TableBuffers {
   std::uint32_t tags;        // 32-bit
   std::uint32_t sums;        // three channels per slot, interleaved (slot * 3 + channel), so one slot's sums
-                             // share a cache line: 64-bit (fixed64) or 32-bit float bits (float32)
-  std::uint32_t counts;      // 64-bit
+                             // share a cache line: 64-bit (fixed64), 32-bit float bits (float32) or 32-bit
+                             // integers at 1000 (packed-decimal)
+  std::uint32_t counts;      // 64-bit; packed-decimal: 32-bit, the count word (core/shared/packed_sums.h)
   std::uint32_t placements;  // 32-bit, one per record
   std::uint32_t wraps;       // 64-bit, two words: fixed64 adds whose sum wrapped, adds whose count wrapped
   std::uint32_t last_seen;   // 32-bit per slot, with eviction only: the last frame a record was added
@@ -40,7 +41,7 @@ struct AccumulateArgs {
   ProbeKind probing = ProbeKind::kLinear;
   std::uint32_t fingerprint_bits = 32;  // the keys' fingerprints are reduced already; broken kernels reduce their own
   Accumulation accumulation = Accumulation::kFixed64;
-  float fixed_point_scale = 1.0f;  // 2^F
+  float fixed_point_scale = 1.0f;  // 2^F, or 1000 for packed-decimal (SumScale)
   bool track_last_seen = false;    // with eviction: store `frame` into buffers.last_seen of every slot added to
   std::uint32_t frame = 0;
   bool claim_tombstones = false;  // with priority eviction (core/shared/table_params.h)
@@ -53,6 +54,18 @@ struct AccumulateArgs {
   // own, after this one); the variant that evicts while records are inserted does.
   const EvictionArgs* eviction = nullptr;
 };
+
+// Whether an integer add of `add` to a sum word that held `old` wrapped: at 64 bits, or packed-decimal's 32.
+inline bool SumAddWrapped(Accumulation accumulation, std::uint64_t old, std::uint64_t add) {
+  if (accumulation == Accumulation::kPackedDecimal) return ((old + add) & 0xFFFFFFFFu) < old;
+  return old + add < old;
+}
+// Whether the add of 1 to a count that held `old` wrapped: a 64-bit count at 2^64 - 1, packed-decimal's 24 bits
+// at 2^24 - 1 (the carry lands in the frame counter).
+inline bool CountAddWrapped(Accumulation accumulation, std::uint64_t old) {
+  if (accumulation == Accumulation::kPackedDecimal) return (old & 0x00FFFFFFu) == 0x00FFFFFFu;
+  return old == ~std::uint64_t(0);
+}
 
 simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args);
 

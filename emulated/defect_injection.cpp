@@ -42,7 +42,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
                                   ? shared::FullFingerprint(key.words) >> (32u - args.fingerprint_bits)
                                   : StoredIdentity(key);
   const Record& r = args.records[i];
-  const bool fixed = args.accumulation == Accumulation::kFixed64;
+  const bool fixed = IntegerSums(args.accumulation);
   bool placed = false;
   const shared::ProbeScheme scheme = args.scheme();
   // SHaRC #4: a record whose candidates are all taken is given the "invalid" index masked into a slot, and adds
@@ -98,7 +98,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
                                       ? std::uint64_t(r.contribution[c] * args.fixed_point_scale)
                                       : shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
         const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, index, add);
-        if (old + add < old) co_await ctx.AtomicAdd(b.wraps, 0, 1);
+        if (SumAddWrapped(args.accumulation, old, add)) co_await ctx.AtomicAdd(b.wraps, 0, 1);
       } else {
         co_await ctx.AtomicAddFloat(b.sums, index, std::bit_cast<std::uint32_t>(r.contribution[c]));
       }
@@ -129,7 +129,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
         if (seen == count) break;
         count = seen;
       }
-    } else if (co_await ctx.AtomicAdd(b.counts, slot, 1) == ~std::uint64_t(0)) {
+    } else if (CountAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.counts, slot, 1))) {
       co_await ctx.AtomicAdd(b.wraps, 1, 1);
     }
     // Last-seen by every writer; the defect stores it from the record that claimed the slot only.

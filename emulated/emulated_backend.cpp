@@ -28,6 +28,7 @@ FrameTimings EmulatedBackend::LastFrameTimings() const {
           .accumulate_ms = t.clear_ms + t.accumulate_ms,
           .level_seed_ms = t.level_seed_ms,
           .compaction_ms = t.compaction_ms,
+          .settle_ms = t.settle_ms,
           .temporal_ms = t.temporal_ms,
           .eviction_ms = t.eviction_ms,
           .resolve_ms = t.read_back_ms + t.resolve_ms,

@@ -16,9 +16,11 @@
 #include "core/parallel_for.h"
 #include "core/prefetch.h"
 #include "core/resolve.h"
+#include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 #include "emulated/compaction_kernels.h"
 #include "emulated/level_seed_kernel.h"
+#include "emulated/packed_settle_kernel.h"
 #include "emulated/temporal_kernel.h"
 
 namespace hpsf {
@@ -96,12 +98,16 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.fingerprint_bits = config.fingerprint_bits;
   table.key_identity = config.key_identity;
   table.accumulation = config.accumulation;
-  table.fixed_point_bits = previous                  ? previous->fixed_point_bits
+  const bool packed = config.accumulation == Accumulation::kPackedDecimal;  // SHaRC's layout, F unused
+  table.fixed_point_bits = packed                    ? 0
+                           : previous                ? previous->fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
                                                      : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
-  if (!fixed) RequireFloat32Range(table.fixed_point_bits);
-  if (fixed) RequireFixedPointConverts(entering, table.fixed_point_bits);
+  const bool fixed = IntegerSums(config.accumulation);  // fixed64 or packed-decimal
+  const bool wide_sums = config.accumulation == Accumulation::kFixed64;
+  if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(table.fixed_point_bits);
+  if (wide_sums) RequireFixedPointConverts(entering, table.fixed_point_bits);
+  if (packed) RequirePackedDecimalConverts(entering);
 
   run.timings.fixed_point_ms = clock.LapMs();
   simt::DeviceMemory memory;
@@ -114,15 +120,17 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   args.probing = config.probing;
   args.fingerprint_bits = config.fingerprint_bits;
   args.accumulation = config.accumulation;
-  args.fixed_point_scale = shared::PowerOfTwo(table.fixed_point_bits);
+  args.fixed_point_scale = SumScale(config.accumulation, table.fixed_point_bits);
   TableBuffers& b = args.buffers;
   // A fingerprint fits 32 bits, a full key needs 64 (core/key_identity.h).
   const bool full_keys = config.key_identity == KeyIdentity::kFull;
   b.tags = full_keys ? memory.Allocate64("tags", config.capacity, std::move(kept.tags))
                      : memory.Allocate32("tags", config.capacity, std::move(kept.device_tags32));
-  b.sums = fixed ? memory.Allocate64("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums64))
-                 : memory.Allocate32("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums32));
-  b.counts = memory.Allocate64("counts", config.capacity, std::move(kept.counts));
+  b.sums = wide_sums ? memory.Allocate64("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums64))
+                     : memory.Allocate32("sums", std::size_t(config.capacity) * 3, std::move(kept.device_sums32));
+  // packed-decimal's count word is 32-bit (core/shared/packed_sums.h).
+  b.counts = packed ? memory.Allocate32("counts", config.capacity)
+                    : memory.Allocate64("counts", config.capacity, std::move(kept.counts));
   b.placements = memory.Allocate32("placements", n, std::move(kept.placements));
   b.wraps = memory.Allocate64("wraps", 2);
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
@@ -156,15 +164,30 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     } else {
       std::copy(previous->tags.begin(), previous->tags.end(), memory.Words32(b.tags).begin());  // each below 2^32
     }
-    std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
+    if (packed) {
+      if (previous->frame_counters.size() != config.capacity) {
+        throw InputError("the previous frame's packed-decimal table has no frame counter per slot");
+      }
+      const std::span<std::uint32_t> words = memory.Words32(b.counts);
+      for (std::size_t s = 0; s < config.capacity; ++s) {
+        words[s] = shared::PackCountWord(std::uint32_t(previous->counts[s]), previous->frame_counters[s]);
+      }
+    } else {
+      std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
+    }
     if (blending)
       std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(temporal.previous_counts).begin());
     if (tracking)
       std::copy(previous->last_seen.begin(), previous->last_seen.end(), memory.Words32(b.last_seen).begin());
-    if (fixed) {
+    if (wide_sums) {
       const std::span<std::uint64_t> sums = memory.Words64(b.sums);
       for (std::size_t s = 0; s < config.capacity; ++s) std::copy_n(previous->fixed_sums[s].begin(), 3, &sums[s * 3]);
       if (blending) std::copy(sums.begin(), sums.end(), memory.Words64(temporal.previous_sums).begin());
+    } else if (packed) {  // each below 2^32
+      const std::span<std::uint32_t> sums = memory.Words32(b.sums);
+      for (std::size_t s = 0; s < config.capacity; ++s) {
+        for (int c = 0; c < 3; ++c) sums[s * 3 + c] = std::uint32_t(previous->fixed_sums[s][c]);
+      }
     } else {
       const std::span<std::uint32_t> sums = memory.Words32(b.sums);
       for (std::size_t s = 0; s < config.capacity; ++s) {
@@ -317,6 +340,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
         });
   }
   run.timings.compaction_ms = compacting ? clock.LapMs() : 0.0;
+  if (packed) {
+    const PackedSettleArgs settle{b, memory.Allocate64("halved", 1), list};
+    launch_per_slot([&](simt::ThreadContext& ctx) { return PackedSettleKernel(ctx, settle); });
+    run.halved = memory.Words64(settle.halved)[0];
+  }
+  run.timings.settle_ms = packed ? clock.LapMs() : 0.0;
   if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
   run.timings.temporal_ms = blending ? clock.LapMs() : 0.0;
   if (evicting) {
@@ -351,7 +380,17 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     });
     kept.device_tags32 = memory.TakeWords32(b.tags);
   }
-  table.counts = memory.TakeWords64(b.counts);
+  if (packed) {
+    const std::span<const std::uint32_t> words = std::as_const(memory).Words32(b.counts);
+    table.counts.resize(config.capacity);
+    table.frame_counters.resize(config.capacity);
+    for (std::size_t s = 0; s < config.capacity; ++s) {
+      table.counts[s] = shared::PackedCount(words[s]);
+      table.frame_counters[s] = shared::PackedFrames(words[s]);
+    }
+  } else {
+    table.counts = memory.TakeWords64(b.counts);
+  }
   run.placements = memory.TakeWords32(b.placements);
   run.wraps = memory.Words64(b.wraps)[0];
   run.count_wraps = memory.Words64(b.wraps)[1];
@@ -360,20 +399,24 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   } else {
     table.float_sums = ReuseForOverwrite(kept.float_sums, config.capacity);
   }
-  const std::span<const std::uint64_t> fixed_words = std::as_const(memory).Words64(b.sums);
-  const std::span<const std::uint32_t> float_words = std::as_const(memory).Words32(b.sums);
+  const std::span<const std::uint64_t> fixed_words =
+      wide_sums ? std::as_const(memory).Words64(b.sums) : std::span<const std::uint64_t>();
+  const std::span<const std::uint32_t> narrow_words =
+      wide_sums ? std::span<const std::uint32_t>() : std::as_const(memory).Words32(b.sums);
   ParallelFor(config.capacity, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       for (int c = 0; c < 3; ++c) {
-        if (fixed) {
+        if (wide_sums) {
           table.fixed_sums[s][c] = fixed_words[std::size_t(s) * 3 + c];
+        } else if (packed) {
+          table.fixed_sums[s][c] = narrow_words[std::size_t(s) * 3 + c];
         } else {
-          table.float_sums[s][c] = std::bit_cast<float>(float_words[std::size_t(s) * 3 + c]);
+          table.float_sums[s][c] = std::bit_cast<float>(narrow_words[std::size_t(s) * 3 + c]);
         }
       }
     }
   });
-  if (fixed) {
+  if (wide_sums) {
     kept.device_sums64 = memory.TakeWords64(b.sums);
   } else {
     kept.device_sums32 = memory.TakeWords32(b.sums);
@@ -421,8 +464,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
               const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, slot);
               if (index != shared::kNoCandidate) ++tally.probe_lengths[index];
               for (int c = 0; c < 3; ++c) {
-                const double channel_sum =
-                    fixed ? double(table.fixed_sums[slot][c]) * unscale : double(table.float_sums[slot][c]);
+                const double channel_sum = packed ? double(table.fixed_sums[slot][c]) / double(shared::kPackedDecimalScale)
+                                           : fixed ? double(table.fixed_sums[slot][c]) * unscale
+                                                   : double(table.float_sums[slot][c]);
                 average[c] = channel_sum / double(table.counts[slot]);
               }
             }

@@ -44,6 +44,7 @@ struct EmulatedTimings {
   double accumulate_ms = 0;   // the accumulate launch
   double level_seed_ms = 0;   // the seed launch of resolution changes; 0 without --level-change seed
   double compaction_ms = 0;   // the gather launch of --compaction occupied-list (its prune counts as eviction's)
+  double settle_ms = 0;       // packed-decimal's settle launch; 0 for other sums
   double temporal_ms = 0;     // the temporal blend launch; 0 when integrating
   double eviction_ms = 0;     // the evict and reclaim launches; 0 without eviction
   double read_back_ms = 0;    // the dump of the table

@@ -14,6 +14,7 @@
 #include "core/level_seed.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 
 namespace hpsf {
@@ -79,6 +80,19 @@ void SeedNewCells(const FilterConfig& config, const FilterResult* previous,
   }
 }
 
+// packed-decimal's settle (core/shared/packed_sums.h) of every cell, after the frame's adds.
+void SettleCells(FilterResult& result) {
+  for (TableCell& cell : result.cells) {
+    const glm::uvec4 before(cell.fixed_sum[0], cell.fixed_sum[1], cell.fixed_sum[2],
+                            shared::PackCountWord(std::uint32_t(cell.count), cell.frames));
+    result.stats.cells_halved += cell.count > 0 && shared::PackedNeedsHalving(before);
+    const glm::uvec4 after = shared::SettlePacked(before);
+    cell.fixed_sum = {after.x, after.y, after.z};
+    cell.count = shared::PackedCount(after.w);
+    cell.frames = shared::PackedFrames(after.w);
+  }
+}
+
 }  // namespace
 
 FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous,
@@ -91,13 +105,16 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
   FilterResult result;
   FilterStats& stats = result.stats;
   stats.records = batch.records.size();
-  stats.fixed_point_bits = previous                  ? previous->stats.fixed_point_bits
+  const bool packed = config.accumulation == Accumulation::kPackedDecimal;
+  stats.fixed_point_bits = packed                    ? 0
+                           : previous                ? previous->stats.fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
                                                      : ChooseFixedPointBits(batch.records, config.frames);
-  const float scale = shared::PowerOfTwo(stats.fixed_point_bits);
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
-  if (!fixed) RequireFloat32Range(stats.fixed_point_bits);
-  if (fixed) RequireFixedPointConverts(batch.records, stats.fixed_point_bits);
+  const float scale = SumScale(config.accumulation, stats.fixed_point_bits);
+  const bool fixed = IntegerSums(config.accumulation);
+  if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(stats.fixed_point_bits);
+  if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(batch.records, stats.fixed_point_bits);
+  if (packed) RequirePackedDecimalConverts(batch.records);
 
   std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
   if (previous) {
@@ -131,25 +148,35 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
       if (fixed) {
         const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], scale);
         cell.fixed_sum[c] += add;
+        if (packed) cell.fixed_sum[c] &= 0xFFFFFFFFu;  // a 32-bit word, as the device's
         stats.fixed_point_wraps += cell.fixed_sum[c] < add;  // only a sequence brighter than its F allowed
       } else {
         cell.float_sum[c] += r.contribution[c];
       }
     }
-    stats.count_wraps += ++cell.count == 0;
+    if (packed) {  // the count's 24 bits carry into the frame counter, as the device's add of 1 to the word
+      const std::uint32_t word = shared::PackCountWord(std::uint32_t(cell.count), cell.frames) + 1u;
+      cell.count = shared::PackedCount(word);
+      cell.frames = shared::PackedFrames(word);
+      stats.count_wraps += cell.count == 0;
+    } else {
+      stats.count_wraps += ++cell.count == 0;
+    }
     cell.last_seen = config.frame;
     result.placement[i] = it->second;
   }
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
   if (planned.level_seed) SeedNewCells(config, previous, cell_of_key, result);
   if (planned.temporal) BlendCells(config, previous ? previous->cells : std::vector<TableCell>{}, result);
+  if (packed) SettleCells(result);
   if (planned.eviction) EvictCells(config, result);
 
   std::vector<glm::dvec3> averages(result.cells.size());
   for (std::size_t c = 0; c < result.cells.size(); ++c) {
     const TableCell& cell = result.cells[c];
     for (int k = 0; k < 3; ++k) {
-      const double sum = fixed ? FromFixedPoint(cell.fixed_sum[k], stats.fixed_point_bits) : double(cell.float_sum[k]);
+      const double sum = fixed ? IntegerSumValue(cell.fixed_sum[k], config.accumulation, stats.fixed_point_bits)
+                               : double(cell.float_sum[k]);
       averages[c][k] = sum / double(cell.count);
     }
     stats.max_records_per_cell = std::max(stats.max_records_per_cell, cell.count);

@@ -104,8 +104,10 @@ Accumulation SumsAccumulation(std::span<const std::uint32_t> spirv, const std::s
   }
   if (types == std::set<std::string>{"uint64_t"}) return Accumulation::kFixed64;
   if (types == std::set<std::string>{"float"}) return Accumulation::kFloat32;
+  if (types == std::set<std::string>{"uint"}) return Accumulation::kPackedDecimal;
   throw InputError(file + ": binding " + std::to_string(sums_binding) + " (sums) holds " + Listed(types) +
-                   "; the stable buffer interface takes uint64_t (fixed64) or float (float32)");
+                   "; the stable buffer interface takes uint64_t (fixed64), float (float32) or uint "
+                   "(packed-decimal)");
 }
 
 TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t tags_binding) {

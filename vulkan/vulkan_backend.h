@@ -31,6 +31,7 @@ class VulkanBackend : public Backend {
             .accumulate_ms = t.accumulate_ms,
             .level_seed_ms = t.level_seed_ms,
             .compaction_ms = t.compaction_ms,
+            .settle_ms = t.settle_ms,
             .temporal_ms = t.temporal_ms,
             .eviction_ms = t.eviction_ms,
             .resolve_ms = t.resolve_ms,

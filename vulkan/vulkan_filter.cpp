@@ -12,6 +12,7 @@
 
 #include "accumulate_fixed64_spv.h"
 #include "accumulate_float32_spv.h"
+#include "accumulate_packed_decimal_spv.h"
 #include "compaction_spv.h"
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
@@ -21,12 +22,15 @@
 #include "core/read_back_check.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/packed_sums.h"
 #include "core/shared/table_params.h"
 #include "core/temporal.h"
 #include "eviction_spv.h"
 #include "level_seed_spv.h"
+#include "packed_settle_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
+#include "resolve_packed_decimal_spv.h"
 #include "temporal_spv.h"
 #include "vulkan/spirv_reflection.h"
 #include "vulkan/vulkan_internal.h"
@@ -68,9 +72,10 @@ struct EvictionPush {
   std::uint32_t by_priority;
   std::uint32_t probe_scheme;
   std::uint32_t compacted;  // 1: passes 0 and 1 step the occupied list, dispatched indirectly
-  std::uint32_t full_keys;  // 1: 64-bit tags (--key-identity full)
+  std::uint32_t full_keys;      // 1: 64-bit tags (--key-identity full)
+  std::uint32_t packed_counts;  // 1: packed-decimal's 32-bit count words
 };
-static_assert(sizeof(EvictionPush) == 44, "push constants of eviction.comp");
+static_assert(sizeof(EvictionPush) == 48, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct TemporalPush {
@@ -82,6 +87,13 @@ struct TemporalPush {
 };
 static_assert(sizeof(TemporalPush) == 40, "push constants of temporal.comp");
 constexpr std::uint32_t kTemporalSlotsPerWorkgroup = 64;
+
+struct SettlePush {
+  std::uint32_t capacity;
+  std::uint32_t compacted;  // 1: one invocation per entry of the occupied list, dispatched indirectly
+};
+static_assert(sizeof(SettlePush) == 8, "push constants of packed_settle.comp");
+constexpr std::uint32_t kSettleSlotsPerWorkgroup = 64;
 
 struct LevelSeedPush {
   std::uint32_t capacity;
@@ -137,6 +149,9 @@ constexpr BindingKind kLevelSeedBindings[] = {
 constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                              BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kSettleBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                           BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+                                           BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
@@ -176,6 +191,30 @@ void CopyTagsIn(void* to, const std::vector<SlotTag>& tags, KeyIdentity identity
   std::copy(tags.begin(), tags.end(), static_cast<std::uint32_t*>(to));  // a fingerprint table's, each below 2^32
 }
 
+// Bytes per slot of the sums binding: three 64-bit words (fixed64) or three 32-bit ones; of the counts binding:
+// a 64-bit count, or packed-decimal's 32-bit count word (core/shared/packed_sums.h).
+std::size_t SumBytesPerSlot(Accumulation accumulation) { return accumulation == Accumulation::kFixed64 ? 24 : 12; }
+std::size_t CountBytesPerSlot(Accumulation accumulation) {
+  return accumulation == Accumulation::kPackedDecimal ? 4 : 8;
+}
+
+std::uint32_t AccumulationWord(Accumulation accumulation) {
+  switch (accumulation) {
+    case Accumulation::kFixed64:
+      return shared::kAccumulateFixed64;
+    case Accumulation::kFloat32:
+      return shared::kAccumulateFloat32;
+    case Accumulation::kPackedDecimal:
+      return shared::kAccumulatePackedDecimal;
+  }
+  return shared::kAccumulateFixed64;
+}
+
+// What a shader's sums binding is declared as for each accumulation (spirv_reflection.h's SumsAccumulation).
+const char* SumsTypeName(Accumulation accumulation) {
+  return accumulation == Accumulation::kFixed64 ? "uint64_t" : accumulation == Accumulation::kFloat32 ? "float" : "uint";
+}
+
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -194,8 +233,8 @@ struct VulkanFilter::Impl {
   std::vector<std::uint32_t> custom_resolve;
   std::string resolve_name;
   Accumulation custom_resolve_accumulation;     // what the user's resolve shader declares its sums as
-  std::optional<ComputeProgram> accumulate[2];  // by accumulation mode
-  std::optional<ComputeProgram> resolve[2];
+  std::optional<ComputeProgram> accumulate[3];  // by accumulation mode
+  std::optional<ComputeProgram> resolve[3];
   std::optional<ComputeProgram> eviction;
   std::optional<ComputeProgram> temporal;
   std::optional<ComputeProgram> level_seed;
@@ -213,23 +252,25 @@ struct VulkanFilter::Impl {
   std::optional<TableShape> table;  // what the device table holds after a Run
 
   ComputeProgram& Accumulate(Accumulation mode) {
-    const int m = mode == Accumulation::kFixed64 ? 0 : 1;
+    const int m = static_cast<int>(mode);
     if (!accumulate[m]) {
       std::span<const std::uint32_t> spirv = custom_accumulate;
       if (spirv.empty())
-        spirv = m == 0 ? std::span<const std::uint32_t>(accumulate_fixed64_spv)
-                       : std::span<const std::uint32_t>(accumulate_float32_spv);
+        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(accumulate_fixed64_spv)
+                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(accumulate_float32_spv)
+                                                 : std::span<const std::uint32_t>(accumulate_packed_decimal_spv);
       accumulate[m] = vulkan_internal::CreateComputeProgram(device, spirv, kAccumulateBindings, sizeof(AccumulatePush));
     }
     return *accumulate[m];
   }
   ComputeProgram& Resolve(Accumulation mode) {
-    const int m = mode == Accumulation::kFixed64 ? 0 : 1;
+    const int m = static_cast<int>(mode);
     if (!resolve[m]) {
       std::span<const std::uint32_t> spirv = custom_resolve;
       if (spirv.empty())
-        spirv = m == 0 ? std::span<const std::uint32_t>(resolve_fixed64_spv)
-                       : std::span<const std::uint32_t>(resolve_float32_spv);
+        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_fixed64_spv)
+                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_float32_spv)
+                                                 : std::span<const std::uint32_t>(resolve_packed_decimal_spv);
       resolve[m] = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
     return *resolve[m];
@@ -255,6 +296,9 @@ struct VulkanFilter::Impl {
   }
   ComputeProgram& Compaction() {
     return PassProgram(compaction, custom_compaction, compaction_spv, kCompactionBindings, sizeof(CompactionPush));
+  }
+  ComputeProgram& Settle() {
+    return PassProgram(settle, {}, packed_settle_spv, kSettleBindings, sizeof(SettlePush));
   }
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
@@ -285,6 +329,9 @@ struct VulkanFilter::Impl {
     TagViews views;
   };
   std::vector<TeamTags> team_tags;
+  // packed-decimal's settle (packed_settle.comp).
+  std::optional<ComputeProgram> settle;
+  DeviceBuffer halved;
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
@@ -301,6 +348,8 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      resolve_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(resolve_spv),
                      resolve_spv,
                      Accumulation::kFixed64,
+                     {},
+                     {},
                      {},
                      {},
                      {},
@@ -359,19 +408,31 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   Impl& p = *impl_;
   p.table.reset();
   const bool fixed = table.accumulation == Accumulation::kFixed64;
+  const bool packed = table.accumulation == Accumulation::kPackedDecimal;
   const std::size_t slots = table.capacity;
-  const std::size_t sum_bytes = slots * (fixed ? 24 : 12);
+  const std::size_t sum_bytes = slots * SumBytesPerSlot(table.accumulation);
+  const std::size_t count_bytes = slots * CountBytesPerSlot(table.accumulation);
   const std::size_t tag_bytes = slots * TagBytes(table.key_identity);
   p.Ensure(p.tags, vk::DeviceSize(tag_bytes));
   p.Ensure(p.sums, vk::DeviceSize(sum_bytes));
-  p.Ensure(p.counts, vk::DeviceSize(slots) * 8);
+  p.Ensure(p.counts, vk::DeviceSize(count_bytes));
   p.Ensure(p.last_seen, vk::DeviceSize(slots) * 4);
   vulkan_internal::Transfer upload(p.device, p.staging);
   CopyTagsIn(upload.Upload(p.tags, tag_bytes), table.tags, table.key_identity);
-  const void* sums =
-      fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data());
-  std::memcpy(upload.Upload(p.sums, sum_bytes), sums, sum_bytes);
-  std::memcpy(upload.Upload(p.counts, slots * 8), table.counts.data(), slots * 8);
+  if (packed) {
+    if (table.frame_counters.size() != slots) throw InputError("the packed-decimal table has no frame counter per slot");
+    auto* sums = static_cast<std::uint32_t*>(upload.Upload(p.sums, sum_bytes));
+    auto* words = static_cast<std::uint32_t*>(upload.Upload(p.counts, count_bytes));
+    for (std::size_t s = 0; s < slots; ++s) {
+      for (int c = 0; c < 3; ++c) sums[s * 3 + c] = std::uint32_t(table.fixed_sums[s][c]);
+      words[s] = shared::PackCountWord(std::uint32_t(table.counts[s]), table.frame_counters[s]);
+    }
+  } else {
+    const void* sums =
+        fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data());
+    std::memcpy(upload.Upload(p.sums, sum_bytes), sums, sum_bytes);
+    std::memcpy(upload.Upload(p.counts, count_bytes), table.counts.data(), count_bytes);
+  }
   void* last_seen = upload.Upload(p.last_seen, slots * 4);
   if (table.last_seen.size() == slots) {
     std::memcpy(last_seen, table.last_seen.data(), slots * 4);
@@ -407,13 +468,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   Impl& p = *impl_;
   if (!p.custom_accumulate.empty() && p.custom_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +
-                                     (p.custom_accumulation == Accumulation::kFixed64 ? "uint64_t" : "float") +
+                                     SumsTypeName(p.custom_accumulation) +
                                      ": it accumulates " + ToString(p.custom_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
   if (!p.custom_resolve.empty() && p.custom_resolve_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.resolve_name + " declares its sums (binding 1) as " +
-                                     (p.custom_resolve_accumulation == Accumulation::kFixed64 ? "uint64_t" : "float") +
+                                     SumsTypeName(p.custom_resolve_accumulation) +
                                      ": it resolves " + ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
@@ -438,6 +499,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.table.reset();  // until this run has written a whole table
   const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
   const bool fixed = config.accumulation == Accumulation::kFixed64;
+  const bool packed = config.accumulation == Accumulation::kPackedDecimal;
+  const std::size_t sum_bytes = std::size_t(config.capacity) * SumBytesPerSlot(config.accumulation);
+  const std::size_t count_bytes = std::size_t(config.capacity) * CountBytesPerSlot(config.accumulation);
   const vk::DeviceSize storage_range = p.device.physical.getProperties().limits.maxStorageBufferRange;
   if (vk::DeviceSize(config.capacity) * 3 * 8 > storage_range) {
     throw ConfigError("--capacity", std::to_string(config.capacity) + " slots need " +
@@ -468,8 +532,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.keys, vk::DeviceSize(n) * sizeof(KeyResult));
   const std::size_t tag_bytes = std::size_t(config.capacity) * TagBytes(config.key_identity);
   p.Ensure(p.tags, vk::DeviceSize(tag_bytes));
-  p.Ensure(p.sums, vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4));
-  p.Ensure(p.counts, vk::DeviceSize(config.capacity) * 8);
+  p.Ensure(p.sums, vk::DeviceSize(sum_bytes));
+  p.Ensure(p.counts, vk::DeviceSize(count_bytes));
+  p.Ensure(p.halved, 8);
   p.Ensure(p.placements, vk::DeviceSize(n) * 4);
   p.Ensure(p.stats, 16);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
@@ -506,18 +571,20 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.upload_ms = MillisecondsSince(start);
   run.timings.upload_copy_ms = upload.Submit();
   run.timings.upload_bytes = upload.bytes();
-  table.fixed_point_bits = keep_table                ? kept_fixed_point_bits
+  table.fixed_point_bits = packed                    ? 0
+                           : keep_table              ? kept_fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
                                                      : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
-  if (!fixed) RequireFloat32Range(table.fixed_point_bits);
+  if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(table.fixed_point_bits);
   if (fixed) RequireFixedPointConverts(entering, table.fixed_point_bits);
+  if (packed) RequirePackedDecimalConverts(entering);
 
   // The double buffer of the temporal blend and the level seed: the table as the previous frame left it, copied
   // before the accumulate (the seed needs its tags too); on a first frame where a pass is forced, an empty table.
   const bool blending = planned.temporal;
   const bool seeding = planned.level_seed;
   const bool double_buffer = blending || seeding;
-  const vk::DeviceSize sum_bytes_on_device = vk::DeviceSize(config.capacity) * 3 * (fixed ? 8 : 4);
+  const vk::DeviceSize sum_bytes_on_device = sum_bytes;
   // Bound always (bindings 9 and 10 of the stable interface), sized for the table when the frame needs them.
   p.Ensure(p.previous_sums, double_buffer ? sum_bytes_on_device : 8);
   p.Ensure(p.previous_counts, double_buffer ? vk::DeviceSize(config.capacity) * 8 : 8);
@@ -535,8 +602,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
   AccumulatePush push{
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
-      {config.capacity, config.probe_limit, shared::PowerOfTwo(table.fixed_point_bits),
-       fixed ? shared::kAccumulateFixed64 : shared::kAccumulateFloat32, config.frame, tracking ? 1u : 0u,
+      {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
+       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u,
        blending ? 1u : 0u, by_priority ? 1u : 0u, SharedProbeKind(config.probing), 0},
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
@@ -642,6 +709,29 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     });
   }
 
+  // packed-decimal's settle (packed_settle.comp), one invocation per slot or list entry, after every add landed.
+  if (packed) {
+    ComputeProgram& settle = p.Settle();
+    DeviceBuffer* const settle_buffers[] = {&p.sums, &p.counts, &p.halved, &p.occupied, &p.occupied_header};
+    vulkan_internal::BindBuffers(p.device, settle, settle_buffers);
+    const SettlePush settle_push{config.capacity, compacting ? 1u : 0u};
+    run.timings.settle_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+      cb.fillBuffer(*p.halved.buffer, 0, VK_WHOLE_SIZE, 0);
+      const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eTransferWrite,
+                                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer,
+                         vk::PipelineStageFlagBits::eComputeShader, {}, accumulated, nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *settle.pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *settle.layout, 0, *settle.set, nullptr);
+      cb.pushConstants<SettlePush>(*settle.layout, vk::ShaderStageFlagBits::eCompute, 0, settle_push);
+      if (compacting) {
+        cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
+      } else {
+        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kSettleSlotsPerWorkgroup), 1, 1);
+      }
+    });
+  }
+
   // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
   // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
   if (blending) {
@@ -685,7 +775,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                by_priority ? 1u : 0u,
                                SharedProbeKind(config.probing),
                                compacting ? 1u : 0u,
-                               config.key_identity == KeyIdentity::kFull ? 1u : 0u};
+                               config.key_identity == KeyIdentity::kFull ? 1u : 0u,
+                               packed ? 1u : 0u};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -737,18 +828,18 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // Read-back, into arrays on huge pages in parallel chunks, from the mapped buffers or from staging buffers
   // the device copied them into.
   const std::size_t pixel_bytes = std::size_t(pixel_count) * 3 * sizeof(float);
-  const std::size_t sum_bytes = std::size_t(config.capacity) * (fixed ? 24 : 12);
   vulkan_internal::Transfer download(p.device, p.staging);
   const void* from_pixels = download.Download(p.pixels, pixel_bytes);
   const void* from_keys = download.Download(p.keys, std::size_t(n) * sizeof(KeyResult));
   const void* from_placements = download.Download(p.placements, std::size_t(n) * 4);
   const void* from_tags = download.Download(p.tags, tag_bytes);
-  const void* from_counts = download.Download(p.counts, std::size_t(config.capacity) * 8);
+  const void* from_counts = download.Download(p.counts, count_bytes);
   const void* from_sums = download.Download(p.sums, sum_bytes);
   const void* from_stats = download.Download(p.stats, 16);
   const void* from_last_seen = tracking ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
   const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
   const void* from_seeded = seeding ? download.Download(p.seeded_count, 8) : nullptr;
+  const void* from_halved = packed ? download.Download(p.halved, 8) : nullptr;
   const void* from_header = compacting ? download.Download(p.occupied_header, kOccupiedHeaderBytes) : nullptr;
   const void* from_occupied = compacting ? download.Download(p.occupied, std::size_t(config.capacity) * 4) : nullptr;
   run.timings.read_back_copy_ms = download.Submit();
@@ -759,7 +850,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   ResizeOnHugePages(run.placements, n);
   ResizeOnHugePages(table.tags, config.capacity);
   ResizeOnHugePages(table.counts, config.capacity);
-  if (fixed) {
+  if (fixed || packed) {
     ResizeOnHugePages(table.fixed_sums, config.capacity);
   } else {
     ResizeOnHugePages(table.float_sums, config.capacity);
@@ -768,12 +859,26 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
       CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
       CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
-      CopyOut{table.counts.data(), from_counts, std::size_t(config.capacity) * 8},
-      CopyOut{fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()),
-              from_sums, sum_bytes},
       CopyOut{&run.wraps, from_stats, 8},
       CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
+  if (packed) {  // 32-bit words, widened; the count word split into its count and frame counter
+    table.frame_counters.resize(config.capacity);
+    const auto* sums = static_cast<const std::uint32_t*>(from_sums);
+    const auto* words = static_cast<const std::uint32_t*>(from_counts);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, config.capacity, std::size_t(1) << 16), [&](const auto& range) {
+      for (std::size_t s = range.begin(); s < range.end(); ++s) {
+        for (int c = 0; c < 3; ++c) table.fixed_sums[s][c] = sums[s * 3 + c];
+        table.counts[s] = shared::PackedCount(words[s]);
+        table.frame_counters[s] = shared::PackedFrames(words[s]);
+      }
+    });
+    std::memcpy(&run.halved, from_halved, 8);
+  } else {
+    ParallelCopy({table.counts.data(), from_counts, count_bytes});
+    ParallelCopy({fixed ? static_cast<void*>(table.fixed_sums.data()) : static_cast<void*>(table.float_sums.data()),
+                  from_sums, sum_bytes});
+  }
   CopyTagsOut(table.tags, from_tags, config.key_identity);
   if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
   if (evicting) std::memcpy(&run.evicted, from_evicted, 8);

@@ -28,13 +28,14 @@ struct VulkanTimings {
   double level_seed_ms = 0;      // device: the seed pass of --level-change seed
   double temporal_ms = 0;        // device: the temporal blend (the copy into the previous table is in accumulate)
   double compaction_ms = 0;      // device: the gather into the occupied list; 0 without --compaction
+  double settle_ms = 0;          // device: packed-decimal's settle; 0 for other sums
   double eviction_ms = 0;        // device: the evict and reclaim dispatches (and the prune); 0 without eviction
   double read_back_copy_ms = 0;  // device: device to staging copies (0 when mapped)
   double read_back_ms = 0;       // host: image, table, keys and placements out of mapped or staging memory
   std::uint64_t upload_bytes = 0;
   std::uint64_t read_back_bytes = 0;
   double FilterMs() const {
-    return accumulate_ms + level_seed_ms + compaction_ms + temporal_ms + eviction_ms + resolve_ms;
+    return accumulate_ms + level_seed_ms + compaction_ms + settle_ms + temporal_ms + eviction_ms + resolve_ms;
   }
   double UploadMs() const { return upload_ms + upload_copy_ms; }
   double ReadBackMs() const { return read_back_copy_ms + read_back_ms; }

@@ -11,6 +11,7 @@ HPSF_SHARED_BEGIN
 
 const uint kAccumulateFixed64 = 0u;
 const uint kAccumulateFloat32 = 1u;
+const uint kAccumulatePackedDecimal = 2u;  // core/shared/packed_sums.h
 
 // Placement of a record that holds no slot (core/hash_table.h names them for the host).
 const uint kPlacementNotPlaced = 0xFFFFFFFFu;     // no vertex, unkeyable or rejected: never probed
@@ -19,8 +20,8 @@ const uint kPlacementProbeFailure = 0xFFFFFFFEu;  // probed its whole window wit
 struct TableParams {
   uint capacity;            // a power of two
   uint probe_limit;         // the scheme's size: how many candidates a key has (core/shared/probe_scheme.h)
-  float fixed_point_scale;  // 2^F, fixed64 only
-  uint accumulation;        // kAccumulateFixed64 or kAccumulateFloat32
+  float fixed_point_scale;  // 2^F for fixed64, 1000 for packed-decimal
+  uint accumulation;        // kAccumulateFixed64, kAccumulateFloat32 or kAccumulatePackedDecimal
   // The frame state: with eviction, a slot a record is added to stores `frame` as its last-seen frame.
   uint frame;
   uint track_last_seen;  // 1 with eviction, else 0 (the last-seen buffer is then not written)

@@ -8,6 +8,7 @@
 #include "core/input_check.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 namespace {
@@ -173,6 +174,8 @@ const char* ToString(TableInvariant invariant) {
       return "slot claimed though the cell lived in the window before the frame";
     case TableInvariant::kOccupiedList:
       return "occupied list differs from the occupied slots";
+    case TableInvariant::kPackedSettle:
+      return "packed-decimal slot differs from the settle of its exact sums";
   }
   return "?";
 }
@@ -187,9 +190,14 @@ std::string TableViolation::ToString() const {
 std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   const HashTableDump& t = in.table;
   const shared::ProbeScheme scheme = ProbeSchemeOf(t);
-  const bool fixed = t.accumulation == Accumulation::kFixed64;
-  const float scale = shared::PowerOfTwo(t.fixed_point_bits);
+  const bool fixed = IntegerSums(t.accumulation);  // fixed64 or packed-decimal: exact
+  const bool packed = t.accumulation == Accumulation::kPackedDecimal;
+  const float scale = SumScale(t.accumulation, t.fixed_point_bits);
   std::vector<TableViolation> violations;
+  if (packed && (t.frame_counters.size() != t.capacity || (in.before && in.before->frame_counters.size() != t.capacity))) {
+    violations.push_back({TableInvariant::kPackedSettle, 0xFFFFFFFFu, {}, "a table without a frame counter per slot"});
+    return violations;
+  }
   // Before the frame: the earlier frames' tags, counts and sums (all zero for a table of this frame alone).
   const HashTableDump* before = in.before;
   auto tag_before = [&](std::uint32_t s) { return before ? before->tags[s] : kEmptyTag; };
@@ -350,6 +358,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Counts in 128 bits: a 64-bit count that wrapped (D12) must not look right because the checker's sum wrapped too.
   unsigned __int128 total_count = 0, expected_total_count = 0;
   auto sums_are_zero = [&](std::uint32_t s) {
+    if (packed && t.frame_counters[s] != 0) return false;
     return fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
   };
   for (std::uint32_t s = 0; s < t.capacity; ++s) {
@@ -427,6 +436,50 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                  violations);
       // The blend check is this slot's whole check: the totals take it as it is.
       expected_total_count += t.counts[s];
+      continue;
+    }
+    if (packed) {
+      // The exact words before the settle: any past 32 bits (24 for the count) wrapped on the device.
+      std::array<unsigned __int128, 3> exact{};
+      for (int c = 0; c < 3; ++c) {
+        exact[c] = fixed_base(c);
+        for (std::uint32_t i : here) exact[c] += shared::ToFixedPoint(in.records[i].contribution[c], scale);
+      }
+      const unsigned __int128 exact_count = (unsigned __int128)base_count + here.size();
+      bool in_range = true;
+      if (exact_count > shared::kPackedCountMask) {
+        in_range = false;
+        violate(TableInvariant::kCountMismatch, s, here,
+                "count " + std::to_string(t.counts[s]) + ", exact " + Decimal(exact_count) +
+                    ": more than packed-decimal's 24-bit count holds");
+      }
+      for (int c = 0; c < 3; ++c) {
+        if (exact[c] <= 0xFFFFFFFFu) continue;
+        in_range = false;
+        violate(TableInvariant::kSumMismatch, s, here,
+                "channel " + std::to_string(c) + ": sum " + std::to_string(t.fixed_sums[s][c]) + ", exact " +
+                    Decimal(exact[c]) + ": the 32-bit sum wrapped");
+      }
+      const std::uint32_t frames_before = evicted_by_policy || !before ? 0u : before->frame_counters[s];
+      const glm::uvec4 settled = shared::SettlePacked(
+          glm::uvec4(std::uint32_t(exact[0]), std::uint32_t(exact[1]), std::uint32_t(exact[2]),
+                     shared::PackCountWord(std::uint32_t(exact_count), frames_before)));
+      const std::array<std::uint64_t, 3> settled_sums = {settled.x, settled.y, settled.z};
+      expected_total_count += shared::PackedCount(settled.w);
+      for (int c = 0; c < 3; ++c) {
+        table_total[c] += t.fixed_sums[s][c];
+        placed_total[c] += settled_sums[c];
+      }
+      if (in_range && (t.counts[s] != shared::PackedCount(settled.w) || t.fixed_sums[s] != settled_sums ||
+                       t.frame_counters[s] != shared::PackedFrames(settled.w))) {
+        violate(TableInvariant::kPackedSettle, s, here,
+                "count " + std::to_string(t.counts[s]) + ", sums " + SumsText(t.fixed_sums[s]) + ", frames " +
+                    std::to_string(t.frame_counters[s]) + "; exact count " + Decimal(exact_count) + ", sums (" +
+                    Decimal(exact[0]) + ", " + Decimal(exact[1]) + ", " + Decimal(exact[2]) + "), frames " +
+                    std::to_string(frames_before) + " settle to count " +
+                    std::to_string(shared::PackedCount(settled.w)) + ", sums " + SumsText(settled_sums) +
+                    ", frames " + std::to_string(shared::PackedFrames(settled.w)));
+      }
       continue;
     }
     const unsigned __int128 expected_count = (unsigned __int128)base_count + here.size();

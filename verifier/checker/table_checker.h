@@ -38,7 +38,7 @@ enum class TableInvariant {
   kEarlierSlotEmptyOrMatching,  // an earlier slot of the window is empty or holds the fingerprint
   kFailureWindowNotFull,        // a probe failure's window holds an empty slot or the fingerprint
   kCountMismatch,               // a slot's count differs from the records placed there
-  kSumMismatch,                 // fixed64: not the exact sum; float32: outside gamma(n-1) * sum|c|
+  kSumMismatch,                 // fixed64, packed-decimal: not the exact sum; float32: outside gamma(n-1) * sum|c|
   kEmptySlotNotZero,            // tag 0 with a count or sum
   kOrphanTag,                   // a non-zero tag that no placed record carries
   kTotalMismatch,               // the table total differs from the placed contributions
@@ -50,6 +50,7 @@ enum class TableInvariant {
   kTemporalBlend,               // a blended cell is not the blend of its history and the frame (core/temporal.h)
   kCellSplit,                   // a record claimed a slot though its cell lived in the window before the frame
   kOccupiedList,                // with compaction: the list misses an occupied slot, lists one twice, or an empty one
+  kPackedSettle,                // packed-decimal: a slot is not the settle (halving, frame counter) of its exact sums
 };
 const char* ToString(TableInvariant invariant);
 

@@ -27,7 +27,8 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"fixed_point_bits", run.table.fixed_point_bits},
                       {"evicted", run.evicted},
                       {"tombstones", run.tombstones},
-                      {"seeded", run.seeded}};
+                      {"seeded", run.seeded},
+                      {"halved", run.halved}};
   const EmulatedTimings& t = run.timings;
   j["timings_ms"] = {{"keys", t.keys_ms},
                      {"fixed_point", t.fixed_point_ms},
@@ -35,6 +36,7 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                      {"accumulate", t.accumulate_ms},
                      {"level_seed", t.level_seed_ms},
                      {"compaction", t.compaction_ms},
+                     {"settle", t.settle_ms},
                      {"temporal", t.temporal_ms},
                      {"eviction", t.eviction_ms},
                      {"read_back", t.read_back_ms},
@@ -69,6 +71,7 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
           {"evicted", run.evicted},
           {"tombstones", run.tombstones},
           {"seeded", run.seeded},
+          {"halved", run.halved},
           {"memory", device.memory},
           {"staged", device.staged},
           {"timings_ms",
@@ -77,6 +80,7 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
             {"accumulate", t.accumulate_ms},
             {"level_seed", t.level_seed_ms},
             {"compaction", t.compaction_ms},
+            {"settle", t.settle_ms},
             {"temporal", t.temporal_ms},
             {"eviction", t.eviction_ms},
             {"resolve", t.resolve_ms},
@@ -106,7 +110,8 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"fixed64_wraps", s.fixed_point_wraps},
           {"count_wraps", s.count_wraps},
           {"cells_evicted", s.cells_evicted},
-          {"cells_seeded", s.cells_seeded}};
+          {"cells_seeded", s.cells_seeded},
+          {"cells_halved", s.cells_halved}};
 }
 
 BackendInstance MakeBackend(const BackendInfo& info, const BackendSettings& settings, VulkanDevice* device) {

@@ -75,7 +75,7 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
                                    const HashedRun& run, const HashTableDump* before,
                                    const std::vector<bool>& classified, const std::string& prefix,
                                    LevelVerdict& ideal) {
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  const bool fixed = IntegerSums(config.accumulation);  // fixed64 or packed-decimal: exact
   std::uint64_t compared = 0, failures = 0;
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     const std::uint32_t slot = run.placements[i], cell = reference.placement[i];
@@ -100,6 +100,9 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
     } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
       ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) +
                  ": sums differ from the reference cell's");
+    } else if (!run.table.frame_counters.empty() && run.table.frame_counters[slot] != c.frames) {
+      ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": frame counter " +
+                 std::to_string(run.table.frame_counters[slot]) + ", reference " + std::to_string(c.frames));
     }
   }
   if (fixed && failures == 0 && std::count(classified.begin(), classified.end(), true) == 0 &&
@@ -188,7 +191,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
                                const FrameObserver& observer) {
   const bool any_hashed = !hashed.empty();
   const bool several = frames.size() > 1;
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  const bool fixed = IntegerSums(config.accumulation);
   LevelVerdict keys{1, "keys", false, true, "", {}};
   LevelVerdict tables{2, "tables", any_hashed, true, "", {}};
   LevelVerdict ideal{3, "agreement with the reference", any_hashed, true, "", {}};
@@ -300,7 +303,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
       continue;
     }
     const std::string sums =
-        fixed ? "fixed64: slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
+        fixed ? ToString(config.accumulation) +
+                    ": slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
               : std::string("float32: counts exact outside the classified records") +
                     (config.temporal.mode == TemporalMode::kAdaptive
                          ? " (adaptive: a slot with a history within level 2's bounds); "

@@ -7,6 +7,7 @@
 #include "core/input_check.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 namespace {
@@ -77,8 +78,9 @@ std::uint64_t CompareWithExactMap(std::span<const Record> records, const HashedR
                                   const std::vector<bool>& classified, const FilterConfig& config,
                                   const std::string& prefix, LevelVerdict& verdict) {
   const HashTableDump& t = run.table;
-  const bool fixed = t.accumulation == Accumulation::kFixed64;
-  const float scale = shared::PowerOfTwo(t.fixed_point_bits);
+  const bool fixed = IntegerSums(t.accumulation);
+  const bool packed = t.accumulation == Accumulation::kPackedDecimal;
+  const float scale = SumScale(t.accumulation, t.fixed_point_bits);
   std::map<KeyWordsOf, ExactCell> cells;
   for (std::size_t i = 0; i < records.size(); ++i) {
     const KeyResult& k = run.keys[i];
@@ -112,6 +114,20 @@ std::uint64_t CompareWithExactMap(std::span<const Record> records, const HashedR
     if (history && config.temporal.blends()) continue;  // the blend is level 2's
     ++compared;
     const std::string record = prefix + RecordName(i) + " at slot " + std::to_string(slot);
+    if (packed) {  // the settle of the words before and the cell's exact adds (core/shared/packed_sums.h)
+      const std::uint64_t before_count = history ? before->counts[slot] : 0;
+      glm::uvec4 words(0u, 0u, 0u, shared::PackCountWord(std::uint32_t(before_count + cell.count),
+                                                        history ? before->frame_counters[slot] : 0u));
+      for (int ch = 0; ch < 3; ++ch)
+        words[ch] = std::uint32_t((history ? before->fixed_sums[slot][ch] : 0) + cell.fixed_sum[ch]);
+      const glm::uvec4 settled = shared::SettlePacked(words);
+      if (t.counts[slot] != shared::PackedCount(settled.w) ||
+          t.fixed_sums[slot] != std::array<std::uint64_t, 3>{settled.x, settled.y, settled.z}) {
+        verdict.Fail(record + ": count and sums differ from the settle of the slot before the frame and its cell's " +
+                     std::to_string(cell.count) + " records");
+      }
+      continue;
+    }
     const std::uint64_t count = t.counts[slot] - (history ? before->counts[slot] : 0);
     if (count != cell.count) {
       verdict.Fail(record + ": the frame's count " + std::to_string(count) + ", its cell's " +

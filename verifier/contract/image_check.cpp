@@ -56,8 +56,8 @@ void CheckFixed(const RecordBatch& batch, const HashedRun& run, std::vector<std:
     if (slot >= run.table.capacity) continue;
     glm::dvec3 average;
     for (int c = 0; c < 3; ++c) {
-      average[c] =
-          FromFixedPoint(run.table.fixed_sums[slot][c], run.table.fixed_point_bits) / double(run.table.counts[slot]);
+      average[c] = IntegerSumValue(run.table.fixed_sums[slot][c], run.table.accumulation, run.table.fixed_point_bits) /
+                   double(run.table.counts[slot]);
     }
     averages[i] = average;
   }
@@ -119,7 +119,7 @@ std::vector<std::string> CheckImageAgainstTable(const RecordBatch& batch, const 
   std::vector<std::string> out;
   if (run.image.pixels.size() != std::size_t(batch.width) * batch.height)
     return {"the image does not have the batch's size"};
-  if (run.table.accumulation == Accumulation::kFixed64) {
+  if (IntegerSums(run.table.accumulation)) {
     CheckFixed(batch, run, out);
   } else {
     CheckFloat(batch, run, before, out);

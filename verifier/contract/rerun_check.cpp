@@ -19,7 +19,7 @@ bool Placed(const HashedRun& run, std::size_t record) { return run.placements[re
 // Per record: placed in both runs or in neither, and its slot's count (and in fixed64 its sums) the same in both.
 void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, bool sums,
                               std::vector<std::string>& out) {
-  const bool fixed = first.table.accumulation == Accumulation::kFixed64;
+  const bool fixed = IntegerSums(first.table.accumulation);
   for (std::size_t i = 0; i < first.placements.size() && out.size() < kDifferencesShown; ++i) {
     const std::string record = "record " + std::to_string(i) + ": ";
     if (Placed(first, i) != Placed(second, i)) {
@@ -54,7 +54,7 @@ const char* ToString(RerunPromise promise) {
     case RerunPromise::kEverything:
       return "ordered run: table, placements and image bit for bit";
     case RerunPromise::kCountsSumsAndImage:
-      return "fixed64, nothing failed or aliased: each record's count and sums, and the image";
+      return "integer sums, nothing failed or aliased: each record's count and sums, and the image";
     case RerunPromise::kCounts:
       return "float32, nothing failed or aliased: each record's count (sums follow the order of adds)";
     case RerunPromise::kNothing:
@@ -66,7 +66,7 @@ const char* ToString(RerunPromise promise) {
 RerunPromise RerunPromiseFor(bool ordered, Accumulation accumulation, bool failed_or_aliased) {
   if (ordered) return RerunPromise::kEverything;
   if (failed_or_aliased) return RerunPromise::kNothing;
-  return accumulation == Accumulation::kFixed64 ? RerunPromise::kCountsSumsAndImage : RerunPromise::kCounts;
+  return IntegerSums(accumulation) ? RerunPromise::kCountsSumsAndImage : RerunPromise::kCounts;
 }
 
 std::vector<std::string> CompareReruns(const HashedRun& first, const HashedRun& second, RerunPromise promise) {

@@ -3,14 +3,15 @@
 // atomicCompSwap; each channel is added atomically, then the count, and the record's slot is stored. fixed64
 // reports wrap from the add's return value. With eviction, the slot's last-seen frame is stored after the adds;
 // a tombstone (an evicted slot that keeps its tag) is joined or passed like any slot, never claimed; with priority
-// eviction (table.claim_tombstones) its tombstones may be claimed (FindOrClaim). accumulate_fixed64.comp and
-// accumulate_float32.comp define the sums type and include this.
+// eviction (table.claim_tombstones) its tombstones may be claimed (FindOrClaim). accumulate_fixed64.comp,
+// accumulate_float32.comp and accumulate_packed_decimal.comp define the sums type and include this.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
 #include "../../core/shared/key.h"
 #include "../../core/shared/fixed_point.h"
+#include "../../core/shared/packed_sums.h"
 #include "../../core/shared/table_params.h"
 #include "../../core/shared/eviction_priority.h"
 #if defined(HPSF_DEFECT_D10)
@@ -85,7 +86,11 @@ void WriteGarbage(uint i, TableParams t) {
 // claimed: this record's compare-and-swap claimed the slot (only the COUNT_STORE variants look at it).
 void AddToSlot(uint slot, Record r, float fixed_point_scale, bool claimed) {
   for (uint c = 0u; c < 3u; ++c) {
-#if defined(HPSF_DEFECT_D9)  // read-modify-write without an atomic: lost updates
+#if defined(HPSF_PACKED_DECIMAL)  // 32-bit words at 1000 (packed_sums.h); the host checked each add fits 32 bits
+    uint add = uint(ToFixedPoint(r.contribution[c], fixed_point_scale));
+    uint old = atomicAdd(sums[slot * 3u + c], add);
+    if (old + add < old) atomicAdd(wraps, uint64_t(1));
+#elif defined(HPSF_DEFECT_D9)  // read-modify-write without an atomic: lost updates
     sums[slot * 3u + c] += ToFixedPoint(r.contribution[c], fixed_point_scale);
 #elif defined(HPSF_DEFECT_D11)  // truncated instead of rounded half to even: a bias hidden where c * 2^F is whole
     precise float scaled = r.contribution[c] * fixed_point_scale;
@@ -98,7 +103,9 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale, bool claimed) {
     atomicAdd(sums[slot * 3u + c], r.contribution[c]);
 #endif
   }
-#if defined(HPSF_DEFECT_D9)
+#if defined(HPSF_PACKED_DECIMAL)  // the count word: a 24-bit count carries into the frame counter at 2^24
+  if ((atomicAdd(counts[slot], 1u) & kPackedCountMask) == kPackedCountMask) atomicAdd(count_wraps, uint64_t(1));
+#elif defined(HPSF_DEFECT_D9)
   counts[slot] += uint64_t(1);
 #elif defined(HPSF_DEFECT_D12)  // a 32-bit sample counter: the low word of the count, which wraps silently
   atomicAdd(count_words[slot * 2u], 1u);

@@ -21,8 +21,9 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) buffer Tags { uint tags[]; };
 layout(std430, binding = 0) buffer FullTags { uint64_t full_tags[]; };  // the same buffer, with full_keys
-layout(std430, binding = 1) buffer SumWords { uint sum_words[]; };  // fixed64 or float32 sums, as 32-bit words
+layout(std430, binding = 1) buffer SumWords { uint sum_words[]; };  // the sums, as 32-bit words
 layout(std430, binding = 2) buffer Counts { uint64_t counts[]; };
+layout(std430, binding = 2) buffer CountWords { uint count_words[]; };  // the same buffer, with packed_counts
 layout(std430, binding = 3) readonly buffer LastSeen { uint last_seen[]; };
 layout(std430, binding = 4) buffer Evicted { uint64_t evicted; };
 // Bindings 5 to 7 are read and written by priority eviction only.
@@ -37,14 +38,27 @@ layout(push_constant) uniform Params {
   uint probe_limit;
   uint frame;
   uint unseen_frames;
-  uint sum_words_per_slot;  // 6 (fixed64) or 3 (float32)
+  uint sum_words_per_slot;  // 6 (fixed64) or 3 (float32, packed-decimal)
   uint pass;                // 0 evict, 1 reclaim, 2 select (priority only, first)
   uint record_count;
   uint by_priority;         // 1 with --eviction priority
   uint probe_scheme;        // kProbeLinear, kProbeBucket or kProbeBucketWindow
   uint compacted;           // 1: dispatched indirectly, one invocation per entry of the occupied list
   uint full_keys;           // 1 with --key-identity full: 64-bit tags (slot_tags.glsl)
+  uint packed_counts;       // 1 with packed-decimal: 32-bit count words (core/shared/packed_sums.h)
 };
+
+// packed-decimal's whole count word, as the emulator's eviction kernels read it: a live cell's is never 0 (its count
+// halves up), a tombstone's is. Priority, which compares counts, refuses packed-decimal (core/filter_config.h).
+uint64_t CountAt(uint slot) { return packed_counts != 0u ? uint64_t(count_words[slot]) : counts[slot]; }
+// The whole count word: an evicted cell's frame counter starts again.
+void ClearCount(uint slot) {
+  if (packed_counts != 0u) {
+    count_words[slot] = 0u;
+  } else {
+    counts[slot] = 0ul;
+  }
+}
 #include "slot_tags.glsl"
 
 ProbeScheme Scheme() { return MakeProbeScheme(probe_scheme, capacity, probe_limit); }
@@ -60,7 +74,7 @@ void SelectVictim(uint i) {
     uint slot = CandidateSlot(Scheme(), slot0, probe);
     uint64_t tag = LoadTag(slot, full_keys != 0u);
     if (tag == 0ul || tag == uint64_t(kTombstoneTag)) continue;
-    uint64_t count = counts[slot];
+    uint64_t count = CountAt(slot);
     if (count == 0ul || last_seen[slot] == frame) continue;  // a tombstone of another policy, or touched this frame
     uint64_t priority = EvictionPriority(last_seen[slot], count);
 #if defined(HPSF_DEFECT_PRIORITY_SIGN)  // the compare's operands swapped: the highest priority is evicted
@@ -78,26 +92,26 @@ void SelectVictim(uint i) {
 }
 
 void Evict(uint slot) {
-  if (LoadTag(slot, full_keys != 0u) == 0ul || counts[slot] == 0ul) return;
+  if (LoadTag(slot, full_keys != 0u) == 0ul || CountAt(slot) == 0ul) return;
   if (by_priority != 0u) {
     if (victims[slot] == 0u) return;
   } else if (frame - last_seen[slot] < unseen_frames) {
     return;
   }
   for (uint w = 0u; w < sum_words_per_slot; ++w) sum_words[slot * sum_words_per_slot + w] = 0u;
-  counts[slot] = 0ul;
+  ClearCount(slot);
   if (by_priority != 0u) StoreTag(slot, uint64_t(kTombstoneTag), full_keys != 0u);
   atomicAdd(evicted, 1ul);
 }
 
 void Reclaim(uint slot) {
   bool full = full_keys != 0u;
-  if (LoadTag(slot, full) == 0ul || counts[slot] != 0ul) return;
+  if (LoadTag(slot, full) == 0ul || CountAt(slot) != 0ul) return;
 #if !defined(HPSF_DEFECT_D7)  // D7 empties every tombstone: a hole on a live slot's probe path
   for (uint distance = 1u; distance < probe_limit; ++distance) {
     uint next = SlotAfter(Scheme(), slot, distance);
     if (next == kNoCandidate || LoadTag(next, full) == 0ul) break;
-    if (counts[next] != 0ul) return;  // a live slot may have probed past this one: keep the tombstone
+    if (CountAt(next) != 0ul) return;  // a live slot may have probed past this one: keep the tombstone
   }
 #endif
   StoreTag(slot, 0ul, full);

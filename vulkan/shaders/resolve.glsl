@@ -2,7 +2,8 @@
 // record's value is radiance_before + throughput * the average of its slot (sum / count), or its own
 // contribution without a slot, or radiance_before alone without a vertex; the pixel is the mean of its
 // records in sample order. In double, operation for operation as core/resolve.cpp, so that with the same table
-// the image is the same bits. resolve_fixed64.comp and resolve_float32.comp define the sums type. The test suite
+// the image is the same bits. resolve_fixed64.comp, resolve_float32.comp and resolve_packed_decimal.comp define the
+// sums type (and packed-decimal the count word's, HPSF_COUNT_TYPE uint). The test suite
 // compiles it once more per defect (HPSF_DEFECT_AVERAGE_OFF_BY_ONE, HPSF_DEFECT_AVERAGE_IN_FLOAT), run through
 // --resolve-spv as a team's own resolve would be.
 #extension GL_GOOGLE_include_directive : require
@@ -12,6 +13,10 @@
 #include "float_controls_fp64.glsl"
 #include "../../core/shared/record_layout.h"
 #include "../../core/shared/table_params.h"
+#include "../../core/shared/packed_sums.h"
+#ifndef HPSF_COUNT_TYPE
+#define HPSF_COUNT_TYPE uint64_t
+#endif
 #include "subgroup_runs.glsl"
 
 #define HPSF_RECORDS_BINDING 0
@@ -22,7 +27,7 @@ const uint kPixelsPerInvocation = 16u;
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 1) readonly buffer Sums { HPSF_SUMS_TYPE sums[]; };
-layout(std430, binding = 2) readonly buffer Counts { uint64_t counts[]; };
+layout(std430, binding = 2) readonly buffer Counts { HPSF_COUNT_TYPE counts[]; };
 layout(std430, binding = 3) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 4) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 5) writeonly buffer Pixels { float pixels[]; };  // RGB per pixel
@@ -49,10 +54,16 @@ void ResolvePixel(uint pixel, ResolveParams p) {
       uint slot = placements[i];
       precise dvec3 incident = D(r.contribution);
       if (slot < p.capacity) {
+#ifdef HPSF_PACKED_DECIMAL
+        double count = double(PackedCount(counts[slot]));
+#else
         double count = double(counts[slot]);
+#endif
         for (int c = 0; c < 3; ++c) {
 #ifdef HPSF_FIXED64
           precise double channel = double(sums[slot * 3u + uint(c)]) * p.unscale;
+#elif defined(HPSF_PACKED_DECIMAL)  // sum / 1000, correctly rounded, as core/accumulation.h's IntegerSumValue
+          precise double channel = double(sums[slot * 3u + uint(c)]) / double(kPackedDecimalScale);
 #else
           precise double channel = double(sums[slot * 3u + uint(c)]);
 #endif

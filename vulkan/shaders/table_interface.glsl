@@ -4,10 +4,11 @@
 //   0 records     uniform texel buffer, RGBA32UI, 9 texels per record (record_texels.glsl)   read
 //   1 keys        uvec4[3 n]: KeyResult per record (key words, slot0, fingerprint, level, status) write
 //   2 tags        uint[capacity] (fingerprints) or uint64_t[capacity] (full keys), zeroed      atomics
-//   3 sums        uint64_t[3 capacity] (fixed64) or float[3 capacity] (float32), slot * 3 + c, zeroed
-//   4 counts      uint64_t[capacity], zeroed                                                  atomics
+//   3 sums        uint64_t[3 capacity] (fixed64), float[3 capacity] (float32) or uint[3 capacity]
+//                 (packed-decimal, core/shared/packed_sums.h), slot * 3 + c, zeroed
+//   4 counts      uint64_t[capacity]; packed-decimal: uint[capacity], the count word; zeroed   atomics
 //   5 placements  uint[n]: slot, kPlacementProbeFailure or kPlacementNotPlaced                write
-//   6 stats       uint64_t wraps: fixed64 adds whose sum wrapped; then uint64_t count_wraps:  atomics
+//   6 stats       uint64_t wraps: integer adds whose sum wrapped; then uint64_t count_wraps:  atomics
 //                 adds whose count wrapped (docs/design/defects.md, D12); both zeroed
 //   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
@@ -19,7 +20,11 @@
 // A shader written against the first 8 bindings and 16 bytes of TableParams still runs without eviction; one that
 // declares nothing past TableParams runs with every option. Bindings 9 and 10 and TemporalParams are declared
 // for an includer that defines HPSF_TABLE_INTERFACE_TEMPORAL (its shader then needs 64-bit floats).
-// The includer defines HPSF_SUMS_TYPE (uint64_t or float).
+// The includer defines HPSF_SUMS_TYPE (uint64_t, float or uint) and, for packed-decimal's count word, HPSF_COUNT_TYPE
+// uint (uint64_t otherwise).
+#ifndef HPSF_COUNT_TYPE
+#define HPSF_COUNT_TYPE uint64_t
+#endif
 #define HPSF_RECORDS_BINDING 0
 #include "record_texels.glsl"
 
@@ -28,7 +33,7 @@ layout(std430, binding = 2) buffer Tags { uint tags[]; };
 // The same buffer, with params.key_identity kIdentityFull: 64-bit tags (slot_tags.glsl).
 layout(std430, binding = 2) buffer FullTags { uint64_t full_tags[]; };
 layout(std430, binding = 3) buffer Sums { HPSF_SUMS_TYPE sums[]; };
-layout(std430, binding = 4) buffer Counts { uint64_t counts[]; };
+layout(std430, binding = 4) buffer Counts { HPSF_COUNT_TYPE counts[]; };
 layout(std430, binding = 5) writeonly buffer Placements { uint placements[]; };
 layout(std430, binding = 6) buffer Stats {
   uint64_t wraps;
