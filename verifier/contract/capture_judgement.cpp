@@ -23,6 +23,9 @@ namespace {
 // The capture against its declaration: what the buffers' shape says must be what the declaration declares.
 void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
   auto fail = [&](const std::string& problem) { throw InputError(c.path + ": " + problem); };
+  if (config.accumulation == Accumulation::kPackedDecimal) {
+    fail("its declaration's sums are packed-decimal, which the capture format does not hold yet (fixed64 or float32)");
+  }
   if (c.capacity != config.capacity) {
     fail("the table has " + std::to_string(c.capacity) + " slots, its declaration " + std::to_string(config.capacity));
   }

@@ -54,6 +54,9 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
                                     std::as_bytes(std::span<const Record>(batch.records))};
   std::vector<std::uint32_t> tags_before, tags_after;
   const capture::TableBuffers table_before = before ? BuffersOf(*before, tags_before) : capture::TableBuffers{};
+  if (run.table.accumulation == Accumulation::kPackedDecimal) {
+    throw ConfigError("--capture", "the capture format holds fixed64 or float32 sums, not packed-decimal ones yet");
+  }
   capture::FrameCapture c;
   c.declaration = declaration;
   c.frame = frame;

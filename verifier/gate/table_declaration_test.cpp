@@ -32,6 +32,7 @@ TEST(TableDeclaration, SetsWhatItNamesAndKeepsTheRest) {
   EXPECT_EQ(config.eviction.ToString(), "stale:8");
   EXPECT_EQ(config.compaction, Compaction::kOccupiedList);
   EXPECT_EQ(config.key_identity, KeyIdentity::kFull);
+  EXPECT_EQ(config.accumulation, Accumulation::kPackedDecimal);
   EXPECT_EQ(config.seed, 77u);
   EXPECT_FALSE(config.lod);
   FilterConfig small;
