@@ -54,9 +54,9 @@ void RequirePackedDecimalConverts(std::span<const glm::vec3> contributions) {
   for (const glm::vec3& c : contributions) largest = std::max({largest, c.x, c.y, c.z});
   // The product rounds to float as on the device; compared before the conversion, which past 2^32 is undefined.
   if (std::nearbyint(largest * shared::kPackedDecimalScale) < 0x1p32f) return;
-  throw FixedPointRangeError("--accum", "packed-decimal holds a record's channel times 1000 in 32 bits; a contribution of " +
-                                            FormatFloat(largest) +
-                                            " in this batch does not fit (4294967.295 at most): use fixed64");
+  throw FixedPointRangeError(
+      "--accum", "packed-decimal holds a record's channel times 1000 in 32 bits; a contribution of " +
+                     FormatFloat(largest) + " in this batch does not fit (4294967.295 at most): use fixed64");
 }
 
 void RequirePackedDecimalConverts(std::span<const Record> records) {

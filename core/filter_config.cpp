@@ -145,7 +145,8 @@ void FilterConfig::Validate() const {
       throw ConfigError("--temporal", "packed-decimal sums integrate and halve; " + temporal.ToString() +
                                           " blends fixed64 or float32 sums only");
     }
-    if (level_seed.enabled) throw ConfigError("--level-change", "seeds fixed64 or float32 sums only, not packed-decimal");
+    if (level_seed.enabled)
+      throw ConfigError("--level-change", "seeds fixed64 or float32 sums only, not packed-decimal");
     if (eviction.by_priority()) {
       throw ConfigError("--eviction", "priority is built for fixed64 and float32 counts, not packed-decimal's");
     }

@@ -64,7 +64,8 @@ simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs
   }
   // A count of 2^64 - 1 wraps to 0 (D12): no frame sequence gets there, but a table loaded with one can.
   // packed-decimal's count word adds 1 too; its 24-bit count carries into the frame counter at 2^24.
-  if (CountAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.counts, slot, 1))) co_await ctx.AtomicAdd(b.wraps, 1, 1);
+  if (CountAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.counts, slot, 1)))
+    co_await ctx.AtomicAdd(b.wraps, 1, 1);
   if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
   co_await ctx.Store(b.placements, i, slot);
 }

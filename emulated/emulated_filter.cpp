@@ -464,7 +464,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
               const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, slot);
               if (index != shared::kNoCandidate) ++tally.probe_lengths[index];
               for (int c = 0; c < 3; ++c) {
-                const double channel_sum = packed ? double(table.fixed_sums[slot][c]) / double(shared::kPackedDecimalScale)
+                const double channel_sum = packed
+                                               ? double(table.fixed_sums[slot][c]) / double(shared::kPackedDecimalScale)
                                            : fixed ? double(table.fixed_sums[slot][c]) * unscale
                                                    : double(table.float_sums[slot][c]);
                 average[c] = channel_sum / double(table.counts[slot]);

@@ -11,7 +11,8 @@ simt::KernelTask PackedSettleKernel(simt::ThreadContext& ctx, const PackedSettle
   const auto word = static_cast<std::uint32_t>(co_await ctx.Load(b.counts, slot));
   if (shared::PackedCount(word) == 0) co_return;  // empty, or a tombstone
   glm::uvec4 cell(0u, 0u, 0u, word);
-  for (int c = 0; c < 3; ++c) cell[c] = static_cast<std::uint32_t>(co_await ctx.Load(b.sums, std::uint64_t(slot) * 3 + c));
+  for (int c = 0; c < 3; ++c)
+    cell[c] = static_cast<std::uint32_t>(co_await ctx.Load(b.sums, std::uint64_t(slot) * 3 + c));
   const bool halving = shared::PackedNeedsHalving(cell);
   const glm::uvec4 settled = shared::SettlePacked(cell);
   if (halving) {

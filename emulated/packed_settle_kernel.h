@@ -14,7 +14,7 @@
 namespace hpsf {
 
 struct PackedSettleArgs {
-  TableBuffers buffers{};  // 32-bit sums and count words
+  TableBuffers buffers{};    // 32-bit sums and count words
   std::uint32_t halved = 0;  // 64-bit, one word: the slots halved
   OccupiedList list{};       // with compaction: one thread per entry
 };

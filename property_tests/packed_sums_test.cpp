@@ -4,6 +4,8 @@
 // 32 bits within one frame, a count past 24) must be counted by the backends and named by the table checker, never
 // hidden. Cells are constructed (one record repeated), so each figure below is worked by hand.
 
+#include "core/shared/packed_sums.h"
+
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -14,7 +16,6 @@
 #include <gtest/gtest.h>
 
 #include "core/hashed_run.h"
-#include "core/shared/packed_sums.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/grid_batch.h"
 #include "property_tests/hashed_backends.h"
@@ -225,7 +226,7 @@ TEST(PackedSums, TheCheckerNamesASlotThatIsNotTheSettleOfItsExactWords) {
   };
   const std::vector<std::vector<TableViolation>> cases = {
       broken([&](HashTableDump& t) { t.frame_counters[b] = 0; }),   // the counter not advanced
-      broken([&](HashTableDump& t) { t.counts[a] -= 1; }),         // a count off by one
+      broken([&](HashTableDump& t) { t.counts[a] -= 1; }),          // a count off by one
       broken([&](HashTableDump& t) { t.fixed_sums[a][1] += 1; })};  // a sum off by one
   for (std::size_t k = 0; k < cases.size(); ++k) {
     ASSERT_FALSE(cases[k].empty()) << "case " << k;

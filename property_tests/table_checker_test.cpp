@@ -411,6 +411,13 @@ void BlendingSecondFrame(Fixture& f) {
 }
 
 // A blended slot one unit of 2^-F off the blend in one channel.
+// packed-decimal: a slot's frame counter left where it was before the settle (a settle that skipped the slot).
+void PlantPackedFrameCounterNotAdvanced(Fixture& f) {
+  const std::uint32_t slot = f.run.placements[f.PlacedRecordWithProbe(0)];
+  ASSERT_EQ(f.run.table.frame_counters[slot], 1u);
+  f.run.table.frame_counters[slot] = 0;
+}
+
 void PlantBlendOffByOne(Fixture& f) {
   BlendingSecondFrame(f);
   const std::uint32_t s = f.FindSlot([&](std::uint32_t s) {
@@ -516,7 +523,8 @@ struct IsolatedCase {
 void PrintTo(const IsolatedCase& c, std::ostream* os) { *os << c.name; }
 
 constexpr std::uint32_t kCrowded = 64, kRoomy = 1024;
-constexpr Accumulation kFixed64 = Accumulation::kFixed64, kFloat32 = Accumulation::kFloat32;
+constexpr Accumulation kFixed64 = Accumulation::kFixed64, kFloat32 = Accumulation::kFloat32,
+                       kPacked = Accumulation::kPackedDecimal;
 
 const IsolatedCase kIsolatedCases[] = {
     {"PlacedUnkeyedRecord", TableInvariant::kPlacementOfUnkeyedRecord, kCrowded, kFixed64, PlantPlacedUnkeyedRecord},
@@ -545,6 +553,8 @@ const IsolatedCase kIsolatedCases[] = {
     {"BlendOffByOne", TableInvariant::kTemporalBlend, kRoomy, kFixed64, PlantBlendOffByOne},
     {"CellSplitPastATombstone", TableInvariant::kCellSplit, kRoomy, kFixed64, PlantCellSplitPastATombstone},
     {"SlotMissingFromTheList", TableInvariant::kOccupiedList, kRoomy, kFixed64, PlantSlotMissingFromTheList},
+    {"PackedFrameCounterNotAdvanced", TableInvariant::kPackedSettle, kRoomy, kPacked,
+     PlantPackedFrameCounterNotAdvanced},
 };
 
 class IsolatedViolation : public ::testing::TestWithParam<IsolatedCase> {};

@@ -148,7 +148,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
       if (fixed) {
         const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], scale);
         cell.fixed_sum[c] += add;
-        if (packed) cell.fixed_sum[c] &= 0xFFFFFFFFu;  // a 32-bit word, as the device's
+        if (packed) cell.fixed_sum[c] &= 0xFFFFFFFFu;        // a 32-bit word, as the device's
         stats.fixed_point_wraps += cell.fixed_sum[c] < add;  // only a sequence brighter than its F allowed
       } else {
         cell.float_sum[c] += r.contribution[c];

@@ -13,7 +13,7 @@ binaries=(key_identity_tests fixed_point_identity_tests vulkan_backend_tests vul
 # check what lavapipe's 8 cannot (eviction, temporal, compaction and level-seed shaders on a real device).
 property_binaries=(broken_shader_tests compaction_tests eviction_tests priority_eviction_tests temporal_blend_tests
   temporal_integration_tests crosscheck_frames_tests level_seed_tests probing_schemes_tests capture_judgement_tests
-  hard_case_tests count_overflow_tests fingerprint_alias_tests full_key_tests)
+  hard_case_tests count_overflow_tests fingerprint_alias_tests full_key_tests packed_sums_tests)
 
 case "${1:-}" in
   pack)

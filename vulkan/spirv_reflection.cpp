@@ -13,7 +13,7 @@
 namespace hpsf {
 namespace {
 
-std::string TypeName(spvc_type type) {
+std::string ScalarTypeName(spvc_type type) {
   switch (spvc_type_get_basetype(type)) {
     case SPVC_BASETYPE_UINT64:
       return "uint64_t";
@@ -32,6 +32,12 @@ std::string TypeName(spvc_type type) {
     default:
       return "a type of " + std::to_string(spvc_type_get_bit_width(type)) + " bits";
   }
+}
+
+// A vector is named with its size, so that a uvec4 binding is not taken for packed-decimal's uint sums.
+std::string TypeName(spvc_type type) {
+  const unsigned size = spvc_type_get_vector_size(type);
+  return size > 1 ? "a vector of " + std::to_string(size) + " " + ScalarTypeName(type) : ScalarTypeName(type);
 }
 
 // The element type of every declaration of a storage buffer at `binding` of set 0 (a shader may alias a binding, e.g.

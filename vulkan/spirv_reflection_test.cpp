@@ -11,6 +11,7 @@
 #include "keys_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
+#include "resolve_packed_decimal_spv.h"
 #include "temporal_spv.h"
 
 namespace hpsf {
@@ -36,20 +37,30 @@ TEST(SpirvReflection, TheAccumulateShadersDeclareTheirMode) {
 TEST(SpirvReflection, TheResolveShadersDeclareTheirModeAtBindingOne) {
   EXPECT_EQ(SumsAccumulation(resolve_fixed64_spv, "r.spv", 1), Accumulation::kFixed64);
   EXPECT_EQ(SumsAccumulation(resolve_float32_spv, "r.spv", 1), Accumulation::kFloat32);
+  EXPECT_EQ(SumsAccumulation(resolve_packed_decimal_spv, "r.spv", 1), Accumulation::kPackedDecimal);
   try {
     SumsAccumulation(keys_spv, "k.spv", 1);
     ADD_FAILURE() << "keys.comp's binding 1 taken for sums";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "k.spv: binding 1 (sums) holds uint; the stable buffer interface takes uint64_t "
-              "(fixed64) or float (float32)");
+              "k.spv: binding 1 (sums) holds a vector of 4 uint; the stable buffer interface takes uint64_t "
+              "(fixed64), float (float32) or uint (packed-decimal)");
   }
 }
 
 TEST(SpirvReflection, OtherBindingsAndBytesAreRefused) {
-  EXPECT_EQ(Refusal(eviction_spv),
-            "x.spv: binding 3 (sums) holds uint; the stable buffer interface takes uint64_t "
-            "(fixed64) or float (float32)");
+  // Two element types at one binding (eviction.comp's counts, viewed as 64-bit counts and 32-bit count words).
+  try {
+    SumsAccumulation(eviction_spv, "e.spv", 2);
+    ADD_FAILURE() << "two views taken for one mode";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "e.spv: binding 2 (sums) holds uint and uint64_t; the stable buffer interface takes uint64_t "
+              "(fixed64), float (float32) or uint (packed-decimal)");
+  }
+  // Reflection reads the type, not the name: eviction.comp's binding 3 (last_seen, uint) reads as packed-decimal
+  // sums. A shader that is not an accumulate is caught by its run, not here.
+  EXPECT_EQ(SumsAccumulation(eviction_spv, "e.spv"), Accumulation::kPackedDecimal);
   EXPECT_EQ(Refusal(keys_spv),
             "x.spv: declares no storage buffer at binding 3 (the sums of the stable buffer interface)");
   const std::uint32_t not_spirv[] = {0x07230203u, 1u, 2u};

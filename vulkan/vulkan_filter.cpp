@@ -71,7 +71,7 @@ struct EvictionPush {
   std::uint32_t record_count;
   std::uint32_t by_priority;
   std::uint32_t probe_scheme;
-  std::uint32_t compacted;  // 1: passes 0 and 1 step the occupied list, dispatched indirectly
+  std::uint32_t compacted;      // 1: passes 0 and 1 step the occupied list, dispatched indirectly
   std::uint32_t full_keys;      // 1: 64-bit tags (--key-identity full)
   std::uint32_t packed_counts;  // 1: packed-decimal's 32-bit count words
 };
@@ -212,7 +212,9 @@ std::uint32_t AccumulationWord(Accumulation accumulation) {
 
 // What a shader's sums binding is declared as for each accumulation (spirv_reflection.h's SumsAccumulation).
 const char* SumsTypeName(Accumulation accumulation) {
-  return accumulation == Accumulation::kFixed64 ? "uint64_t" : accumulation == Accumulation::kFloat32 ? "float" : "uint";
+  return accumulation == Accumulation::kFixed64   ? "uint64_t"
+         : accumulation == Accumulation::kFloat32 ? "float"
+                                                  : "uint";
 }
 
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
@@ -297,9 +299,7 @@ struct VulkanFilter::Impl {
   ComputeProgram& Compaction() {
     return PassProgram(compaction, custom_compaction, compaction_spv, kCompactionBindings, sizeof(CompactionPush));
   }
-  ComputeProgram& Settle() {
-    return PassProgram(settle, {}, packed_settle_spv, kSettleBindings, sizeof(SettlePush));
-  }
+  ComputeProgram& Settle() { return PassProgram(settle, {}, packed_settle_spv, kSettleBindings, sizeof(SettlePush)); }
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
     if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty() && custom_resolve.empty() &&
@@ -420,7 +420,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
   vulkan_internal::Transfer upload(p.device, p.staging);
   CopyTagsIn(upload.Upload(p.tags, tag_bytes), table.tags, table.key_identity);
   if (packed) {
-    if (table.frame_counters.size() != slots) throw InputError("the packed-decimal table has no frame counter per slot");
+    if (table.frame_counters.size() != slots)
+      throw InputError("the packed-decimal table has no frame counter per slot");
     auto* sums = static_cast<std::uint32_t*>(upload.Upload(p.sums, sum_bytes));
     auto* words = static_cast<std::uint32_t*>(upload.Upload(p.counts, count_bytes));
     for (std::size_t s = 0; s < slots; ++s) {
@@ -468,14 +469,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   Impl& p = *impl_;
   if (!p.custom_accumulate.empty() && p.custom_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +
-                                     SumsTypeName(p.custom_accumulation) +
-                                     ": it accumulates " + ToString(p.custom_accumulation) + ", not " +
-                                     ToString(config.accumulation));
+                                     SumsTypeName(p.custom_accumulation) + ": it accumulates " +
+                                     ToString(p.custom_accumulation) + ", not " + ToString(config.accumulation));
   }
   if (!p.custom_resolve.empty() && p.custom_resolve_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.resolve_name + " declares its sums (binding 1) as " +
-                                     SumsTypeName(p.custom_resolve_accumulation) +
-                                     ": it resolves " + ToString(p.custom_resolve_accumulation) + ", not " +
+                                     SumsTypeName(p.custom_resolve_accumulation) + ": it resolves " +
+                                     ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
   for (const Impl::TeamTags& team : p.team_tags) {
@@ -603,8 +603,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   AccumulatePush push{
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
       {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
-       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u,
-       blending ? 1u : 0u, by_priority ? 1u : 0u, SharedProbeKind(config.probing), 0},
+       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
+       by_priority ? 1u : 0u, SharedProbeKind(config.probing), 0},
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -855,24 +855,24 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   } else {
     ResizeOnHugePages(table.float_sums, config.capacity);
   }
-  const auto copies = {
-      CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
-      CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
-      CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
-      CopyOut{&run.wraps, from_stats, 8},
-      CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
+  const auto copies = {CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
+                       CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
+                       CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
+                       CopyOut{&run.wraps, from_stats, 8},
+                       CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   if (packed) {  // 32-bit words, widened; the count word split into its count and frame counter
     table.frame_counters.resize(config.capacity);
     const auto* sums = static_cast<const std::uint32_t*>(from_sums);
     const auto* words = static_cast<const std::uint32_t*>(from_counts);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, config.capacity, std::size_t(1) << 16), [&](const auto& range) {
-      for (std::size_t s = range.begin(); s < range.end(); ++s) {
-        for (int c = 0; c < 3; ++c) table.fixed_sums[s][c] = sums[s * 3 + c];
-        table.counts[s] = shared::PackedCount(words[s]);
-        table.frame_counters[s] = shared::PackedFrames(words[s]);
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, config.capacity, std::size_t(1) << 16),
+                      [&](const auto& range) {
+                        for (std::size_t s = range.begin(); s < range.end(); ++s) {
+                          for (int c = 0; c < 3; ++c) table.fixed_sums[s][c] = sums[s * 3 + c];
+                          table.counts[s] = shared::PackedCount(words[s]);
+                          table.frame_counters[s] = shared::PackedFrames(words[s]);
+                        }
+                      });
     std::memcpy(&run.halved, from_halved, 8);
   } else {
     ParallelCopy({table.counts.data(), from_counts, count_bytes});

@@ -14,7 +14,7 @@
 
 HPSF_SHARED_BEGIN
 
-const float kPackedDecimalScale = 1000.0f;  // SHaRC's SHARC_RADIANCE_SCALE (once 1e4)
+const float kPackedDecimalScale = 1000.0f;  // SHaRC's radiance scale (once 1e4)
 const uint kPackedCountBits = 24u;
 const uint kPackedCountMask = 0x00FFFFFFu;
 const uint kPackedFramesMax = 255u;

@@ -24,7 +24,9 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command.add_option("--cell-size", c.cell_size, "Cell edge when --lod off")->capture_default_str();
   command.add_option("--level-min", c.level_min, "Smallest level, in [-126, 126]")->capture_default_str();
   command.add_option("--level-max", c.level_max, "Largest level, in [-126, 126]")->capture_default_str();
-  command.add_option("--accum", o.accumulation, "Accumulation: fixed64, float32 or packed-decimal (SHaRC's 32-bit sums at 1000)")
+  command
+      .add_option("--accum", o.accumulation,
+                  "Accumulation: fixed64, float32 or packed-decimal (SHaRC's 32-bit sums at 1000)")
       ->capture_default_str();
   command.add_option("--seed", c.seed, "Seed of every random number")->capture_default_str();
   command.add_option("--capacity", c.capacity, "Hash table slots (a power of two)")->capture_default_str();

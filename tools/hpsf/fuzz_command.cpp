@@ -163,11 +163,13 @@ int Run(FuzzOptions& o, bool options_only) {
     }
   }
   if ((o.accumulation.empty() || o.accumulation == "both") && !o.vulkan.resolve_spv.empty()) {
-    throw ConfigError("--accum", "say which mode the shader given with --resolve-spv resolves: fixed64 or float32");
+    throw ConfigError(
+        "--accum", "say which mode the shader given with --resolve-spv resolves: fixed64, float32 or packed-decimal");
   }
   if (o.accumulation.empty() && !o.vulkan.accumulate_spv.empty()) {
     throw ConfigError("--accum",
-                      "say which mode the shader given with --accumulate-spv accumulates in: fixed64, float32 or both");
+                      "say which mode the shader given with --accumulate-spv accumulates in: fixed64, float32, "
+                      "packed-decimal or both");
   }
   std::optional<Accumulation> accumulation;
   if (!o.accumulation.empty() && o.accumulation != "both") accumulation = ParseAccumulation(o.accumulation);
@@ -335,7 +337,8 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--resolve-spv", o->vulkan.resolve_spv,
                 "Vulkan: your resolve shader (SPIR-V), run in every case; --accum must name its mode");
   c->add_option("--accum", o->accumulation,
-                "fixed64, float32 or both (the default; a shader given with --accumulate-spv must name its mode)");
+                "fixed64, float32, packed-decimal or both (the default: drawn per case, a quarter float32 and a sixth "
+                "packed-decimal; a shader given with --accumulate-spv must name its mode)");
   c->add_option("--probing", o->probing,
                 "linear, bucket, bucket-window or any: the probing scheme of every case (default any, drawn per case; "
                 "linear with --accumulate-spv, whose shader may walk no other)");

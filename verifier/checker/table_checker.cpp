@@ -194,7 +194,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   const bool packed = t.accumulation == Accumulation::kPackedDecimal;
   const float scale = SumScale(t.accumulation, t.fixed_point_bits);
   std::vector<TableViolation> violations;
-  if (packed && (t.frame_counters.size() != t.capacity || (in.before && in.before->frame_counters.size() != t.capacity))) {
+  if (packed &&
+      (t.frame_counters.size() != t.capacity || (in.before && in.before->frame_counters.size() != t.capacity))) {
     violations.push_back({TableInvariant::kPackedSettle, 0xFFFFFFFFu, {}, "a table without a frame counter per slot"});
     return violations;
   }
@@ -461,9 +462,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                     Decimal(exact[c]) + ": the 32-bit sum wrapped");
       }
       const std::uint32_t frames_before = evicted_by_policy || !before ? 0u : before->frame_counters[s];
-      const glm::uvec4 settled = shared::SettlePacked(
-          glm::uvec4(std::uint32_t(exact[0]), std::uint32_t(exact[1]), std::uint32_t(exact[2]),
-                     shared::PackCountWord(std::uint32_t(exact_count), frames_before)));
+      const glm::uvec4 settled =
+          shared::SettlePacked(glm::uvec4(std::uint32_t(exact[0]), std::uint32_t(exact[1]), std::uint32_t(exact[2]),
+                                          shared::PackCountWord(std::uint32_t(exact_count), frames_before)));
       const std::array<std::uint64_t, 3> settled_sums = {settled.x, settled.y, settled.z};
       expected_total_count += shared::PackedCount(settled.w);
       for (int c = 0; c < 3; ++c) {
@@ -477,8 +478,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                     std::to_string(t.frame_counters[s]) + "; exact count " + Decimal(exact_count) + ", sums (" +
                     Decimal(exact[0]) + ", " + Decimal(exact[1]) + ", " + Decimal(exact[2]) + "), frames " +
                     std::to_string(frames_before) + " settle to count " +
-                    std::to_string(shared::PackedCount(settled.w)) + ", sums " + SumsText(settled_sums) +
-                    ", frames " + std::to_string(shared::PackedFrames(settled.w)));
+                    std::to_string(shared::PackedCount(settled.w)) + ", sums " + SumsText(settled_sums) + ", frames " +
+                    std::to_string(shared::PackedFrames(settled.w)));
       }
       continue;
     }

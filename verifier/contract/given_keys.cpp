@@ -116,8 +116,9 @@ std::uint64_t CompareWithExactMap(std::span<const Record> records, const HashedR
     const std::string record = prefix + RecordName(i) + " at slot " + std::to_string(slot);
     if (packed) {  // the settle of the words before and the cell's exact adds (core/shared/packed_sums.h)
       const std::uint64_t before_count = history ? before->counts[slot] : 0;
-      glm::uvec4 words(0u, 0u, 0u, shared::PackCountWord(std::uint32_t(before_count + cell.count),
-                                                        history ? before->frame_counters[slot] : 0u));
+      glm::uvec4 words(
+          0u, 0u, 0u,
+          shared::PackCountWord(std::uint32_t(before_count + cell.count), history ? before->frame_counters[slot] : 0u));
       for (int ch = 0; ch < 3; ++ch)
         words[ch] = std::uint32_t((history ? before->fixed_sums[slot][ch] : 0) + cell.fixed_sum[ch]);
       const glm::uvec4 settled = shared::SettlePacked(words);

@@ -46,8 +46,8 @@ struct AdversarialCase {
 };
 
 struct AdversarialOptions {
-  std::uint32_t max_records = 96;            // per frame; the spread family sizes its batches by workgroups instead
-  bool allow_fast_mode = true;               // false when a broken kernel runs: its races must replay from the schedule
+  std::uint32_t max_records = 96;  // per frame; the spread family sizes its batches by workgroups instead
+  bool allow_fast_mode = true;     // false when a broken kernel runs: its races must replay from the schedule
   // A user's shader may handle one mode only; else one in four is float32, and one in six packed-decimal.
   std::optional<Accumulation> accumulation;
   // The spread family's thousands of records are for a device whose workgroups run at once (Vulkan); the emulator
