@@ -28,6 +28,11 @@ nlohmann::json LastFrameLevelSeed(const Backend& backend) {
           {"level_seed_s", backend.LastFrameTimings().level_seed_ms / 1e3}};
 }
 
+nlohmann::json LastFrameSettle(const Backend& backend) {
+  if (const FilterResult* exact = backend.LastExactResult()) return {{"cells_halved", exact->stats.cells_halved}};
+  return {{"halved", backend.LastHashedRun()->halved}, {"settle_s", backend.LastFrameTimings().settle_ms / 1e3}};
+}
+
 nlohmann::json LastFrameTemporal(const Backend& backend) {
   if (backend.LastExactResult()) return nlohmann::json::object();
   return {{"temporal_s", backend.LastFrameTimings().temporal_ms / 1e3}};

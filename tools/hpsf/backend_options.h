@@ -42,6 +42,9 @@ nlohmann::json LastFrameCompaction(const Backend& backend);
 // The last frame's level seeds (--level-change seed): cells_seeded (reference), or seeded and level_seed_s, the
 // seed pass's time (hashed backends).
 nlohmann::json LastFrameLevelSeed(const Backend& backend);
+// packed-decimal's settle of the last frame: cells_halved (reference), or halved and settle_s, the pass's time
+// (hashed backends).
+nlohmann::json LastFrameSettle(const Backend& backend);
 
 }  // namespace hpsf
 

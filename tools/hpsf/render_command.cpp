@@ -91,6 +91,7 @@ nlohmann::json FilterSequenceFrame(BackendInstance& backend, const RecordBatch& 
   if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(*backend.backend);
   if (config.level_seed.enabled) frame["level_seed"] = LastFrameLevelSeed(*backend.backend);
   if (config.compaction != Compaction::kNone) frame["compaction"] = LastFrameCompaction(*backend.backend);
+  if (config.accumulation == Accumulation::kPackedDecimal) frame["settle"] = LastFrameSettle(*backend.backend);
   return report;
 }
 
