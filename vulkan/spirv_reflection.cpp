@@ -5,6 +5,7 @@
 #include <iterator>
 #include <memory>
 #include <set>
+#include <utility>
 
 #include <spirv_cross/spirv_cross_c.h>
 
@@ -127,6 +128,17 @@ TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::strin
                      "; the stable buffer interface takes uint (fingerprints) or uint64_t (full keys)");
   }
   return views;
+}
+
+std::vector<TeamTagReader> TeamTagReaders(const TeamShader& accumulate, const TeamShader& eviction,
+                                          const TeamShader& compaction) {
+  std::vector<TeamTagReader> readers;
+  for (const auto& [shader, binding] :
+       {std::pair{&accumulate, 2u}, std::pair{&eviction, 0u}, std::pair{&compaction, 1u}}) {
+    if (!shader->spirv.empty())
+      readers.push_back({shader->name, binding, DeclaredTagViews(shader->spirv, shader->name, binding)});
+  }
+  return readers;
 }
 
 }  // namespace hpsf

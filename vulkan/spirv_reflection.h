@@ -33,8 +33,25 @@ struct TagViews {
   bool fingerprint = false;  // uint
   bool full = false;         // uint64_t
   bool Declares(KeyIdentity identity) const { return identity == KeyIdentity::kFull ? full : fingerprint; }
+  // Whether the shader runs with tags of this identity: it uses that view, or reads no tags at all.
+  bool Takes(KeyIdentity identity) const { return !(fingerprint || full) || Declares(identity); }
 };
 TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t tags_binding);
+
+// A team's shader that reads the table's tags (--accumulate-spv at binding 2, --eviction-spv at 0, --compaction-spv
+// at 1) and the views it uses. The one place those bindings are named, for VulkanFilter's refusal and for what
+// hpsf fuzz draws.
+struct TeamTagReader {
+  std::string name;
+  std::uint32_t binding;
+  TagViews views;
+};
+struct TeamShader {
+  std::span<const std::uint32_t> spirv;  // empty: the built-in shader, which takes both identities
+  std::string name;
+};
+std::vector<TeamTagReader> TeamTagReaders(const TeamShader& accumulate, const TeamShader& eviction,
+                                          const TeamShader& compaction);
 
 }  // namespace hpsf
 

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
-#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -323,12 +322,7 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> compaction;
   DeviceBuffer listed, occupied, next_occupied, occupied_header;
   // The tag views each team shader that reads tags uses (spirv_reflection.h), held to --key-identity per run.
-  struct TeamTags {
-    std::string name;
-    std::uint32_t binding;
-    TagViews views;
-  };
-  std::vector<TeamTags> team_tags;
+  std::vector<TeamTagReader> team_tags;
   // packed-decimal's settle (packed_settle.comp).
   std::optional<ComputeProgram> settle;
   DeviceBuffer halved;
@@ -392,14 +386,8 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
     impl_->custom_compaction = ReadSpirvFile(compaction_spv);
     impl_->compaction_name = compaction_spv;
   }
-  // The tags bindings of table_interface.glsl (accumulate), eviction.comp and compaction.comp.
-  const std::tuple<const std::vector<std::uint32_t>&, const std::string&, std::uint32_t> readers[] = {
-      {impl_->custom_accumulate, accumulate_spv, 2},
-      {impl_->custom_eviction, eviction_spv, 0},
-      {impl_->custom_compaction, compaction_spv, 1}};
-  for (const auto& [spirv, name, binding] : readers) {
-    if (!spirv.empty()) impl_->team_tags.push_back({name, binding, DeclaredTagViews(spirv, name, binding)});
-  }
+  impl_->team_tags = TeamTagReaders({impl_->custom_accumulate, accumulate_spv}, {impl_->custom_eviction, eviction_spv},
+                                    {impl_->custom_compaction, compaction_spv});
 }
 
 VulkanFilter::~VulkanFilter() = default;
@@ -478,8 +466,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                      ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
-  for (const Impl::TeamTags& team : p.team_tags) {
-    if (!(team.views.fingerprint || team.views.full) || team.views.Declares(config.key_identity)) continue;
+  for (const TeamTagReader& team : p.team_tags) {
+    if (team.views.Takes(config.key_identity)) continue;
     throw ConfigError("--key-identity",
                       team.name + " declares its tags (binding " + std::to_string(team.binding) + ") as " +
                           (team.views.full ? "uint64_t" : "uint") + " only: it reads " +

@@ -189,12 +189,16 @@ int Run(FuzzOptions& o, bool options_only) {
   Crosschecker checker(backends, defect, o.vulkan);  // a bad shader file is bad input here, before any run
   // A broken kernel's races must replay from the schedule, which the emulator's fast mode does not promise.
   // Full keys only where every team shader that reads tags declares a 64-bit view of them (spirv_reflection.h).
+  const auto words = [](const std::string& path) {
+    return path.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(path);
+  };
+  const std::vector<std::uint32_t> accumulate = words(o.vulkan.accumulate_spv), eviction = words(o.vulkan.eviction_spv),
+                                   compaction = words(o.vulkan.compaction_spv);
   bool full_keys = true;
-  for (const auto& [path, binding] : {std::pair{o.vulkan.accumulate_spv, 2u}, std::pair{o.vulkan.eviction_spv, 0u},
-                                      std::pair{o.vulkan.compaction_spv, 1u}}) {
-    if (path.empty()) continue;
-    const TagViews views = DeclaredTagViews(ReadSpirvFile(path), path, binding);
-    if (views.fingerprint || views.full) full_keys &= views.full;
+  for (const TeamTagReader& team :
+       TeamTagReaders({accumulate, o.vulkan.accumulate_spv}, {eviction, o.vulkan.eviction_spv},
+                      {compaction, o.vulkan.compaction_spv})) {
+    full_keys &= team.views.Takes(KeyIdentity::kFull);
   }
   const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing,
                                     full_keys};
