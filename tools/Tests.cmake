@@ -171,6 +171,15 @@ hpsf_add_cli_test(HpsfCrosscheck.TheSharcBucketsDeclarationPassesOnEveryBackend 
   --table ${PROJECT_SOURCE_DIR}/examples/tables/sharc-buckets.json --repro-dir ${hpsf_out}/sharc-repro)
 hpsf_add_cli_test(HpsfCheck.AGateFileNamesTableDeclarationsBesideIt "vulkan;schemes" 0 "check: 4 of 4 cases passed" ""
   $<TARGET_FILE:hpsf> check ${hpsf_data}/tables-gate.json)
+# The SHaRC-like worked example (examples/sharc-like/README.md): its gate passes, and with SHaRC #4 planted in its
+# shader (vulkan/CMakeLists.txt writes that variant) hpsf fuzz finds the bug unaided and shrinks it.
+hpsf_add_cli_test(Examples.TheSharcLikeTemplatePassesItsGate "vulkan;schemes" 0 "check: 9 of 9 cases passed" ""
+  $<TARGET_FILE:hpsf> check ${PROJECT_SOURCE_DIR}/examples/sharc-like/gate.json --out ${hpsf_out}/sharc_like_gate)
+add_test(NAME Examples.TheSharcLikeTemplateWithSharc4PlantedFailsFuzzing
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_sharc_like_masked -DMAX_RECORDS=2
+    "-DARGS=--backend;vulkan;--accumulate-spv;${HPSF_SHADER_VARIANT_DIR}/sharc_like_MASKED_FAILURE.spv;--key-source;shader;--accum;packed-decimal;--runs;200;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(Examples.TheSharcLikeTemplateWithSharc4PlantedFailsFuzzing PROPERTIES LABELS "vulkan;schemes;untrusted")
 hpsf_add_cli_test(HpsfCrosscheck.ABadTableDeclarationExits3 "unit;schemes" 3
   "bad-bucket-table.json: /probing: bucket:B aligns its buckets to B" "" $<TARGET_FILE:hpsf> crosscheck cornell
   --table ${hpsf_data}/bad-bucket-table.json)

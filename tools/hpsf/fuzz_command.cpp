@@ -194,14 +194,19 @@ int Run(FuzzOptions& o, bool options_only) {
   };
   const std::vector<std::uint32_t> accumulate = words(o.vulkan.accumulate_spv), eviction = words(o.vulkan.eviction_spv),
                                    compaction = words(o.vulkan.compaction_spv);
-  bool full_keys = true;
+  bool full_keys = true, fingerprints = true;
   for (const TeamTagReader& team :
        TeamTagReaders({accumulate, o.vulkan.accumulate_spv}, {eviction, o.vulkan.eviction_spv},
                       {compaction, o.vulkan.compaction_spv})) {
     full_keys &= team.views.Takes(KeyIdentity::kFull);
+    fingerprints &= team.views.Takes(KeyIdentity::kFingerprint);
   }
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing,
-                                    full_keys};
+  if (!full_keys && !fingerprints) {
+    throw ConfigError("--key-identity",
+                      "the team shaders given read tags of different widths: no case can run them all");
+  }
+  const AdversarialOptions generate{
+      o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing, full_keys, fingerprints};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();
@@ -262,6 +267,7 @@ int Run(FuzzOptions& o, bool options_only) {
                        return Fails(CheckUntilFails(checker, c, tries)) && (!hpsfs_own || Passes(Check(*hpsfs_own, c)));
                      },
                      {.accumulation = accumulation.has_value(),
+                      .key_identity = !fingerprints,
                       .probing = generate.probing.has_value(),
                       .eviction = !o.vulkan.eviction_spv.empty(),
                       .temporal = !o.vulkan.temporal_spv.empty(),

@@ -364,7 +364,11 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   const bool fingerprint_aim = a.family == AdversarialFamily::kZeroFingerprint ||
                                a.family == AdversarialFamily::kSharedFingerprint ||
                                a.family == AdversarialFamily::kWrappingWindows;
-  if (identity_draws.Bits() % 4u == 0u && normal_fits && !fingerprint_aim && options.full_keys) {
+  if (!options.fingerprints) {
+    a.config.key_identity = KeyIdentity::kFull;
+    a.config.fingerprint_bits = 32;
+    if (!normal_fits) a.config.normal = NormalKey{NormalMode::kSign, 0};
+  } else if (identity_draws.Bits() % 4u == 0u && normal_fits && !fingerprint_aim && options.full_keys) {
     a.config.key_identity = KeyIdentity::kFull;
     a.config.fingerprint_bits = 32;
     if (a.family == AdversarialFamily::kCrowded && identity_draws.Bits() % 2u == 0u) {

@@ -58,6 +58,9 @@ struct AdversarialOptions {
   std::optional<ProbeKind> probing = std::nullopt;
   // Whether a case may store full keys (core/key_identity.h): false where a team's shader reads 32-bit tags only.
   bool full_keys = true;
+  // Whether a case may store fingerprints: false where a team's shader reads 64-bit tags only; every case then
+  // stores full keys, its normal bucket narrowed to one that fits.
+  bool fingerprints = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -104,7 +104,7 @@ class Shrinker {
     }
     if (c.config.fixed_point_bits) attempt([](AdversarialCase& a) { a.config.fixed_point_bits.reset(); });
     if (c.config.fingerprint_bits != 32) attempt([](AdversarialCase& a) { a.config.fingerprint_bits = 32; });
-    if (c.config.key_identity != KeyIdentity::kFingerprint) {
+    if (!keep_.key_identity && c.config.key_identity != KeyIdentity::kFingerprint) {
       attempt([](AdversarialCase& a) { a.config.key_identity = KeyIdentity::kFingerprint; });
     }
     if (!keep_.probing && c.config.probing != ProbeKind::kLinear)

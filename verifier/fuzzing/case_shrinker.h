@@ -28,6 +28,7 @@ struct ShrinkResult {
 // compacts (simplified away, the case would shrink into some other failure, or none of the shader's).
 struct ShrinkKeeps {
   bool accumulation = false;
+  bool key_identity = false;  // a shader that reads 64-bit tags only keeps its full keys
   bool probing = false;
   bool eviction = false;
   bool temporal = false;
