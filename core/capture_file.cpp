@@ -8,6 +8,7 @@
 #include "core/capture_writer.h"
 #include "core/error.h"
 #include "core/fnv1a.h"
+#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 namespace {
@@ -63,6 +64,7 @@ class CaptureParser {
     c.float32_sums = (f[5] & capture::kFlagFloat32Sums) != 0;
     c.last_seen = (f[5] & capture::kFlagLastSeen) != 0;
     c.full_keys = (f[5] & capture::kFlagFullKeys) != 0;
+    c.packed_sums = (f[5] & capture::kFlagPackedSums) != 0;
     if (n > kMaxCapturedRecords) throw Fail(chunk_, "FRAM: " + std::to_string(n) + " records, more than 2^28");
     if (c.capacity == 0 || c.capacity > (1u << 31) || !std::has_single_bit(c.capacity)) {
       throw Fail(chunk_, "FRAM: capacity " + std::to_string(c.capacity) + " is not a power of two up to 2^31");
@@ -70,10 +72,12 @@ class CaptureParser {
     if (c.key_words < 1 || c.key_words > capture::kMaxKeyWords) {
       throw Fail(chunk_, "FRAM: " + std::to_string(c.key_words) + " key words, not 1 to 6");
     }
-    if ((f[5] & ~(capture::kFlagFloat32Sums | capture::kFlagLastSeen | capture::kFlagFullKeys)) != 0 || f[6] != 0 ||
-        f[7] != 0) {
+    if ((f[5] & ~(capture::kFlagFloat32Sums | capture::kFlagLastSeen | capture::kFlagFullKeys |
+                  capture::kFlagPackedSums)) != 0 ||
+        f[6] != 0 || f[7] != 0) {
       throw Fail(chunk_, "FRAM: unknown flags or reserved words set");
     }
+    if (c.float32_sums && c.packed_sums) throw Fail(chunk_, "FRAM: float32 and packed-decimal sums both flagged");
 
     const std::string_view declaration = *next("DECL", false);
     c.declaration.assign(declaration);
@@ -174,9 +178,10 @@ class CaptureParser {
 
   CapturedTable Table(std::string_view payload, const Capture& c, const char* type) const {
     const std::uint64_t slots = c.capacity;
-    const std::uint64_t sum_bytes = slots * 3 * (c.float32_sums ? 4 : 8);
+    const std::uint64_t sum_bytes = slots * 3 * (c.float32_sums || c.packed_sums ? 4 : 8);
     const std::uint64_t tag_bytes = slots * (c.full_keys ? 8 : 4);
-    const std::uint64_t expected = tag_bytes + sum_bytes + slots * 8 + (c.last_seen ? slots * 4 : 0);
+    const std::uint64_t count_bytes = slots * (c.packed_sums ? 4 : 8);
+    const std::uint64_t expected = tag_bytes + sum_bytes + count_bytes + (c.last_seen ? slots * 4 : 0);
     if (payload.size() != expected) {
       throw Fail(chunk_, std::string(type) + ": " + std::to_string(payload.size()) + " bytes, not " +
                              std::to_string(expected) + " for " + std::to_string(slots) + " slots");
@@ -190,12 +195,27 @@ class CaptureParser {
     };
     Identities(payload.substr(0, std::size_t(tag_bytes)), c.full_keys, type, t.tags, std::size_t(slots));
     at += std::size_t(tag_bytes);
-    if (c.float32_sums) {
-      take(t.float_sums, sum_bytes);
+    if (c.packed_sums) {  // 32-bit words widened; each count word split into its count and frame counter
+      std::vector<std::array<std::uint32_t, 3>> sums;
+      std::vector<std::uint32_t> words;
+      take(sums, sum_bytes);
+      take(words, count_bytes);
+      t.fixed_sums.resize(sums.size());
+      for (std::size_t s = 0; s < sums.size(); ++s) t.fixed_sums[s] = {sums[s][0], sums[s][1], sums[s][2]};
+      t.counts.resize(words.size());
+      t.frame_counters.resize(words.size());
+      for (std::size_t s = 0; s < words.size(); ++s) {
+        t.counts[s] = shared::PackedCount(words[s]);
+        t.frame_counters[s] = shared::PackedFrames(words[s]);
+      }
     } else {
-      take(t.fixed_sums, sum_bytes);
+      if (c.float32_sums) {
+        take(t.float_sums, sum_bytes);
+      } else {
+        take(t.fixed_sums, sum_bytes);
+      }
+      take(t.counts, count_bytes);
     }
-    take(t.counts, slots * 8);
     if (c.last_seen) take(t.last_seen, slots * 4);
     return t;
   }

@@ -18,10 +18,11 @@ namespace hpsf {
 
 struct CapturedTable {
   std::vector<std::uint64_t> tags;                       // 64-bit full keys, or 32-bit identities widened
-  std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64
+  std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64, or packed-decimal's 32-bit words widened
   std::vector<std::array<float, 3>> float_sums;          // float32
-  std::vector<std::uint64_t> counts;
-  std::vector<std::uint32_t> last_seen;  // with the last-seen flag
+  std::vector<std::uint64_t> counts;                     // packed-decimal: the count words' counts
+  std::vector<std::uint32_t> last_seen;                  // with the last-seen flag
+  std::vector<std::uint32_t> frame_counters;             // packed-decimal: the count words' frame counters
 };
 
 struct CapturedRecords {  // the RECD chunk: hpsf's records and the camera their keys need
@@ -38,8 +39,9 @@ struct Capture {
   std::int32_t fixed_point_bits = 0;
   bool float32_sums = false;
   bool last_seen = false;
-  bool full_keys = false;   // identities and tags were written as 64-bit words
-  std::string declaration;  // JSON text
+  bool full_keys = false;    // identities and tags were written as 64-bit words
+  bool packed_sums = false;  // packed-decimal sums and count words
+  std::string declaration;   // JSON text
   std::vector<std::array<float, 3>> contributions;
   std::vector<std::uint32_t> keys;  // key_words per record
   std::vector<std::uint32_t> home_slots, statuses, placements;

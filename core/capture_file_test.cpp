@@ -73,6 +73,8 @@ capture::FrameCapture Written(const Arrays& a, const capture::RecordView* record
              {},
              a.counts,
              last_seen ? std::span<const std::uint32_t>(a.last_seen) : std::span<const std::uint32_t>(),
+             {},
+             {},
              {}};
   return c;
 }
@@ -88,7 +90,7 @@ std::string Bytes(const std::string& path) {
 std::string FullCaptureBytes() {
   const Arrays a;
   const capture::RecordView records{32, 16, 2, 0.75, a.records};
-  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}};
+  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}, {}, {}};
   const std::string path = TempPath("full.hpsfc");
   capture::FrameCapture c = Written(a, &records, &before, true);
   c.occupied = &a.occupied_view;
@@ -110,7 +112,7 @@ void ExpectInputError(const std::string& bytes, const std::string& expected) {
 TEST(CaptureFile, EveryArrayRoundTripsBitForBit) {
   const Arrays a;
   const capture::RecordView records{32, 16, 2, 0.75, a.records};
-  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}};
+  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}, {}, {}};
   const std::string path = TempPath("round_trip.hpsfc");
   capture::FrameCapture written = Written(a, &records, &before, true);
   written.occupied = &a.occupied_view;
@@ -207,7 +209,7 @@ TEST(CaptureFile, Float32SumsWithoutTheOptionalChunksRoundTrip) {
 // the 32-bit arrays in their place, and a table of the other width.
 TEST(CaptureFile, FullKeysRoundTripAs64BitWords) {
   const Arrays a;
-  const capture::TableBuffers before{{}, a.sums, {}, a.counts, {}, a.full_tags_before};
+  const capture::TableBuffers before{{}, a.sums, {}, a.counts, {}, a.full_tags_before, {}, {}};
   capture::FrameCapture c = Written(a, nullptr, &before, false);
   c.full_keys = true;
   c.identities = {};
@@ -238,6 +240,37 @@ TEST(CaptureFile, FullKeysRoundTripAs64BitWords) {
   const std::uint64_t checksum = Fnv1a(bytes.data() + frame, 32);
   std::memcpy(bytes.data() + frame + 32, &checksum, 8);
   ExpectInputError(bytes, "IDEN: 40 bytes, not 20 for the frame's records");
+}
+
+// packed-decimal sums (flag bit 3): 32-bit sums and count words, read back as the dump holds them (the sums widened,
+// each count word split into its 24-bit count and its frame counter); the writer refuses them beside 64-bit counts,
+// and beside float32 sums.
+TEST(CaptureFile, PackedSumsRoundTripAsCountsAndFrameCounters) {
+  const Arrays a;
+  std::vector<std::uint32_t> packed_sums(24), count_words = {0x01000001u, 0x02000005u, 0, 0, 0, 0, 0, 0xFF123456u};
+  std::iota(packed_sums.begin(), packed_sums.end(), 0xFFFFFFF0u);  // wraps: each word distinct
+  capture::FrameCapture c = Written(a, nullptr, nullptr, false);
+  c.packed_sums = true;
+  c.after.fixed_sums = {};
+  c.after.counts = {};
+  c.after.packed_sums = packed_sums;
+  c.after.count_words = count_words;
+  const std::string path = TempPath("packed.hpsfc");
+  ASSERT_EQ(capture::WriteCapture(path, c), "");
+  const Capture read = ReadCapture(path);
+  EXPECT_TRUE(read.packed_sums);
+  ASSERT_EQ(read.after.fixed_sums.size(), 8u);
+  for (std::size_t s = 0; s < 8; ++s) {
+    for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(read.after.fixed_sums[s][ch], packed_sums[3 * s + std::size_t(ch)]);
+  }
+  EXPECT_EQ(read.after.counts, (std::vector<std::uint64_t>{1, 5, 0, 0, 0, 0, 0, 0x123456}));
+  EXPECT_EQ(read.after.frame_counters, (std::vector<std::uint32_t>{1, 2, 0, 0, 0, 0, 0, 255}));
+  capture::FrameCapture with_counts = c;
+  with_counts.after.counts = a.counts;
+  EXPECT_NE(capture::WriteCapture(TempPath("both.hpsfc"), with_counts).find("after.count_words"), std::string::npos);
+  capture::FrameCapture both = c;
+  both.float32_sums = true;
+  EXPECT_NE(capture::WriteCapture(TempPath("both.hpsfc"), both).find("one encoding of sums only"), std::string::npos);
 }
 
 TEST(CaptureFile, TheWriterRefusesArraysOfTheWrongLengthAndLeavesNoFile) {
@@ -322,7 +355,9 @@ TEST(CaptureFile, InconsistentFramesAreNamedBeforeAnythingIsAllocated) {
   ExpectInputError(with_frame_word(bytes, 2, 12), "capacity 12 is not a power of two");
   ExpectInputError(with_frame_word(bytes, 2, 1u << 30), "TAFT: ");
   ExpectInputError(with_frame_word(bytes, 3, 7), "7 key words, not 1 to 6");
-  ExpectInputError(with_frame_word(bytes, 5, 8), "unknown flags");
+  ExpectInputError(with_frame_word(bytes, 5, 16), "unknown flags");
+  ExpectInputError(with_frame_word(bytes, 5, capture::kFlagFloat32Sums | capture::kFlagPackedSums),
+                   "float32 and packed-decimal sums both flagged");
   ExpectInputError(with_frame_word(bytes, 5, capture::kFlagFullKeys), "IDEN: 20 bytes, not 40 for the frame's records");
   ExpectInputError(with_frame_word(bytes, 5, capture::kFlagLastSeen), "TAFT: ");
 }

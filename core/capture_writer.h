@@ -37,6 +37,9 @@ inline constexpr std::uint32_t kProbeFailure = 0xFFFFFFFEu;  // probed every can
 inline constexpr std::uint32_t kFlagFloat32Sums = 1u << 0;  // sums are float32 (else fixed64 at 2^F)
 inline constexpr std::uint32_t kFlagLastSeen = 1u << 1;     // each table carries a last-seen frame per slot
 inline constexpr std::uint32_t kFlagFullKeys = 1u << 2;     // identities and tags are 64-bit words (full keys)
+// Sums are packed-decimal (SHaRC's): 32-bit words at 1000, and 32-bit count words (the count in bits 0-23, the frames
+// the cell has lived in bits 24-31) instead of 64-bit counts.
+inline constexpr std::uint32_t kFlagPackedSums = 1u << 3;
 
 // A chunk's type: four ASCII characters, the first in the lowest byte.
 constexpr std::uint32_t ChunkType(const char (&name)[5]) {
@@ -52,6 +55,9 @@ struct TableBuffers {
   std::span<const std::uint64_t> counts;      // capacity
   std::span<const std::uint32_t> last_seen;   // capacity with eviction (the frame a record last reached it), else empty
   std::span<const std::uint64_t> full_tags;   // capacity, with full keys (64-bit tags), instead of tags
+  // With packed-decimal sums, instead of the sums and counts above:
+  std::span<const std::uint32_t> packed_sums;  // 3 x capacity, 32-bit words at 1000
+  std::span<const std::uint32_t> count_words;  // capacity: count | frames << 24
 };
 
 // What a team's camera made of the frame, for a record file's key inputs (hpsf's own key only).
@@ -65,8 +71,9 @@ struct FrameCapture {
   std::string_view declaration;  // the table declaration's JSON text (docs/reference/table-declaration.md)
   std::uint32_t frame = 0;
   std::uint32_t capacity = 0;
-  std::int32_t fixed_point_bits = 0;  // F of fixed64 sums; ignored with float32
+  std::int32_t fixed_point_bits = 0;  // F of fixed64 sums; ignored with float32 and packed-decimal sums
   bool float32_sums = false;
+  bool packed_sums = false;  // packed-decimal: the tables' packed_sums and count_words
   // A table that stores full keys (key.identity "full"): 64-bit identities and tags, in full_identities and
   // full_tags instead of identities and tags.
   bool full_keys = false;
@@ -127,17 +134,27 @@ inline std::string CheckTable(const TableBuffers& t, const FrameCapture& c, cons
   if (c.full_keys ? t.full_tags.size() != n || !t.tags.empty() : t.tags.size() != n || !t.full_tags.empty()) {
     return name + (c.full_keys ? ".full_tags" : ".tags") + ": not one per slot, or tags of the other width too";
   }
-  if (t.counts.size() != n) return name + ".counts: " + std::to_string(t.counts.size()) + " words, not the capacity";
-  if (c.float32_sums ? t.float_sums.size() != 3 * n || !t.fixed_sums.empty()
-                     : t.fixed_sums.size() != 3 * n || !t.float_sums.empty()) {
-    return name + ": sums of the other encoding, or not 3 x capacity of them";
+  if (c.packed_sums) {
+    if (t.packed_sums.size() != 3 * n || !t.fixed_sums.empty() || !t.float_sums.empty()) {
+      return name + ".packed_sums: not 3 x capacity, or sums of another encoding too";
+    }
+    if (t.count_words.size() != n || !t.counts.empty()) return name + ".count_words: not one per slot, or counts too";
+  } else {
+    if (!t.packed_sums.empty() || !t.count_words.empty()) return name + ": packed sums without packed_sums set";
+    if (t.counts.size() != n) return name + ".counts: " + std::to_string(t.counts.size()) + " words, not the capacity";
+    if (c.float32_sums ? t.float_sums.size() != 3 * n || !t.fixed_sums.empty()
+                       : t.fixed_sums.size() != 3 * n || !t.float_sums.empty()) {
+      return name + ": sums of the other encoding, or not 3 x capacity of them";
+    }
   }
   if (!t.last_seen.empty() && t.last_seen.size() != n) return name + ".last_seen: not one per slot";
   return "";
 }
 
 inline std::uint64_t TableBytes(const FrameCapture& c, bool last_seen) {
-  return std::uint64_t(c.capacity) * ((c.full_keys ? 8 : 4) + 3 * (c.float32_sums ? 4 : 8) + 8 + (last_seen ? 4 : 0));
+  const bool narrow_sums = c.float32_sums || c.packed_sums;
+  return std::uint64_t(c.capacity) *
+         ((c.full_keys ? 8 : 4) + 3 * (narrow_sums ? 4 : 8) + (c.packed_sums ? 4 : 8) + (last_seen ? 4 : 0));
 }
 
 inline void WriteTable(ChunkStream& s, std::uint32_t type, const TableBuffers& t, const FrameCapture& c,
@@ -148,12 +165,17 @@ inline void WriteTable(ChunkStream& s, std::uint32_t type, const TableBuffers& t
   } else {
     s.Add(t.tags);
   }
-  if (c.float32_sums) {
-    s.Add(t.float_sums);
+  if (c.packed_sums) {
+    s.Add(t.packed_sums);
+    s.Add(t.count_words);
   } else {
-    s.Add(t.fixed_sums);
+    if (c.float32_sums) {
+      s.Add(t.float_sums);
+    } else {
+      s.Add(t.fixed_sums);
+    }
+    s.Add(t.counts);
   }
-  s.Add(t.counts);
   if (last_seen) s.Add(t.last_seen);
   s.End();
 }
@@ -165,6 +187,7 @@ inline std::string CaptureProblem(const FrameCapture& c) {
   const std::size_t n = c.home_slots.size();
   if (c.key_words < 1 || c.key_words > kMaxKeyWords) return "key_words must be 1 to 6";
   if (c.capacity == 0) return "capacity is 0";
+  if (c.float32_sums && c.packed_sums) return "float32_sums and packed_sums: one encoding of sums only";
   if (n > 0xFFFFFFFFu) return "more than 2^32 - 1 records";
   if (c.contributions.size() != 3 * n) return "contributions: not 3 per record";
   if (c.keys.size() != std::size_t(c.key_words) * n) return "keys: not key_words per record";
@@ -201,7 +224,7 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
     detail::ChunkStream s(out);
     const std::uint32_t n = std::uint32_t(c.home_slots.size());
     const std::uint32_t flags = (c.float32_sums ? kFlagFloat32Sums : 0u) | (last_seen ? kFlagLastSeen : 0u) |
-                                (c.full_keys ? kFlagFullKeys : 0u);
+                                (c.full_keys ? kFlagFullKeys : 0u) | (c.packed_sums ? kFlagPackedSums : 0u);
     const std::uint32_t frame[8] = {
         c.frame, n, c.capacity, c.key_words, std::bit_cast<std::uint32_t>(c.fixed_point_bits), flags, 0, 0};
     s.Begin(ChunkType("FRAM"), sizeof frame);

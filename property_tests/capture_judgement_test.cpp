@@ -121,6 +121,15 @@ std::vector<HostCase> EmulatorCases() {
   full_one_frame.fingerprint_bits = 32;
   full_one_frame.key_identity = KeyIdentity::kFull;
   cases.push_back({"full-key-low-word", Defect::kFullKeyLowWord, full_one_frame, 1, 0.0, true});
+  // packed-decimal sums: 32-bit sums and count words in the capture (flag bit 3), clean and with D9's lost adds.
+  FilterConfig packed = Crowded();
+  packed.accumulation = Accumulation::kPackedDecimal;
+  packed.eviction = ParseEviction("stale:1");
+  packed.compaction = Compaction::kOccupiedList;
+  cases.push_back({"clean crowded packed-decimal stale:1, occupied list, 3 frames", Defect::kNone, packed, 3});
+  FilterConfig packed_roomy = Roomy();
+  packed_roomy.accumulation = Accumulation::kPackedDecimal;
+  cases.push_back({"D9 packed-decimal", Defect::kD9NonAtomicAdd, packed_roomy, 1, 0.0, true});
   return cases;
 }
 
@@ -173,6 +182,15 @@ TEST(CaptureJudgement, TheJudgeGivesTheVulkanHostsVerdictForEveryShader) {
        {"built-in shader, stale:1, 3 frames", Defect::kNone,
         [] {
           FilterConfig config = Crowded();
+          config.eviction = ParseEviction("stale:1");
+          return config;
+        }(),
+        3}},
+      {"",
+       {"built-in shader, packed-decimal, 3 frames", Defect::kNone,
+        [] {
+          FilterConfig config = Crowded();
+          config.accumulation = Accumulation::kPackedDecimal;
           config.eviction = ParseEviction("stale:1");
           return config;
         }(),
@@ -313,7 +331,7 @@ capture::FrameCapture FrameOf(const TeamCapture& t) {
   c.identities = t.identities;
   c.statuses = t.statuses;
   c.placements = t.placements;
-  c.after = {t.tags, t.sums, {}, t.counts, {}, {}};
+  c.after = {t.tags, t.sums, {}, t.counts, {}, {}, {}, {}};
   return c;
 }
 

@@ -73,6 +73,7 @@ bool CaptureRoundTrips(const char* path, const std::vector<hpsf::Record>& record
   const std::vector<std::uint32_t> tags(table.tags.begin(), table.tags.end());  // fingerprints: 32-bit tags
   c.after = {tags, {reinterpret_cast<const std::uint64_t*>(table.fixed_sums.data()), 3 * table.fixed_sums.size()},
              {},   table.counts,
+             {},   {},
              {},   {}};
   if (const std::string error = hpsf::capture::WriteCapture(path, c); !error.empty()) {
     std::printf("capture: %s\n", error.c_str());

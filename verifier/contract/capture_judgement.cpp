@@ -23,21 +23,20 @@ namespace {
 // The capture against its declaration: what the buffers' shape says must be what the declaration declares.
 void CheckAgainstDeclaration(const Capture& c, const FilterConfig& config) {
   auto fail = [&](const std::string& problem) { throw InputError(c.path + ": " + problem); };
-  if (config.accumulation == Accumulation::kPackedDecimal) {
-    fail("its declaration's sums are packed-decimal, which the capture format does not hold yet (fixed64 or float32)");
-  }
   if (c.capacity != config.capacity) {
     fail("the table has " + std::to_string(c.capacity) + " slots, its declaration " + std::to_string(config.capacity));
   }
-  if (c.float32_sums != (config.accumulation == Accumulation::kFloat32)) {
-    fail(std::string("the sums are ") + (c.float32_sums ? "float32" : "fixed64") + ", its declaration's " +
-         ToString(config.accumulation));
+  const Accumulation captured = c.float32_sums  ? Accumulation::kFloat32
+                                : c.packed_sums ? Accumulation::kPackedDecimal
+                                                : Accumulation::kFixed64;
+  if (captured != config.accumulation) {
+    fail("the sums are " + ToString(captured) + ", its declaration's " + ToString(config.accumulation));
   }
   if (c.last_seen != config.eviction.enabled()) {
     fail(config.eviction.enabled() ? "its declaration evicts, but the tables carry no last-seen frames"
                                    : "the tables carry last-seen frames, but its declaration does not evict");
   }
-  if (!c.float32_sums &&
+  if (captured == Accumulation::kFixed64 &&
       (c.fixed_point_bits < shared::kFixedPointBitsMin || c.fixed_point_bits > shared::kFixedPointBitsMax)) {
     fail("F " + std::to_string(c.fixed_point_bits) + " is outside [-126, 126]");
   }
@@ -70,6 +69,7 @@ HashTableDump TableOf(const CapturedTable& t, const Capture& c, const FilterConf
   d.float_sums = t.float_sums;
   d.counts = t.counts;
   d.last_seen = t.last_seen;
+  d.frame_counters = t.frame_counters;
   return d;
 }
 
@@ -257,7 +257,7 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config, const
   const std::uint64_t compared =
       CompareWithExactMap(records, run, before ? &*before : nullptr, classified, config, "", ideal);
   ideal.note = std::string("the exact map over the captured key words: one slot per cell; ") +
-               (capture.float32_sums ? "counts" : "counts and fixed64 sums") +
+               (capture.float32_sums ? "counts" : "counts and exact sums") +
                " of the frame equal to each cell's outside the classified slots; " + std::to_string(compared) +
                " records compared; no image in a capture";
 

@@ -5,14 +5,21 @@
 
 #include "core/capture_writer.h"
 #include "core/error.h"
+#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 namespace {
 
 static_assert(sizeof(std::array<std::uint64_t, 3>) == 24 && sizeof(std::array<float, 3>) == 12);
 
-// A table of full keys as 64-bit tags; a fingerprint table's tags, each below 2^32, narrowed into `tags32`.
-capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_t>& tags32) {
+// The 32-bit words a packed-decimal table holds on a device, kept alive beside its TableBuffers.
+struct PackedWords {
+  std::vector<std::uint32_t> sums, counts;
+};
+
+// A table of full keys as 64-bit tags; a fingerprint table's tags, each below 2^32, narrowed into `tags32`. A
+// packed-decimal table's sums and count words (core/shared/packed_sums.h) as the device holds them, into `packed`.
+capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_t>& tags32, PackedWords& packed) {
   capture::TableBuffers b;
   if (t.key_identity == KeyIdentity::kFull) {
     b.full_tags = t.tags;
@@ -20,9 +27,20 @@ capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_
     tags32.assign(t.tags.begin(), t.tags.end());
     b.tags = tags32;
   }
-  b.fixed_sums = {reinterpret_cast<const std::uint64_t*>(t.fixed_sums.data()), 3 * t.fixed_sums.size()};
-  b.float_sums = {reinterpret_cast<const float*>(t.float_sums.data()), 3 * t.float_sums.size()};
-  b.counts = t.counts;
+  if (t.accumulation == Accumulation::kPackedDecimal) {
+    packed.sums.resize(3 * t.fixed_sums.size());
+    packed.counts.resize(t.counts.size());
+    for (std::size_t s = 0; s < t.counts.size(); ++s) {
+      for (int c = 0; c < 3; ++c) packed.sums[3 * s + std::size_t(c)] = std::uint32_t(t.fixed_sums[s][c]);
+      packed.counts[s] = shared::PackCountWord(std::uint32_t(t.counts[s]), t.frame_counters[s]);
+    }
+    b.packed_sums = packed.sums;
+    b.count_words = packed.counts;
+  } else {
+    b.fixed_sums = {reinterpret_cast<const std::uint64_t*>(t.fixed_sums.data()), 3 * t.fixed_sums.size()};
+    b.float_sums = {reinterpret_cast<const float*>(t.float_sums.data()), 3 * t.float_sums.size()};
+    b.counts = t.counts;
+  }
   b.last_seen = t.last_seen;
   return b;
 }
@@ -53,16 +71,16 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   const capture::RecordView records{batch.width, batch.height, batch.samples_per_pixel, batch.fov_y_radians,
                                     std::as_bytes(std::span<const Record>(batch.records))};
   std::vector<std::uint32_t> tags_before, tags_after;
-  const capture::TableBuffers table_before = before ? BuffersOf(*before, tags_before) : capture::TableBuffers{};
-  if (run.table.accumulation == Accumulation::kPackedDecimal) {
-    throw ConfigError("--capture", "the capture format holds fixed64 or float32 sums, not packed-decimal ones yet");
-  }
+  PackedWords packed_before, packed_after;
+  const capture::TableBuffers table_before =
+      before ? BuffersOf(*before, tags_before, packed_before) : capture::TableBuffers{};
   capture::FrameCapture c;
   c.declaration = declaration;
   c.frame = frame;
   c.capacity = run.table.capacity;
   c.fixed_point_bits = run.table.fixed_point_bits;
   c.float32_sums = run.table.accumulation == Accumulation::kFloat32;
+  c.packed_sums = run.table.accumulation == Accumulation::kPackedDecimal;
   c.full_keys = full_keys;
   c.key_words = 6;
   c.contributions = contributions;
@@ -74,7 +92,7 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   c.placements = run.placements;
   c.hpsf_records = &records;
   c.before = before ? &table_before : nullptr;
-  c.after = BuffersOf(run.table, tags_after);
+  c.after = BuffersOf(run.table, tags_after, packed_after);
   const std::span<const std::uint32_t> occupied = run.table.occupied;
   if (run.table.compacted) c.occupied = &occupied;
   if (const std::string error = capture::WriteCapture(path, c); !error.empty()) throw InputError(error);
