@@ -180,6 +180,12 @@ add_test(NAME Examples.TheSharcLikeTemplateWithSharc4PlantedFailsFuzzing
     "-DARGS=--backend;vulkan;--accumulate-spv;${HPSF_SHADER_VARIANT_DIR}/sharc_like_MASKED_FAILURE.spv;--key-source;shader;--accum;packed-decimal;--runs;200;--seed;1"
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
 set_tests_properties(Examples.TheSharcLikeTemplateWithSharc4PlantedFailsFuzzing PROPERTIES LABELS "vulkan;schemes;untrusted")
+# A team's eviction shader that reads 64-bit counts only (here a resolve shader's binding 2) cannot read packed-decimal
+# count words: refused, named.
+hpsf_add_cli_test(HpsfCrosscheck.AnEvictionShaderOf64BitCountsIsRefusedPackedSums "vulkan;schemes;untrusted" 3
+  "--accum: .*resolve_correct.spv reads its counts \\(binding 2\\) as uint64_t only: not packed-decimal's" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --accum packed-decimal --eviction strict --frames 2
+  --eviction-spv ${HPSF_SHADER_VARIANT_DIR}/resolve_correct.spv --backends reference,vulkan)
 hpsf_add_cli_test(HpsfCrosscheck.ABadTableDeclarationExits3 "unit;schemes" 3
   "bad-bucket-table.json: /probing: bucket:B aligns its buckets to B" "" $<TARGET_FILE:hpsf> crosscheck cornell
   --table ${hpsf_data}/bad-bucket-table.json)

@@ -67,5 +67,13 @@ TEST(SpirvReflection, OtherBindingsAndBytesAreRefused) {
   EXPECT_EQ(Refusal(not_spirv).rfind("x.spv: the SPIR-V does not reflect: ", 0), 0u) << Refusal(not_spirv);
 }
 
+// A 32-bit view of binding 2 used: packed-decimal's count words. eviction.comp uses both views (by a push constant);
+// a resolve's counts are binding 2 as well, 64-bit or count words by its mode.
+TEST(SpirvReflection, AnEvictionShaderReadsCountWordsOnlyThroughA32BitView) {
+  EXPECT_TRUE(ReadsCountWords(eviction_spv, "e.spv"));
+  EXPECT_TRUE(ReadsCountWords(resolve_packed_decimal_spv, "r.spv"));
+  EXPECT_FALSE(ReadsCountWords(resolve_fixed64_spv, "r.spv"));
+}
+
 }  // namespace
 }  // namespace hpsf

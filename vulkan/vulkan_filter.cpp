@@ -466,6 +466,12 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                      ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
+  if (config.accumulation == Accumulation::kPackedDecimal && !p.custom_eviction.empty() &&
+      !ReadsCountWords(p.custom_eviction, p.eviction_name)) {
+    throw ConfigError("--accum", p.eviction_name +
+                                     " reads its counts (binding 2) as uint64_t only: not packed-decimal's 32-bit "
+                                     "count words");
+  }
   for (const TeamTagReader& team : p.team_tags) {
     if (team.views.Takes(config.key_identity)) continue;
     throw ConfigError("--key-identity",

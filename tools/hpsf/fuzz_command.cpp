@@ -205,8 +205,11 @@ int Run(FuzzOptions& o, bool options_only) {
     throw ConfigError("--key-identity",
                       "the team shaders given read tags of different widths: no case can run them all");
   }
+  // Packed-decimal sums only where a team's eviction shader reads their 32-bit count words.
+  const bool packed_sums = eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv);
   const AdversarialOptions generate{
-      o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing, full_keys, fingerprints};
+      o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing, full_keys, fingerprints,
+      packed_sums};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

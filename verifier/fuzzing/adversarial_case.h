@@ -61,6 +61,8 @@ struct AdversarialOptions {
   // Whether a case may store fingerprints: false where a team's shader reads 64-bit tags only; every case then
   // stores full keys, its normal bucket narrowed to one that fits.
   bool fingerprints = true;
+  // Whether a case may draw packed-decimal sums: false where a team's eviction shader reads 64-bit counts only.
+  bool packed_sums = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});
