@@ -343,7 +343,9 @@ std::string TeamCaptureFile(std::uint32_t capacity, std::uint32_t identity_bits,
       std::to_string(identity_bits) + R"(}, "sums": {"encoding": "fixed64"}})";
   capture::FrameCapture c = FrameOf(t);
   c.declaration = declaration;
-  const std::string path = ::testing::TempDir() + "/team.hpsfc";
+  // One file per test: ctest runs the tests of this binary side by side, each in a process of its own.
+  const std::string path =
+      ::testing::TempDir() + "/team-" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".hpsfc";
   EXPECT_EQ(capture::WriteCapture(path, c), "");
   return path;
 }

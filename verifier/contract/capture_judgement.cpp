@@ -208,10 +208,15 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config, const
   const std::vector<Record> records = RecordsToCheck(capture);
   // float32 sums: the F hpsf's range check assumes for the batch (the checker's exact sums use it), which float32
   // refuses below kFloat32FixedPointBitsMin, as every backend does.
-  const int fixed_point_bits = capture.float32_sums ? ChooseFixedPointBits(records) : capture.fixed_point_bits;
+  // packed-decimal sums are at 1000 whatever F the capture carries (core/accumulation.h).
+  const int fixed_point_bits = capture.float32_sums  ? ChooseFixedPointBits(records)
+                               : capture.packed_sums ? 0
+                                                     : capture.fixed_point_bits;
   try {
     if (capture.float32_sums) {
       RequireFloat32Range(fixed_point_bits);
+    } else if (capture.packed_sums) {
+      RequirePackedDecimalConverts(records);
     } else {
       RequireFixedPointConverts(records, fixed_point_bits);
     }
