@@ -33,15 +33,8 @@ std::string ToString(Accumulation accumulation) {
 }
 
 float SumScale(Accumulation accumulation, int fixed_point_bits) {
-  switch (accumulation) {
-    case Accumulation::kFixed64:
-      return shared::PowerOfTwo(fixed_point_bits);
-    case Accumulation::kPackedDecimal:
-      return shared::kPackedDecimalScale;
-    case Accumulation::kFloat32:
-      break;
-  }
-  return 1.0f;
+  if (accumulation == Accumulation::kPackedDecimal) return shared::kPackedDecimalScale;
+  return shared::PowerOfTwo(fixed_point_bits);
 }
 
 double IntegerSumValue(std::uint64_t sum, Accumulation accumulation, int fixed_point_bits) {

@@ -27,8 +27,9 @@ std::string ToString(Accumulation accumulation);
 // fixed64 and packed-decimal: sums of integers, exact.
 inline bool IntegerSums(Accumulation accumulation) { return accumulation != Accumulation::kFloat32; }
 
-// The scale a record's channel is multiplied by before rounding: 2^F for fixed64, 1000 for packed-decimal (1 for
-// float32, which does not round).
+// The scale a record's channel is multiplied by before rounding: 2^F for fixed64, 1000 for packed-decimal. float32
+// does not round, but the checker still forms its records' fixed-point values, at the 2^F of its range check, which
+// keeps every one of them convertible: 2^F for float32 too.
 float SumScale(Accumulation accumulation, int fixed_point_bits);
 // An integer sum back to a real number, in double: sum * 2^-F (exact), or sum / 1000 (correctly rounded), as every
 // backend's resolve computes it.
