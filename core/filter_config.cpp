@@ -135,21 +135,13 @@ void FilterConfig::Validate() const {
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }
-  // packed-decimal sums keep their own window, by halving (core/shared/packed_sums.h). The passes that rewrite a
-  // cell from fixed64 or float32 sums are not built for them yet.
+  // packed-decimal sums are at their own scale. Seeding is not built for them yet.
   if (accumulation == Accumulation::kPackedDecimal) {
     if (fixed_point_bits) {
       throw ConfigError("--fixed-point-bits", "applies to fixed64; packed-decimal sums are at the scale 1000");
     }
-    if (temporal.blends()) {
-      throw ConfigError("--temporal", "packed-decimal sums integrate and halve; " + temporal.ToString() +
-                                          " blends fixed64 or float32 sums only");
-    }
     if (level_seed.enabled)
       throw ConfigError("--level-change", "seeds fixed64 or float32 sums only, not packed-decimal");
-    if (eviction.by_priority()) {
-      throw ConfigError("--eviction", "priority is built for fixed64 and float32 counts, not packed-decimal's");
-    }
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 
@@ -55,24 +56,28 @@ shared::TemporalParams MakeTemporalParams(const Temporal& temporal) {
   return p;
 }
 
-CellState BlendCellState(const shared::TemporalParams& params, bool fixed, const CellState& before,
+CellState BlendCellState(const shared::TemporalParams& params, Accumulation sums, const CellState& before,
                          const CellState& accumulated) {
+  const bool integer = IntegerSums(sums);
+  const bool packed = sums == Accumulation::kPackedDecimal;
+  const std::uint64_t word_mask = packed ? 0xFFFFFFFFu : ~std::uint64_t(0);
+  const std::uint64_t count_mask = packed ? shared::kPackedCountMask : ~std::uint64_t(0);
   glm::dvec3 old_sum, frame_sum;
   for (int c = 0; c < 3; ++c) {
-    old_sum[c] = fixed ? double(before.fixed_sum[c]) : double(before.float_sum[c]);
-    frame_sum[c] = fixed ? double(accumulated.fixed_sum[c] - before.fixed_sum[c])
-                         : double(accumulated.float_sum[c] - before.float_sum[c]);
+    old_sum[c] = integer ? double(before.fixed_sum[c]) : double(before.float_sum[c]);
+    frame_sum[c] = integer ? double((accumulated.fixed_sum[c] - before.fixed_sum[c]) & word_mask)
+                           : double(accumulated.float_sum[c] - before.float_sum[c]);
   }
   const shared::TemporalBlend blend =
-      shared::BlendCell(params, old_sum, before.count, frame_sum, accumulated.count - before.count);
+      shared::BlendCell(params, old_sum, before.count, frame_sum, (accumulated.count - before.count) & count_mask);
   if (blend.integrated) return accumulated;
   CellState blended;
-  blended.count = blend.count;
+  blended.count = blend.count & count_mask;
   for (int c = 0; c < 3; ++c) {
-    if (fixed) {
+    if (integer) {
       // Saturated: a broken kernel's table (D10) can ask for sums beyond 2^64, whose conversion would be undefined.
-      const double rounded = std::nearbyint(blend.sum[c]);
-      blended.fixed_sum[c] = rounded < 0x1p64 ? std::uint64_t(rounded) : ~std::uint64_t(0);
+      const double rounded = shared::RoundHalfEvenNonNegative(blend.sum[c]);
+      blended.fixed_sum[c] = (rounded < 0x1p64 ? std::uint64_t(rounded) : ~std::uint64_t(0)) & word_mask;
     } else {
       blended.float_sum[c] = float(blend.sum[c]);
     }

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/accumulation.h"
 #include "core/shared/temporal_blend.h"
 
 namespace hpsf {
@@ -38,7 +39,8 @@ Temporal ParseTemporal(const std::string& text);
 // The shared blend's parameters for `temporal`.
 shared::TemporalParams MakeTemporalParams(const Temporal& temporal);
 
-// A cell's sums and count in the table's own types: fixed64 or float32 sums, as `fixed` says.
+// A cell's sums and count in the table's own types: integer sums (fixed64, or packed-decimal's 32-bit words) or
+// float32 sums.
 struct CellState {
   std::array<std::uint64_t, 3> fixed_sum{};
   std::array<float, 3> float_sum{};
@@ -46,9 +48,11 @@ struct CellState {
 };
 
 // The cell after the frame's blend, from the cell before the frame (count >= 1) and after the frame's accumulate
-// (a larger count), as every backend computes it: the frame's sums are the difference (exact in fixed64), the
-// blend is shared::BlendCell, and its sums round half to even (fixed64) or to the nearest float.
-CellState BlendCellState(const shared::TemporalParams& params, bool fixed, const CellState& before,
+// (a larger count), as every backend computes it: the frame's sums are the difference (exact in integer sums), the
+// blend is shared::BlendCell, and its sums round half to even (integer sums) or to the nearest float.
+// packed-decimal's words wrap as the device's do: the differences and the blended words are taken modulo 2^32 (the
+// count modulo 2^24). The blend runs before the settle, which would halve the history out of the difference.
+CellState BlendCellState(const shared::TemporalParams& params, Accumulation sums, const CellState& before,
                          const CellState& accumulated);
 
 }  // namespace hpsf

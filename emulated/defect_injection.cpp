@@ -7,6 +7,7 @@
 #include "core/hash_table.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 #include "emulated/temporal_kernel.h"
 
@@ -43,6 +44,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
                                   : StoredIdentity(key);
   const Record& r = args.records[i];
   const bool fixed = IntegerSums(args.accumulation);
+  const bool packed = args.accumulation == Accumulation::kPackedDecimal;
   bool placed = false;
   const shared::ProbeScheme scheme = args.scheme();
   // SHaRC #4: a record whose candidates are all taken is given the "invalid" index masked into a slot, and adds
@@ -141,9 +143,12 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
       // records' adds may come before or after it, and a slot blends once per record instead of once.
       const TemporalArgs& t = *args.temporal;
       CellState before, accumulated;
-      before.count = co_await ctx.Load(t.previous_counts, slot);
-      accumulated.count = co_await ctx.Load(b.counts, slot);
-      if (before.count != 0 && accumulated.count != before.count) {
+      const std::uint64_t old_word = co_await ctx.Load(t.previous_counts, slot);
+      const std::uint64_t new_word = co_await ctx.Load(b.counts, slot);
+      // packed-decimal's count word holds the frame counter too (core/shared/packed_sums.h).
+      before.count = packed ? shared::PackedCount(std::uint32_t(old_word)) : old_word;
+      accumulated.count = packed ? shared::PackedCount(std::uint32_t(new_word)) : new_word;
+      if (before.count != 0 && new_word != old_word) {
         for (int c = 0; c < 3; ++c) {
           const std::uint64_t word = std::uint64_t(slot) * 3 + c;
           before.fixed_sum[c] = co_await ctx.Load(t.previous_sums, word);
@@ -151,12 +156,15 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
           before.float_sum[c] = std::bit_cast<float>(std::uint32_t(before.fixed_sum[c]));
           accumulated.float_sum[c] = std::bit_cast<float>(std::uint32_t(accumulated.fixed_sum[c]));
         }
-        const CellState blended = BlendCellState(t.params, fixed, before, accumulated);
+        const CellState blended = BlendCellState(t.params, args.accumulation, before, accumulated);
         for (int c = 0; c < 3; ++c) {
           co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c,
                              fixed ? blended.fixed_sum[c] : std::bit_cast<std::uint32_t>(blended.float_sum[c]));
         }
-        co_await ctx.Store(b.counts, slot, blended.count);
+        co_await ctx.Store(
+            b.counts, slot,
+            packed ? shared::PackCountWord(std::uint32_t(blended.count), shared::PackedFrames(std::uint32_t(new_word)))
+                   : blended.count);
       }
     }
     co_await ctx.Store(b.placements, i, slot);

@@ -145,11 +145,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   }
   // The double buffer (emulated/temporal_kernel.h): the table before the frame, which the blend reads.
   const bool blending = planned.temporal;  // forced on a first frame, it blends with an empty history
-  TemporalArgs temporal{config.capacity, fixed, MakeTemporalParams(config.temporal), b, 0, 0};
+  TemporalArgs temporal{config.capacity, config.accumulation, MakeTemporalParams(config.temporal), b, 0, 0};
   if (blending) {
-    temporal.previous_sums = fixed ? memory.Allocate64("previous_sums", std::size_t(config.capacity) * 3)
-                                   : memory.Allocate32("previous_sums", std::size_t(config.capacity) * 3);
-    temporal.previous_counts = memory.Allocate64("previous_counts", config.capacity);
+    temporal.previous_sums = wide_sums ? memory.Allocate64("previous_sums", std::size_t(config.capacity) * 3)
+                                       : memory.Allocate32("previous_sums", std::size_t(config.capacity) * 3);
+    temporal.previous_counts = packed ? memory.Allocate32("previous_counts", config.capacity)
+                                      : memory.Allocate64("previous_counts", config.capacity);
     args.temporal = &temporal;
   }
   if (previous) {
@@ -172,11 +173,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       for (std::size_t s = 0; s < config.capacity; ++s) {
         words[s] = shared::PackCountWord(std::uint32_t(previous->counts[s]), previous->frame_counters[s]);
       }
+      if (blending) std::copy(words.begin(), words.end(), memory.Words32(temporal.previous_counts).begin());
     } else {
       std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
+      if (blending)
+        std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(temporal.previous_counts).begin());
     }
-    if (blending)
-      std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(temporal.previous_counts).begin());
     if (tracking)
       std::copy(previous->last_seen.begin(), previous->last_seen.end(), memory.Words32(b.last_seen).begin());
     if (wide_sums) {
@@ -188,6 +190,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       for (std::size_t s = 0; s < config.capacity; ++s) {
         for (int c = 0; c < 3; ++c) sums[s * 3 + c] = std::uint32_t(previous->fixed_sums[s][c]);
       }
+      if (blending) std::copy(sums.begin(), sums.end(), memory.Words32(temporal.previous_sums).begin());
     } else {
       const std::span<std::uint32_t> sums = memory.Words32(b.sums);
       for (std::size_t s = 0; s < config.capacity; ++s) {
@@ -227,7 +230,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     temporal.list = list;
   }
   EvictionArgs eviction{
-      config.capacity, config.probe_limit, config.probing, config.frame, config.eviction, b, 0, {}, 0, list};
+      config.capacity, config.probe_limit, config.probing, config.frame, config.eviction, b, 0, {}, 0, list, packed};
   if (evicting) {
     eviction.evicted = memory.Allocate64("evicted", 1);
     if (config.eviction.by_priority()) {
@@ -340,14 +343,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
         });
   }
   run.timings.compaction_ms = compacting ? clock.LapMs() : 0.0;
+  if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
+  run.timings.temporal_ms = blending ? clock.LapMs() : 0.0;
+  // The settle after the blend, which reads the frame's adds as differences the halving would break.
   if (packed) {
     const PackedSettleArgs settle{b, memory.Allocate64("halved", 1), list};
     launch_per_slot([&](simt::ThreadContext& ctx) { return PackedSettleKernel(ctx, settle); });
     run.halved = memory.Words64(settle.halved)[0];
   }
   run.timings.settle_ms = packed ? clock.LapMs() : 0.0;
-  if (blending) launch_per_slot([&](simt::ThreadContext& ctx) { return TemporalKernel(ctx, temporal); });
-  run.timings.temporal_ms = blending ? clock.LapMs() : 0.0;
   if (evicting) {
     if (config.eviction.by_priority()) {
       launch(n, [&](simt::ThreadContext& ctx) { return eviction_kernels.select(ctx, eviction); });

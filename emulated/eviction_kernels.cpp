@@ -4,6 +4,7 @@
 
 #include "core/hash_table.h"
 #include "core/shared/eviction_priority.h"
+#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 
@@ -20,7 +21,8 @@ simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArg
     const std::uint32_t slot = shared::CandidateSlot(scheme, args.keys[i].slot0, probe);
     const SlotTag tag = co_await ctx.Load(b.tags, slot);
     if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
-    const std::uint64_t count = co_await ctx.Load(b.counts, slot);
+    const std::uint64_t word = co_await ctx.Load(b.counts, slot);
+    const std::uint64_t count = args.packed_counts ? shared::PackedCount(std::uint32_t(word)) : word;
     const auto last_seen = static_cast<std::uint32_t>(co_await ctx.Load(b.last_seen, slot));
     if (count == 0 || last_seen == args.frame) continue;  // a tombstone of another policy, or touched this frame
     const std::uint64_t priority = shared::EvictionPriority(last_seen, count);

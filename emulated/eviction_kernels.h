@@ -42,6 +42,8 @@ struct EvictionArgs {
   std::span<const KeyResult> keys;
   std::uint32_t victims = 0;
   OccupiedList list{};  // with compaction: evict and reclaim launch one thread per entry
+  // packed-decimal: the counts are count words (core/shared/packed_sums.h), whose count bits the priority reads.
+  bool packed_counts = false;
   shared::ProbeScheme scheme() const { return MakeProbeScheme(probing, capacity, probe_limit); }
 };
 

@@ -2,34 +2,50 @@
 
 #include <bit>
 
+#include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 
 namespace hpsf {
+namespace {
+
+// packed-decimal's count word holds the frame counter too (core/shared/packed_sums.h).
+std::uint64_t CountOf(std::uint64_t word, bool packed) {
+  return packed ? shared::PackedCount(std::uint32_t(word)) : word;
+}
+
+}  // namespace
 
 simt::KernelTask TemporalKernel(simt::ThreadContext& ctx, const TemporalArgs& args) {
   const auto slot =
       args.list.on ? static_cast<std::uint32_t>(co_await ctx.Load(args.list.slots, ctx.Thread())) : ctx.Thread();
   const TableBuffers& b = args.buffers;
+  const bool integer = IntegerSums(args.accumulation);
+  const bool packed = args.accumulation == Accumulation::kPackedDecimal;
   CellState before, accumulated;
-  before.count = co_await ctx.Load(args.previous_counts, slot);
+  const std::uint64_t old_word = co_await ctx.Load(args.previous_counts, slot);
+  before.count = CountOf(old_word, packed);
   if (before.count == 0) co_return;  // a new cell, or none: nothing to blend
-  accumulated.count = co_await ctx.Load(b.counts, slot);
-  if (accumulated.count == before.count) co_return;  // the frame did not touch it
+  const std::uint64_t new_word = co_await ctx.Load(b.counts, slot);
+  if (new_word == old_word) co_return;  // the frame did not touch it
+  accumulated.count = CountOf(new_word, packed);
   for (int c = 0; c < 3; ++c) {
     const std::uint64_t word = std::uint64_t(slot) * 3 + c;
-    const std::uint64_t old_word = co_await ctx.Load(args.previous_sums, word);
-    const std::uint64_t new_word = co_await ctx.Load(b.sums, word);
-    before.fixed_sum[c] = old_word;
-    accumulated.fixed_sum[c] = new_word;
-    before.float_sum[c] = std::bit_cast<float>(std::uint32_t(old_word));
-    accumulated.float_sum[c] = std::bit_cast<float>(std::uint32_t(new_word));
+    const std::uint64_t old_sum = co_await ctx.Load(args.previous_sums, word);
+    const std::uint64_t new_sum = co_await ctx.Load(b.sums, word);
+    before.fixed_sum[c] = old_sum;
+    accumulated.fixed_sum[c] = new_sum;
+    before.float_sum[c] = std::bit_cast<float>(std::uint32_t(old_sum));
+    accumulated.float_sum[c] = std::bit_cast<float>(std::uint32_t(new_sum));
   }
-  const CellState blended = BlendCellState(args.params, args.fixed, before, accumulated);
+  const CellState blended = BlendCellState(args.params, args.accumulation, before, accumulated);
   for (int c = 0; c < 3; ++c) {
-    const std::uint64_t word = args.fixed ? blended.fixed_sum[c] : std::bit_cast<std::uint32_t>(blended.float_sum[c]);
+    const std::uint64_t word = integer ? blended.fixed_sum[c] : std::bit_cast<std::uint32_t>(blended.float_sum[c]);
     co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c, word);
   }
-  co_await ctx.Store(b.counts, slot, blended.count);
+  const std::uint64_t count =
+      packed ? shared::PackCountWord(std::uint32_t(blended.count), shared::PackedFrames(std::uint32_t(new_word)))
+             : blended.count;
+  co_await ctx.Store(b.counts, slot, count);
 }
 
 }  // namespace hpsf

@@ -1,13 +1,15 @@
 // The temporal blend after a frame's accumulate (core/temporal.h), as an emulator launch of one thread per slot:
 // a slot that held samples before the frame (its count in the previous table, the double buffer of Meijer §4.2.2
 // and Schipek §5.3) and that the frame added to is blended by core's BlendCellState; every other slot keeps what
-// it holds. The accumulate writes only the current table and the blend reads the previous one, which no pass of
-// the frame writes: the averages are never read while they are being accumulated (docs/design/defects.md, D10).
+// it holds. packed-decimal's count word holds the cell's frame counter too, which the blend keeps (the settle after
+// it advances the counter). The accumulate writes only the current table and the blend reads the previous one, which no
+// pass of the frame writes: the averages are never read while they are being accumulated (docs/design/defects.md, D10).
 #ifndef HPSF_EMULATED_TEMPORAL_KERNEL_H
 #define HPSF_EMULATED_TEMPORAL_KERNEL_H
 
 #include <cstdint>
 
+#include "core/accumulation.h"
 #include "core/shared/temporal_blend.h"
 #include "emulated/accumulate_kernel.h"
 #include "emulated/compaction_kernels.h"
@@ -17,7 +19,7 @@ namespace hpsf {
 
 struct TemporalArgs {
   std::uint32_t capacity = 0;
-  bool fixed = true;  // fixed64 sums, else float32
+  Accumulation accumulation = Accumulation::kFixed64;
   shared::TemporalParams params{};
   TableBuffers buffers{};             // the current table: sums and counts
   std::uint32_t previous_sums = 0;    // the table before the frame, laid out as buffers.sums

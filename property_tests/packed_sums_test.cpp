@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "core/hashed_run.h"
+#include "core/temporal.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/grid_batch.h"
 #include "property_tests/hashed_backends.h"
@@ -127,6 +129,58 @@ TEST(PackedSums, EveryBackendHalvesACellToTheWordsWorkedByHand) {
       EXPECT_EQ(run.wraps, 0u) << who;
       const std::vector<TableViolation> violations = Check(batch, run, frame ? &before[k] : nullptr, frame);
       EXPECT_TRUE(violations.empty()) << who << ": " << violations.front().ToString();
+      EXPECT_EQ(run.image.pixels, exact.image.pixels) << who;
+      before[k] = run.table;
+    }
+  }
+}
+
+// ema:0.25 over packed-decimal words: the blend of a cell's words before the frame with the frame's adds, then the
+// settle. Cell A takes 6000 records of 400 in frame 0, then 6000 of 100 a frame; cell B four of 0.5 every frame.
+// Worked by hand (alpha = min(0.25, N / (N + n)), count ceil(n / 0.75), sum average x count):
+//   frame 0: A 2.4e9 / 6000 halve to 1.2e9 / 3000 (nothing to blend);  B 2000 / 4.
+//   frame 1: A adds 6e8 / 6000: 0.25 x 400000 + 0.75 x 100000 = 175000 over 8000, 1.4e9 (below 2^31: no halving);
+//            B 0.25 x 500 + 0.75 x 500 over 6: 3000 / 6.
+//   frame 2: A 0.25 x 175000 + 0.75 x 100000 = 118750 over 8000, 9.5e8;  B again 3000 / 6.
+// Every backend gives those words, equal to the reference's, and the checker holds each frame to the blend and
+// settle of the frame before; held to integration instead, frame 1's cells are named.
+TEST(PackedSums, EveryBackendBlendsACellToTheWordsWorkedByHand) {
+  const RecordBatch bright = TwoCells(6000, 400.0f), dim = TwoCells(6000, 100.0f);
+  FilterConfig config = PackedConfig(3);
+  config.temporal = ParseTemporal("ema:0.25");
+  const std::uint64_t a_sums[] = {1200000000, 1400000000, 950000000};
+  const std::uint64_t a_counts[] = {3000, 8000, 8000};
+  const std::uint64_t b_sums[] = {2000, 3000, 3000};
+  const std::uint64_t b_counts[] = {4, 6, 6};
+  ReferenceBackend reference;
+  std::vector<HashedBackend> hashed = HashedBackends();
+  std::vector<HashTableDump> before(hashed.size());
+  for (std::uint32_t frame = 0; frame < 3; ++frame) {
+    config.frame = frame;
+    const RecordBatch& batch = frame == 0 ? bright : dim;
+    reference.FilterFrame(batch, config);
+    const Words a{{a_sums[frame], a_sums[frame], a_sums[frame]}, a_counts[frame], frame + 1};
+    const Words b{{b_sums[frame], b_sums[frame], b_sums[frame]}, b_counts[frame], frame + 1};
+    const FilterResult& exact = *reference.LastExactResult();
+    EXPECT_EQ(Text(CellWords(exact, 0)), Text(a)) << "reference, frame " << frame;
+    EXPECT_EQ(Text(CellWords(exact, 6000)), Text(b)) << "reference, frame " << frame;
+    for (std::size_t k = 0; k < hashed.size(); ++k) {
+      const std::string who = hashed[k].name + ", frame " + std::to_string(frame);
+      hashed[k].backend->FilterFrame(batch, config);
+      const HashedRun& run = RunOf(*hashed[k].backend);
+      EXPECT_EQ(Text(SlotWords(run, 0)), Text(a)) << who;
+      EXPECT_EQ(Text(SlotWords(run, 6000)), Text(b)) << who;
+      EXPECT_EQ(run.halved, frame == 0 ? 1u : 0u) << who;
+      const HashTableDump* previous = frame ? &before[k] : nullptr;
+      const std::vector<TableViolation> violations =
+          CheckTable({run.table, batch.records, run.keys, run.placements, previous, {}, frame, config.temporal});
+      EXPECT_TRUE(violations.empty()) << who << ": " << violations.front().ToString();
+      if (frame == 1) {  // both cells blended: held to integration, both are named (and the table's totals)
+        std::set<std::uint32_t> named;
+        for (const TableViolation& v : Check(batch, run, previous, frame))
+          if (v.invariant == TableInvariant::kPackedSettle) named.insert(v.slot);
+        EXPECT_EQ(named, (std::set<std::uint32_t>{run.placements[0], run.placements[6000]})) << who;
+      }
       EXPECT_EQ(run.image.pixels, exact.image.pixels) << who;
       before[k] = run.table;
     }

@@ -40,12 +40,11 @@ void EvictCells(const FilterConfig& config, FilterResult& result) {
 // The temporal blend (core/temporal.h) of each cell the frame added to that held samples before it.
 void BlendCells(const FilterConfig& config, const std::vector<TableCell>& before, FilterResult& result) {
   const shared::TemporalParams params = MakeTemporalParams(config.temporal);
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
   for (std::size_t c = 0; c < before.size(); ++c) {
     const TableCell& old = before[c];
     TableCell& cell = result.cells[c];
     if (old.count == 0 || cell.count == old.count) continue;
-    const CellState blended = BlendCellState(params, fixed, {old.fixed_sum, old.float_sum, old.count},
+    const CellState blended = BlendCellState(params, config.accumulation, {old.fixed_sum, old.float_sum, old.count},
                                              {cell.fixed_sum, cell.float_sum, cell.count});
     cell.fixed_sum = blended.fixed_sum;
     cell.float_sum = blended.float_sum;

@@ -186,6 +186,20 @@ hpsf_add_cli_test(HpsfCrosscheck.AnEvictionShaderOf64BitCountsIsRefusedPackedSum
   "--accum: .*resolve_correct.spv reads its counts \\(binding 2\\) as uint64_t only: not packed-decimal's" ""
   $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --accum packed-decimal --eviction strict --frames 2
   --eviction-spv ${HPSF_SHADER_VARIANT_DIR}/resolve_correct.spv --backends reference,vulkan)
+# The same refusal for a temporal shader, whose counts are binding 1 (here a resolve shader's 64-bit sums).
+hpsf_add_cli_test(HpsfCrosscheck.ATemporalShaderOf64BitCountsIsRefusedPackedSums "vulkan;schemes;untrusted" 3
+  "--accum: .*resolve_correct.spv reads its counts \\(binding 1\\) as uint64_t only: not packed-decimal's" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --accum packed-decimal --temporal ema:0.5 --frames 2
+  --temporal-spv ${HPSF_SHADER_VARIANT_DIR}/resolve_correct.spv --backends reference,vulkan)
+# packed-decimal sums under both blending modes, with eviction and compaction, through a sequence whose light moves:
+# the blend before the settle, the same words on every backend.
+foreach(mode ema:0.5:64 adaptive)
+  string(REPLACE ":" "_" mode_name ${mode})
+  hpsf_add_cli_test(HpsfCrosscheck.PackedSumsBlend_${mode_name} "vulkan;schemes" 0
+    "level 2 tables: PASS.*level 3 agreement with the reference: PASS" ""
+    $<TARGET_FILE:hpsf> crosscheck ${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json --size 24x24 --frames 4
+    --accum packed-decimal --temporal ${mode} --eviction stale:2 --compaction occupied-list)
+endforeach()
 hpsf_add_cli_test(HpsfCrosscheck.ABadTableDeclarationExits3 "unit;schemes" 3
   "bad-bucket-table.json: /probing: bucket:B aligns its buckets to B" "" $<TARGET_FILE:hpsf> crosscheck cornell
   --table ${hpsf_data}/bad-bucket-table.json)

@@ -130,8 +130,8 @@ TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::strin
   return views;
 }
 
-bool ReadsCountWords(std::span<const std::uint32_t> eviction_spirv, const std::string& file) {
-  return ElementTypes(eviction_spirv, file, 2, true).count("uint") > 0;
+bool ReadsCountWords(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t counts_binding) {
+  return ElementTypes(spirv, file, counts_binding, true).count("uint") > 0;
 }
 
 std::vector<TeamTagReader> TeamTagReaders(const TeamShader& accumulate, const TeamShader& eviction,

@@ -6,6 +6,7 @@
 
 #include "accumulate_fixed64_spv.h"
 #include "accumulate_float32_spv.h"
+#include "accumulate_packed_decimal_spv.h"
 #include "core/error.h"
 #include "eviction_spv.h"
 #include "keys_spv.h"
@@ -29,8 +30,7 @@ std::string Refusal(std::span<const std::uint32_t> spirv) {
 TEST(SpirvReflection, TheAccumulateShadersDeclareTheirMode) {
   EXPECT_EQ(SumsAccumulation(accumulate_fixed64_spv, "a.spv"), Accumulation::kFixed64);
   EXPECT_EQ(SumsAccumulation(accumulate_float32_spv, "a.spv"), Accumulation::kFloat32);
-  // temporal.comp's binding 3 is a uint64_t array too: reflection reads the type, not the name.
-  EXPECT_EQ(SumsAccumulation(temporal_spv, "t.spv"), Accumulation::kFixed64);
+  EXPECT_EQ(SumsAccumulation(accumulate_packed_decimal_spv, "a.spv"), Accumulation::kPackedDecimal);
 }
 
 // A resolve shader's sums are binding 1 (--resolve-spv).
@@ -67,12 +67,13 @@ TEST(SpirvReflection, OtherBindingsAndBytesAreRefused) {
   EXPECT_EQ(Refusal(not_spirv).rfind("x.spv: the SPIR-V does not reflect: ", 0), 0u) << Refusal(not_spirv);
 }
 
-// A 32-bit view of binding 2 used: packed-decimal's count words. eviction.comp uses both views (by a push constant);
-// a resolve's counts are binding 2 as well, 64-bit or count words by its mode.
-TEST(SpirvReflection, AnEvictionShaderReadsCountWordsOnlyThroughA32BitView) {
-  EXPECT_TRUE(ReadsCountWords(eviction_spv, "e.spv"));
-  EXPECT_TRUE(ReadsCountWords(resolve_packed_decimal_spv, "r.spv"));
-  EXPECT_FALSE(ReadsCountWords(resolve_fixed64_spv, "r.spv"));
+// A 32-bit view of the counts binding used: packed-decimal's count words. eviction.comp (binding 2) and temporal.comp
+// (binding 1) use both views (by a push constant); a resolve's counts are binding 2, 64-bit or count words by its mode.
+TEST(SpirvReflection, APassShaderReadsCountWordsOnlyThroughA32BitView) {
+  EXPECT_TRUE(ReadsCountWords(eviction_spv, "e.spv", kEvictionCountsBinding));
+  EXPECT_TRUE(ReadsCountWords(temporal_spv, "t.spv", kTemporalCountsBinding));
+  EXPECT_TRUE(ReadsCountWords(resolve_packed_decimal_spv, "r.spv", 2));
+  EXPECT_FALSE(ReadsCountWords(resolve_fixed64_spv, "r.spv", 2));
 }
 
 }  // namespace

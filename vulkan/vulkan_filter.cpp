@@ -82,7 +82,7 @@ struct TemporalPush {
   std::uint32_t capacity;
   std::uint32_t fixed64;
   std::uint32_t compacted;  // 1: one invocation per entry of the occupied list, dispatched indirectly
-  std::uint32_t reserved;
+  std::uint32_t packed;     // 1 with packed-decimal: 32-bit sums and count words (core/shared/packed_sums.h)
 };
 static_assert(sizeof(TemporalPush) == 40, "push constants of temporal.comp");
 constexpr std::uint32_t kTemporalSlotsPerWorkgroup = 64;
@@ -466,11 +466,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                      ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
   }
-  if (config.accumulation == Accumulation::kPackedDecimal && !p.custom_eviction.empty() &&
-      !ReadsCountWords(p.custom_eviction, p.eviction_name)) {
-    throw ConfigError("--accum", p.eviction_name +
-                                     " reads its counts (binding 2) as uint64_t only: not packed-decimal's 32-bit "
-                                     "count words");
+  for (const auto& [spirv, name, binding] :
+       {std::tuple{&p.custom_eviction, &p.eviction_name, kEvictionCountsBinding},
+        std::tuple{&p.custom_temporal, &p.temporal_name, kTemporalCountsBinding}}) {
+    if (config.accumulation == Accumulation::kPackedDecimal && !spirv->empty() &&
+        !ReadsCountWords(*spirv, *name, binding)) {
+      throw ConfigError("--accum", *name + " reads its counts (binding " + std::to_string(binding) +
+                                       ") as uint64_t only: not packed-decimal's 32-bit count words");
+    }
   }
   for (const TeamTagReader& team : p.team_tags) {
     if (team.views.Takes(config.key_identity)) continue;
@@ -581,7 +584,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const vk::DeviceSize sum_bytes_on_device = sum_bytes;
   // Bound always (bindings 9 and 10 of the stable interface), sized for the table when the frame needs them.
   p.Ensure(p.previous_sums, double_buffer ? sum_bytes_on_device : 8);
-  p.Ensure(p.previous_counts, double_buffer ? vk::DeviceSize(config.capacity) * 8 : 8);
+  p.Ensure(p.previous_counts, double_buffer ? vk::DeviceSize(count_bytes) : 8);
   if (seeding) {
     p.Ensure(p.previous_tags, vk::DeviceSize(tag_bytes));
     p.Ensure(p.seeded, vk::DeviceSize(config.capacity) * 4);
@@ -613,8 +616,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     }
     if (double_buffer && keep_table) {
       cb.copyBuffer(*p.sums.buffer, *p.previous_sums.buffer, vk::BufferCopy(0, 0, sum_bytes_on_device));
-      cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer,
-                    vk::BufferCopy(0, 0, vk::DeviceSize(config.capacity) * 8));
+      cb.copyBuffer(*p.counts.buffer, *p.previous_counts.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(count_bytes)));
     } else if (double_buffer) {
       for (DeviceBuffer* cleared : {&p.previous_sums, &p.previous_counts})
         cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
@@ -703,7 +705,33 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     });
   }
 
-  // packed-decimal's settle (packed_settle.comp), one invocation per slot or list entry, after every add landed.
+  // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
+  // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
+  if (blending) {
+    ComputeProgram& temporal = p.Temporal();
+    DeviceBuffer* const temporal_buffers[] = {&p.sums,     &p.counts,         &p.previous_sums, &p.previous_counts,
+                                              &p.occupied, &p.occupied_header};
+    vulkan_internal::BindBuffers(p.device, temporal, temporal_buffers);
+    const TemporalPush temporal_push{MakeTemporalParams(config.temporal), config.capacity, fixed ? 1u : 0u,
+                                     compacting ? 1u : 0u, packed ? 1u : 0u};
+    run.timings.temporal_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+      const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
+                                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                         accumulated, nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *temporal.pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *temporal.layout, 0, *temporal.set, nullptr);
+      cb.pushConstants<TemporalPush>(*temporal.layout, vk::ShaderStageFlagBits::eCompute, 0, temporal_push);
+      if (compacting) {
+        cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
+      } else {
+        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kTemporalSlotsPerWorkgroup), 1, 1);
+      }
+    });
+  }
+
+  // packed-decimal's settle (packed_settle.comp), one invocation per slot or list entry, after every add landed and
+  // after the blend, which reads the frame's adds as differences the halving would break.
   if (packed) {
     ComputeProgram& settle = p.Settle();
     DeviceBuffer* const settle_buffers[] = {&p.sums, &p.counts, &p.halved, &p.occupied, &p.occupied_header};
@@ -722,31 +750,6 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
         cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
       } else {
         cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kSettleSlotsPerWorkgroup), 1, 1);
-      }
-    });
-  }
-
-  // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
-  // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
-  if (blending) {
-    ComputeProgram& temporal = p.Temporal();
-    DeviceBuffer* const temporal_buffers[] = {&p.sums,     &p.counts,         &p.previous_sums, &p.previous_counts,
-                                              &p.occupied, &p.occupied_header};
-    vulkan_internal::BindBuffers(p.device, temporal, temporal_buffers);
-    const TemporalPush temporal_push{MakeTemporalParams(config.temporal), config.capacity, fixed ? 1u : 0u,
-                                     compacting ? 1u : 0u, 0};
-    run.timings.temporal_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
-      const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
-                                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
-      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
-                         accumulated, nullptr, nullptr);
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *temporal.pipeline);
-      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *temporal.layout, 0, *temporal.set, nullptr);
-      cb.pushConstants<TemporalPush>(*temporal.layout, vk::ShaderStageFlagBits::eCompute, 0, temporal_push);
-      if (compacting) {
-        cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
-      } else {
-        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kTemporalSlotsPerWorkgroup), 1, 1);
       }
     });
   }

@@ -12,6 +12,7 @@
 #ifndef HPSF_CORE_SHARED_TEMPORAL_BLEND_H
 #define HPSF_CORE_SHARED_TEMPORAL_BLEND_H
 
+#include "exact_rounding.h"
 #include "prelude.h"
 
 HPSF_SHARED_BEGIN
@@ -67,7 +68,8 @@ HPSF_FN TemporalBlend BlendCell(TemporalParams p, dvec3 old_sum, uint64_t old_co
     return b;
   }
   HPSF_PRECISE double most = w + n;
-  HPSF_PRECISE double weight = ceil(n / (double(1.0) - alpha));  // +inf when alpha rounded to 1: capped below
+  // +inf when alpha rounded to 1: capped below. Not GLSL's ceil, which lavapipe gets wrong (exact_rounding.h).
+  HPSF_PRECISE double weight = CeilNonNegative(n / (double(1.0) - alpha));
   weight = weight < most ? weight : most;
   // The largest double below 2^64: counts a broken kernel wrapped (D12, D10) must still convert to uint64.
   HPSF_PRECISE double largest = double(0xFFFFFFFFFFFFF800ul);

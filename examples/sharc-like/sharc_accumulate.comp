@@ -3,7 +3,7 @@
 // (examples/sharc-like/README.md): its own 64-bit key, stored whole in the slot (run with --key-source shader and
 // --key-identity full), the declared probing scheme's candidates (buckets of 16 in sharc.json), and packed sums: each
 // channel times 1000 added to a 32-bit word, the record count to the count word. hpsf's own passes then settle
-// (halve) the words, evict stale cells and keep the list of occupied slots.
+// (halve) the words, evict stale cells (or, under hpsf fuzz, by priority) and keep the list of occupied slots.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
 #define HPSF_SUMS_TYPE uint
@@ -11,6 +11,7 @@
 #include "core/shared/prelude.h"
 #include "vulkan/shaders/float_controls.glsl"
 #include "core/shared/key.h"
+#include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/packed_sums.h"
 #include "core/shared/table_params.h"
@@ -57,13 +58,24 @@ KeyResult SharcKey(Record r, uint capacity_mask) {
   return k;
 }
 
-// The first candidate that holds the key or that this record claims empty, by a 64-bit compare-and-swap.
+// The first candidate that holds the key or that this record claims, by a 64-bit compare-and-swap: an empty slot,
+// or, with hpsf's priority eviction (claim_tombstones), a slot it evicted and tagged kTombstoneTag. A tombstone may lie
+// before the key's own slot, so then the key is looked for first, up to the first empty slot.
 uint FindOrClaim(uint slot0, uint64_t key, TableParams t) {
+  const uint64_t tombstone = t.claim_tombstones != 0u ? uint64_t(kTombstoneTag) : 0ul;
+  for (uint probe = 0u; tombstone != 0ul && probe < t.probe_limit; ++probe) {
+    uint64_t tag = full_tags[CandidateSlot(ProbeSchemeOf(t), slot0, probe)];
+    if (tag == key) return CandidateSlot(ProbeSchemeOf(t), slot0, probe);
+    if (tag == 0ul) break;
+  }
   for (uint probe = 0u; probe < t.probe_limit; ++probe) {
     uint slot = CandidateSlot(ProbeSchemeOf(t), slot0, probe);
     uint64_t tag = full_tags[slot];
-    if (tag == 0ul) tag = atomicCompSwap(full_tags[slot], 0ul, key);  // returns 0: this record claimed it
-    if (tag == 0ul || tag == key) return slot;
+    if (tag == 0ul || tag == tombstone) {
+      uint64_t seen = atomicCompSwap(full_tags[slot], tag, key);  // returns tag: this record claimed it
+      tag = seen == tag ? key : seen;
+    }
+    if (tag == key) return slot;
   }
   return kPlacementProbeFailure;
 }

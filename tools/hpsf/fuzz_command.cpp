@@ -193,7 +193,7 @@ int Run(FuzzOptions& o, bool options_only) {
     return path.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(path);
   };
   const std::vector<std::uint32_t> accumulate = words(o.vulkan.accumulate_spv), eviction = words(o.vulkan.eviction_spv),
-                                   compaction = words(o.vulkan.compaction_spv);
+                                   compaction = words(o.vulkan.compaction_spv), temporal = words(o.vulkan.temporal_spv);
   bool full_keys = true, fingerprints = true;
   for (const TeamTagReader& team :
        TeamTagReaders({accumulate, o.vulkan.accumulate_spv}, {eviction, o.vulkan.eviction_spv},
@@ -205,8 +205,10 @@ int Run(FuzzOptions& o, bool options_only) {
     throw ConfigError("--key-identity",
                       "the team shaders given read tags of different widths: no case can run them all");
   }
-  // Packed-decimal sums only where a team's eviction shader reads their 32-bit count words.
-  const bool packed_sums = eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv);
+  // Packed-decimal sums only where a team's eviction and temporal shaders read their 32-bit count words.
+  const bool packed_sums =
+      (eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv, kEvictionCountsBinding)) &&
+      (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding));
   const AdversarialOptions generate{
       o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing, full_keys, fingerprints,
       packed_sums};

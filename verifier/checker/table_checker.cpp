@@ -57,7 +57,7 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
     }
   }
   if (fixed) {
-    const CellState expected = BlendCellState(params, true, before, accumulated);
+    const CellState expected = BlendCellState(params, Accumulation::kFixed64, before, accumulated);
     if (t.counts[s] != expected.count || t.fixed_sums[s] != expected.fixed_sum) {
       fail("count " + std::to_string(t.counts[s]) + ", sums " + SumsText(t.fixed_sums[s]) + "; the blend of count " +
            std::to_string(before.count) + " + " + std::to_string(here.size()) + " gives count " +
@@ -68,7 +68,7 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
   // float32: the backend's frame sums carry the rounding of its adds, so the blend is bounded, not replayed. ema's
   // alpha, and so the count, does not depend on the sums; adaptive's lies between forgetting and integrating.
   for (int c = 0; c < 3; ++c) accumulated.float_sum[c] = float(double(before.float_sum[c]) + frame_exact[c]);
-  const CellState by_exact = BlendCellState(params, false, before, accumulated);
+  const CellState by_exact = BlendCellState(params, Accumulation::kFloat32, before, accumulated);
   const std::uint64_t n = here.size();
   const std::uint64_t most = std::min(before.count, params.max_count) + n;
   const bool count_ok =
@@ -94,6 +94,32 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
            std::to_string(low) + ", " + std::to_string(high) + "], the history's and the frame's");
     }
   }
+}
+
+// packed-decimal under a blending temporal mode: the words a slot blends to before its settle, from its words before
+// the frame and its exact words after the adds (both in range). The blend is fixed64's on those words, exact; a
+// blended word past 32 bits (a count past 24) is kept modulo them by the device, as a wrapped add, and named.
+glm::uvec4 BlendPacked(const TableCheckInput& in, std::uint32_t s, const std::vector<std::uint32_t>& here,
+                       const std::array<std::uint64_t, 3>& old_sums, std::uint64_t old_count, glm::uvec4 accumulated,
+                       std::vector<TableViolation>& violations) {
+  const CellState before{old_sums, {}, old_count};
+  const CellState added{{accumulated.x, accumulated.y, accumulated.z}, {}, shared::PackedCount(accumulated.w)};
+  const CellState wide = BlendCellState(MakeTemporalParams(in.temporal), Accumulation::kFixed64, before, added);
+  for (int c = 0; c < 3; ++c) {
+    if (wide.fixed_sum[c] > 0xFFFFFFFFu) {
+      violations.push_back({TableInvariant::kTemporalBlend, s, here,
+                            "channel " + std::to_string(c) + ": the blend's sum " + std::to_string(wide.fixed_sum[c]) +
+                                " does not fit packed-decimal's 32 bits"});
+    }
+  }
+  if (wide.count > shared::kPackedCountMask) {
+    violations.push_back(
+        {TableInvariant::kTemporalBlend, s, here,
+         "the blend's count " + std::to_string(wide.count) + " does not fit packed-decimal's 24 bits"});
+  }
+  return {
+      std::uint32_t(wide.fixed_sum[0]), std::uint32_t(wide.fixed_sum[1]), std::uint32_t(wide.fixed_sum[2]),
+      shared::PackCountWord(std::uint32_t(wide.count) & shared::kPackedCountMask, shared::PackedFrames(accumulated.w))};
 }
 
 // With compaction: the list holds each slot whose tag is set once, and nothing else (Bevy #21904 listed a cell with
@@ -430,7 +456,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (here.empty() && tag_before(s) == kEmptyTag)
       violate(TableInvariant::kOrphanTag, s, {}, "tag " + std::to_string(t.tags[s]));
     total_count += t.counts[s];
-    if (in.temporal.blends() && base_count > seed.count && !here.empty()) {  // a seeded slot is new: no blend
+    const bool blended = in.temporal.blends() && base_count > seed.count && !here.empty();  // a seeded slot is new
+    if (blended && !packed) {
       CheckBlend(in, s, here,
                  {fixed ? before->fixed_sums[s] : std::array<std::uint64_t, 3>{},
                   fixed ? std::array<float, 3>{} : before->float_sums[s], base_count - seed.count},
@@ -462,9 +489,14 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                     Decimal(exact[c]) + ": the 32-bit sum wrapped");
       }
       const std::uint32_t frames_before = evicted_by_policy || !before ? 0u : before->frame_counters[s];
-      const glm::uvec4 settled =
-          shared::SettlePacked(glm::uvec4(std::uint32_t(exact[0]), std::uint32_t(exact[1]), std::uint32_t(exact[2]),
-                                          shared::PackCountWord(std::uint32_t(exact_count), frames_before)));
+      glm::uvec4 accumulated{std::uint32_t(exact[0]), std::uint32_t(exact[1]), std::uint32_t(exact[2]),
+                             shared::PackCountWord(std::uint32_t(exact_count), frames_before)};
+      // Under a blending temporal mode the blend comes before the settle (core/temporal.h).
+      if (blended && in_range) {
+        accumulated = BlendPacked(in, s, here, {fixed_base(0), fixed_base(1), fixed_base(2)}, base_count, accumulated,
+                                  violations);
+      }
+      const glm::uvec4 settled = shared::SettlePacked(accumulated);
       const std::array<std::uint64_t, 3> settled_sums = {settled.x, settled.y, settled.z};
       expected_total_count += shared::PackedCount(settled.w);
       for (int c = 0; c < 3; ++c) {
@@ -477,7 +509,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                 "count " + std::to_string(t.counts[s]) + ", sums " + SumsText(t.fixed_sums[s]) + ", frames " +
                     std::to_string(t.frame_counters[s]) + "; exact count " + Decimal(exact_count) + ", sums (" +
                     Decimal(exact[0]) + ", " + Decimal(exact[1]) + ", " + Decimal(exact[2]) + "), frames " +
-                    std::to_string(frames_before) + " settle to count " +
+                    std::to_string(frames_before) + (blended ? " blend and settle" : " settle") + " to count " +
                     std::to_string(shared::PackedCount(settled.w)) + ", sums " + SumsText(settled_sums) + ", frames " +
                     std::to_string(shared::PackedFrames(settled.w)));
       }

@@ -423,16 +423,13 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
       for (Record& r : frame.records) r.path.z &= ~shared::kRecordHasVertex;
     }
   }
-  // packed-decimal sums (core/shared/packed_sums.h) in a sixth of the cases, from a generator of their own. Their
-  // sequences integrate and evict by age: the passes built for those sums.
+  // packed-decimal sums (core/shared/packed_sums.h) in a sixth of the cases, from a generator of their own.
   RecordGenerator sums_draws(shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 3u, 0u}, 0xADF3u));
   if (!options.accumulation && sums_draws.Bits() % 6u == 0u && options.packed_sums) {
     a.config.accumulation = Accumulation::kPackedDecimal;
   }
   if (a.config.accumulation == Accumulation::kPackedDecimal) {
     a.config.fixed_point_bits.reset();
-    a.config.temporal = Temporal{};
-    if (a.config.eviction.by_priority()) a.config.eviction = ParseEviction("stale:2");
   }
   a.config.Validate();
   return a;

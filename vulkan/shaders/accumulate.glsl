@@ -143,7 +143,7 @@ void BlendDuringAccumulate(uint slot, TableParams t) {
   }
   TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, count - old_count);
   if (b.integrated) return;
-  for (int c = 0; c < 3; ++c) sums[slot * 3u + uint(c)] = uint64_t(roundEven(b.sum[c]));
+  for (int c = 0; c < 3; ++c) sums[slot * 3u + uint(c)] = uint64_t(RoundHalfEvenNonNegative(b.sum[c]));
   counts[slot] = b.count;
 }
 #endif

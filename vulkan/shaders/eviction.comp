@@ -15,6 +15,7 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #include "../../core/shared/prelude.h"
 #include "../../core/shared/eviction_priority.h"
+#include "../../core/shared/packed_sums.h"
 #include "../../core/shared/table_params.h"
 
 layout(local_size_x = 64) in;
@@ -49,8 +50,10 @@ layout(push_constant) uniform Params {
 };
 
 // packed-decimal's whole count word, as the emulator's eviction kernels read it: a live cell's is never 0 (its count
-// halves up), a tombstone's is. Priority, which compares counts, refuses packed-decimal (core/filter_config.h).
+// halves up), a tombstone's is.
 uint64_t CountAt(uint slot) { return packed_counts != 0u ? uint64_t(count_words[slot]) : counts[slot]; }
+// The samples a slot holds, which priority compares: packed-decimal's count bits, without the frame counter.
+uint64_t SampleCount(uint slot) { return packed_counts != 0u ? uint64_t(PackedCount(count_words[slot])) : counts[slot]; }
 // The whole count word: an evicted cell's frame counter starts again.
 void ClearCount(uint slot) {
   if (packed_counts != 0u) {
@@ -74,7 +77,7 @@ void SelectVictim(uint i) {
     uint slot = CandidateSlot(Scheme(), slot0, probe);
     uint64_t tag = LoadTag(slot, full_keys != 0u);
     if (tag == 0ul || tag == uint64_t(kTombstoneTag)) continue;
-    uint64_t count = CountAt(slot);
+    uint64_t count = SampleCount(slot);
     if (count == 0ul || last_seen[slot] == frame) continue;  // a tombstone of another policy, or touched this frame
     uint64_t priority = EvictionPriority(last_seen[slot], count);
 #if defined(HPSF_DEFECT_PRIORITY_SIGN)  // the compare's operands swapped: the highest priority is evicted

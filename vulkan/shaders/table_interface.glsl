@@ -13,7 +13,7 @@
 //   7 accepted    uint[n]: 1 when the record passed the host's input checks (a shader never sees NaN)
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
 //   9 previous_sums    as sums: with table.blending, the table before the frame (for reading only;   -
-//  10 previous_counts  uint64_t[capacity]   the blend pass after the accumulate reads them)        -
+//  10 previous_counts  as counts           the blend pass after the accumulate reads them)        -
 // Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state, and
 // claim_tombstones: with priority eviction, slots tagged kTombstoneTag may be claimed), then
 // TemporalParams (24 bytes, core/shared/temporal_blend.h: the blend's mode, with table.blending).
@@ -43,7 +43,7 @@ layout(std430, binding = 7) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 8) writeonly buffer LastSeen { uint last_seen[]; };
 #if defined(HPSF_TABLE_INTERFACE_TEMPORAL)
 layout(std430, binding = 9) readonly buffer PreviousSums { HPSF_SUMS_TYPE previous_sums[]; };
-layout(std430, binding = 10) readonly buffer PreviousCounts { uint64_t previous_counts[]; };
+layout(std430, binding = 10) readonly buffer PreviousCounts { HPSF_COUNT_TYPE previous_counts[]; };
 layout(push_constant) uniform Params {
   KeyParams params;
   TableParams table;
