@@ -200,6 +200,12 @@ foreach(mode ema:0.5:64 adaptive)
     $<TARGET_FILE:hpsf> crosscheck ${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json --size 24x24 --frames 4
     --accum packed-decimal --temporal ${mode} --eviction stale:2 --compaction occupied-list)
 endforeach()
+# Priority eviction over packed-decimal count words in a crowded table: the victims are chosen by the count bits, not
+# the frame counter above them (the shader that compares whole words fails level 2 here).
+hpsf_add_cli_test(HpsfCrosscheck.PackedSumsEvictByPriorityInACrowdedTable "vulkan;schemes" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS" ""
+  $<TARGET_FILE:hpsf> crosscheck ${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json --size 24x24 --frames 4
+  --accum packed-decimal --eviction priority --capacity 256 --fingerprint-bits 24 --temporal adaptive --seed 1)
 hpsf_add_cli_test(HpsfCrosscheck.ABadTableDeclarationExits3 "unit;schemes" 3
   "bad-bucket-table.json: /probing: bucket:B aligns its buckets to B" "" $<TARGET_FILE:hpsf> crosscheck cornell
   --table ${hpsf_data}/bad-bucket-table.json)
