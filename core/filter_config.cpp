@@ -135,13 +135,9 @@ void FilterConfig::Validate() const {
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }
-  // packed-decimal sums are at their own scale. Seeding is not built for them yet.
-  if (accumulation == Accumulation::kPackedDecimal) {
-    if (fixed_point_bits) {
-      throw ConfigError("--fixed-point-bits", "applies to fixed64; packed-decimal sums are at the scale 1000");
-    }
-    if (level_seed.enabled)
-      throw ConfigError("--level-change", "seeds fixed64 or float32 sums only, not packed-decimal");
+  // packed-decimal sums are at their own scale.
+  if (accumulation == Accumulation::kPackedDecimal && fixed_point_bits) {
+    throw ConfigError("--fixed-point-bits", "applies to fixed64; packed-decimal sums are at the scale 1000");
   }
 }
 

@@ -79,7 +79,7 @@ std::optional<CellState> FindInTable(const HashTableDump& table, const shared::K
   if (!s) return std::nullopt;
   CellState state;
   state.count = table.counts[*s];
-  if (table.accumulation == Accumulation::kFixed64) {
+  if (IntegerSums(table.accumulation)) {
     state.fixed_sum = table.fixed_sums[*s];
   } else {
     state.float_sum = table.float_sums[*s];

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -91,7 +92,8 @@ RecordBatch BatchAt(const std::vector<Placed>& records, std::uint32_t frame) {
 // the coarser level, is seeded with its children (count 16), and Q = (6, 3, -7) at level 2 gets 16 records and no
 // seed. Frame 2: a child of Q, new at the finer level and with no children of its own, is seeded with Q's share (16
 // >> 3 = 2). On every backend each frame passes the checker, every record's slot holds its reference cell's count
-// and sums bit for bit (fixed64), and the seeds counted are those; without seeding nothing is seeded.
+// and sums bit for bit (fixed64, and packed-decimal's words), and the seeds counted are those; without seeding
+// nothing is seeded.
 TEST(LevelSeed, ACellNewAtAnotherLevelStartsFromItsChildrenOrItsParent) {
   const glm::ivec3 p(5, 3, -7), q(6, 3, -7);
   std::vector<Placed> frame0, frame1, frame2;
@@ -108,8 +110,11 @@ TEST(LevelSeed, ACellNewAtAnotherLevelStartsFromItsChildrenOrItsParent) {
   // Record 0's cell after each frame, with and without the seed.
   const std::vector<std::uint64_t> seeded_counts = {2, 3 + 16, 2 + 2}, unseeded_counts = {2, 3, 2};
 
-  for (const char* mode : {"seed", "none"}) {
+  for (const auto& [accumulation, mode] :
+       {std::pair{Accumulation::kFixed64, "seed"}, std::pair{Accumulation::kFixed64, "none"},
+        std::pair{Accumulation::kPackedDecimal, "seed"}}) {
     FilterConfig config;
+    config.accumulation = accumulation;
     config.capacity = 1024;
     config.jitter_scale = 0.0f;
     config.frames = 3;
@@ -120,7 +125,8 @@ TEST(LevelSeed, ACellNewAtAnotherLevelStartsFromItsChildrenOrItsParent) {
       std::optional<HashTableDump> before;
       for (std::uint32_t k = 0; k < frames.size(); ++k) {
         config.frame = k;
-        const std::string what = hashed.name + ", " + mode + ", frame " + std::to_string(k);
+        const std::string what =
+            hashed.name + ", " + ToString(accumulation) + ", " + mode + ", frame " + std::to_string(k);
         reference.FilterFrame(frames[k], config);
         hashed.backend->FilterFrame(frames[k], config);
         const HashedRun& run = RunOf(*hashed.backend);
@@ -148,7 +154,7 @@ TEST(LevelSeed, ACellNewAtAnotherLevelStartsFromItsChildrenOrItsParent) {
 }
 
 // The Cornell box with the camera dollying in (cornell-dolly.json: every location moves down a level) over 6 frames,
-// float32 and fixed64, with seeding: the contract holds on the emulator and Vulkan (the checker recomputing every
+// in each accumulation, with seeding: the contract holds on the emulator and Vulkan (the checker recomputing every
 // seed at level 2, the reference's exact seeds at level 3), cells were seeded, as many as the reference seeded.
 TEST(LevelSeed, TheContractHoldsOverACameraDollyingIn) {
   constexpr std::uint32_t kFrames = 6;
@@ -156,7 +162,8 @@ TEST(LevelSeed, TheContractHoldsOverACameraDollyingIn) {
       TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell-dolly.json"), 24, 2, kFrames);
   std::vector<std::uint32_t> numbers;
   for (const RecordBatch& frame : frames) numbers.push_back(frame.frame);
-  for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+  for (const Accumulation accumulation :
+       {Accumulation::kFixed64, Accumulation::kFloat32, Accumulation::kPackedDecimal}) {
     FilterConfig config;
     config.capacity = 4096;
     config.frames = kFrames;

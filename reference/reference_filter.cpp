@@ -57,7 +57,8 @@ void BlendCells(const FilterConfig& config, const std::vector<TableCell>& before
 void SeedNewCells(const FilterConfig& config, const FilterResult* previous,
                   const std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key, FilterResult& result) {
   const std::size_t old_cells = previous ? previous->cells.size() : 0;
-  const bool fixed = config.accumulation == Accumulation::kFixed64;
+  const bool fixed = IntegerSums(config.accumulation);
+  const bool packed = config.accumulation == Accumulation::kPackedDecimal;
   const CellLookup lookup = [&](const shared::KeyWords& w) -> std::optional<CellState> {
     const auto it = cell_of_key.find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
     if (it == cell_of_key.end() || it->second >= old_cells) return std::nullopt;
@@ -71,10 +72,18 @@ void SeedNewCells(const FilterConfig& config, const FilterResult* previous,
     const CellState seed = SeedOf(words, config.level_seed, fixed, lookup);
     if (seed.count == 0) continue;
     ++result.stats.cells_seeded;
-    cell.count += seed.count;
     for (int k = 0; k < 3; ++k) {
       cell.fixed_sum[k] += seed.fixed_sum[k];
       cell.float_sum[k] += seed.float_sum[k];
+      if (packed) cell.fixed_sum[k] &= 0xFFFFFFFFu;  // 32-bit words, as the device's
+    }
+    if (packed) {  // the count bits carry into the frame counter, as the device's add to the count word
+      const std::uint32_t word =
+          shared::PackCountWord(std::uint32_t(cell.count), cell.frames) + std::uint32_t(seed.count);
+      cell.count = shared::PackedCount(word);
+      cell.frames = shared::PackedFrames(word);
+    } else {
+      cell.count += seed.count;
     }
   }
 }

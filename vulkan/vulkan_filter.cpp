@@ -104,8 +104,9 @@ struct LevelSeedPush {
   std::uint32_t record_count;
   std::uint32_t probe_scheme;
   std::uint32_t key_identity;
+  std::uint32_t packed;  // 1 with packed-decimal: 32-bit sums and count words (core/shared/packed_sums.h)
 };
-static_assert(sizeof(LevelSeedPush) == 36, "push constants of level_seed.comp");
+static_assert(sizeof(LevelSeedPush) == 40, "push constants of level_seed.comp");
 constexpr std::uint32_t kLevelSeedRecordsPerWorkgroup = 64;
 
 struct CompactionPush {
@@ -655,7 +656,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                   fixed ? 1u : 0u,
                                   n,
                                   SharedProbeKind(config.probing),
-                                  KeyIdentityWord(config.key_identity)};
+                                  KeyIdentityWord(config.key_identity),
+                                  packed ? 1u : 0u};
     run.timings.level_seed_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);

@@ -12,19 +12,22 @@
 #include "float_controls.glsl"
 #include "../../core/shared/full_key.h"
 #include "../../core/shared/level_seed.h"
+#include "../../core/shared/packed_sums.h"
 #include "../../core/shared/probe_scheme.h"
 
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Keys { uvec4 key_vectors[]; };  // the accumulate's binding 1
 layout(std430, binding = 1) readonly buffer Placements { uint placements[]; };
-layout(std430, binding = 2) buffer SumWords { uint sum_words[]; };  // fixed64 or float32 sums, as 32-bit words
+layout(std430, binding = 2) buffer SumWords { uint sum_words[]; };  // the sums, as 32-bit words
 layout(std430, binding = 3) buffer Counts { uint64_t counts[]; };
+layout(std430, binding = 3) buffer CountWords { uint count_words[]; };  // the same buffer, with packed
 // The table before the frame's tags, read through slot_tags.glsl as 32-bit fingerprints or 64-bit full keys.
 layout(std430, binding = 4) readonly buffer PreviousTags { uint tags[]; };
 layout(std430, binding = 4) readonly buffer PreviousFullTags { uint64_t full_tags[]; };
 layout(std430, binding = 5) readonly buffer PreviousSumWords { uint previous_sum_words[]; };
 layout(std430, binding = 6) readonly buffer PreviousCounts { uint64_t previous_counts[]; };
+layout(std430, binding = 6) readonly buffer PreviousCountWords { uint previous_count_words[]; };  // with packed
 layout(std430, binding = 7) buffer Seeded { uint seeded[]; };  // per slot, zeroed: 1 claimed, 2 seeded
 layout(std430, binding = 8) buffer SeededCount { uint64_t seeded_count; };
 layout(push_constant) uniform Params {  // vulkan_filter.cpp's LevelSeedPush
@@ -33,11 +36,17 @@ layout(push_constant) uniform Params {  // vulkan_filter.cpp's LevelSeedPush
   uint fingerprint_bits;
   uint normal_in_index;
   uint shift;    // S of seed:S
-  uint fixed64;  // 1: sums are 64-bit fixed point (two words per channel); 0: float32
+  uint fixed64;  // 1: sums are 64-bit fixed point (two words per channel); 0: float32 or packed-decimal
   uint record_count;
   uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow
   uint key_identity;  // kIdentityFingerprint or kIdentityFull (core/shared/full_key.h)
+  uint packed;        // 1: packed-decimal, 32-bit integer sums and count words (core/shared/packed_sums.h)
 };
+
+// A slot's samples before the frame: packed-decimal's count bits, without the frame counter.
+uint64_t PreviousCount(uint slot) {
+  return packed != 0u ? uint64_t(PackedCount(previous_count_words[slot])) : previous_counts[slot];
+}
 #define HPSF_TAGS_READONLY
 #include "slot_tags.glsl"
 
@@ -64,15 +73,16 @@ Neighbour Find(KeyWords words) {
     uint slot = CandidateSlot(scheme, slot0, probe);
     uint64_t tag = LoadTag(slot, full);
     if (tag == 0ul) break;
-    if (tag != wanted || previous_counts[slot] == 0ul) continue;
+    if (tag != wanted || PreviousCount(slot) == 0ul) continue;
     n.found = true;
-    n.count = previous_counts[slot];
+    n.count = PreviousCount(slot);
     for (uint c = 0u; c < 3u; ++c) {
       uint w = slot * 3u + c;
-      n.fixed_sum[c] = fixed64 != 0u ? (uint64_t(previous_sum_words[2u * w]) |
-                                        (uint64_t(previous_sum_words[2u * w + 1u]) << 32))
-                                     : 0ul;
-      n.float_sum[c] = fixed64 != 0u ? 0.0 : uintBitsToFloat(previous_sum_words[w]);
+      n.fixed_sum[c] = fixed64 != 0u  ? (uint64_t(previous_sum_words[2u * w]) |
+                                         (uint64_t(previous_sum_words[2u * w + 1u]) << 32))
+                       : packed != 0u ? uint64_t(previous_sum_words[w])
+                                      : 0ul;
+      n.float_sum[c] = fixed64 != 0u || packed != 0u ? 0.0 : uintBitsToFloat(previous_sum_words[w]);
     }
     return n;
   }
@@ -81,7 +91,7 @@ Neighbour Find(KeyWords words) {
 
 void Seed(uint i) {
   uint slot = placements[i];
-  if (slot >= capacity || previous_counts[slot] != 0ul) return;  // not placed, or not new
+  if (slot >= capacity || PreviousCount(slot) != 0ul) return;  // not placed, or not new
   if (atomicCompSwap(seeded[slot], 0u, 1u) != 0u) return;       // another record seeds it
   uvec4 v0 = key_vectors[i * 3u], v1 = key_vectors[i * 3u + 1u];
   KeyWords cell;
@@ -120,11 +130,17 @@ void Seed(uint i) {
       uint64_t sum = (uint64_t(sum_words[2u * w]) | (uint64_t(sum_words[2u * w + 1u]) << 32)) + fixed_sum[c];
       sum_words[2u * w] = uint(sum);
       sum_words[2u * w + 1u] = uint(sum >> 32);
+    } else if (packed != 0u) {  // a 32-bit word, wrapping as the accumulate's adds do
+      sum_words[w] += uint(fixed_sum[c]);
     } else {
       sum_words[w] = floatBitsToUint(uintBitsToFloat(sum_words[w]) + float_sum[c]);
     }
   }
-  counts[slot] += count;
+  if (packed != 0u) {  // the count bits, carrying into the frame counter as a record's add does
+    count_words[slot] += uint(count);
+  } else {
+    counts[slot] += count;
+  }
   seeded[slot] = 2u;
   atomicAdd(seeded_count, 1ul);
 }
