@@ -74,6 +74,14 @@ glm::vec3 Contribution(RecordGenerator& g) {
   return c;
 }
 
+// Every record's contribution times `factor` (a rejected one stays rejected: NaN, infinite or negative).
+RecordBatch Brightened(RecordBatch batch, float factor) {
+  for (Record& r : batch.records) {
+    for (int c = 0; c < 3; ++c) r.contribution[c] *= factor;
+  }
+  return batch;
+}
+
 VertexSample CellVertex(RecordGenerator& g, glm::ivec3 cell, std::uint32_t pixel) {
   VertexSample v;
   v.pixel = pixel;
@@ -430,6 +438,26 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   }
   if (a.config.accumulation == Accumulation::kPackedDecimal) {
     a.config.fixed_point_bits.reset();
+    // Half of them bright sequences, so the settle's halving runs. A record's channel below B / (1000 n), for the n records of
+    // the largest frame, keeps a cell's adds of one frame below B, so no word wraps: a settled sum is below 2^31, and
+    // with B = 2^31 a frame's adds keep it below 2^32. A blend may exceed the integrated sum by one average
+    // (core/shared/temporal_blend.h), so a blending case takes B = 2^30. A cell that gathers most of a frame's
+    // records still reaches 2^31 within a few frames and halves.
+    if (sums_draws.Bits() % 2u == 0u) {
+      if (a.later.empty()) {  // a sequence: a cell reaches 2^31 over frames
+        DrawSequenceConfig(sums_draws, a.config);
+        const int frames = sums_draws.UniformInt(3, 6);
+        for (int k = 1; k < frames; ++k) a.later.push_back(LaterFrame(sums_draws, a.batch, std::uint32_t(k)));
+        a.config.frames = std::uint32_t(frames);
+      }
+      std::size_t most = a.batch.records.size();
+      for (const RecordBatch& frame : a.later) most = std::max(most, frame.records.size());
+      const double bound = a.config.temporal.blends() ? 0x1p30 : 0x1p31;
+      // Contribution() draws below 4; 0.99 leaves room for each add's rounding to an integer.
+      const float bright = float(bound / (1000.0 * 4.0 * double(std::max<std::size_t>(most, 1))) * 0.99);
+      a.batch = Brightened(a.batch, bright);
+      for (RecordBatch& frame : a.later) frame = Brightened(frame, bright);
+    }
   }
   a.config.Validate();
   return a;
