@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "core/capture_writer.h"
+#include "core/count_words.h"
 #include "core/error.h"
 #include "core/fnv1a.h"
-#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 namespace {
@@ -204,10 +204,7 @@ class CaptureParser {
       for (std::size_t s = 0; s < sums.size(); ++s) t.fixed_sums[s] = {sums[s][0], sums[s][1], sums[s][2]};
       t.counts.resize(words.size());
       t.frame_counters.resize(words.size());
-      for (std::size_t s = 0; s < words.size(); ++s) {
-        t.counts[s] = shared::PackedCount(words[s]);
-        t.frame_counters[s] = shared::PackedFrames(words[s]);
-      }
+      SplitCountWords(words, t.counts, t.frame_counters);
     } else {
       if (c.float32_sums) {
         take(t.float_sums, sum_bytes);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <utility>
 
+#include "core/count_words.h"
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
@@ -170,9 +171,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
         throw InputError("the previous frame's packed-decimal table has no frame counter per slot");
       }
       const std::span<std::uint32_t> words = memory.Words32(b.counts);
-      for (std::size_t s = 0; s < config.capacity; ++s) {
-        words[s] = shared::PackCountWord(std::uint32_t(previous->counts[s]), previous->frame_counters[s]);
-      }
+      PackCountWords(previous->counts, previous->frame_counters, words);
       if (blending) std::copy(words.begin(), words.end(), memory.Words32(temporal.previous_counts).begin());
     } else {
       std::copy(previous->counts.begin(), previous->counts.end(), memory.Words64(b.counts).begin());
@@ -388,10 +387,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     const std::span<const std::uint32_t> words = std::as_const(memory).Words32(b.counts);
     table.counts.resize(config.capacity);
     table.frame_counters.resize(config.capacity);
-    for (std::size_t s = 0; s < config.capacity; ++s) {
-      table.counts[s] = shared::PackedCount(words[s]);
-      table.frame_counters[s] = shared::PackedFrames(words[s]);
-    }
+    ParallelFor(config.capacity, std::size_t(1) << 16, [&](std::size_t begin, std::size_t end) {
+      SplitCountWords(words.subspan(begin, end - begin), std::span(table.counts).subspan(begin, end - begin),
+                      std::span(table.frame_counters).subspan(begin, end - begin));
+    });
   } else {
     table.counts = memory.TakeWords64(b.counts);
   }

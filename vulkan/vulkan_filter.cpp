@@ -13,6 +13,7 @@
 #include "accumulate_float32_spv.h"
 #include "accumulate_packed_decimal_spv.h"
 #include "compaction_spv.h"
+#include "core/count_words.h"
 #include "core/error.h"
 #include "core/fixed_point_scale.h"
 #include "core/footprint.h"
@@ -21,7 +22,6 @@
 #include "core/read_back_check.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
-#include "core/shared/packed_sums.h"
 #include "core/shared/table_params.h"
 #include "core/temporal.h"
 #include "eviction_spv.h"
@@ -415,8 +415,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
     auto* words = static_cast<std::uint32_t*>(upload.Upload(p.counts, count_bytes));
     for (std::size_t s = 0; s < slots; ++s) {
       for (int c = 0; c < 3; ++c) sums[s * 3 + c] = std::uint32_t(table.fixed_sums[s][c]);
-      words[s] = shared::PackCountWord(std::uint32_t(table.counts[s]), table.frame_counters[s]);
     }
+    PackCountWords(table.counts, table.frame_counters, {words, slots});
   } else {
     const void* sums =
         fixed ? static_cast<const void*>(table.fixed_sums.data()) : static_cast<const void*>(table.float_sums.data());
@@ -868,9 +868,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                       [&](const auto& range) {
                         for (std::size_t s = range.begin(); s < range.end(); ++s) {
                           for (int c = 0; c < 3; ++c) table.fixed_sums[s][c] = sums[s * 3 + c];
-                          table.counts[s] = shared::PackedCount(words[s]);
-                          table.frame_counters[s] = shared::PackedFrames(words[s]);
                         }
+                        const std::size_t n = range.end() - range.begin();
+                        SplitCountWords({words + range.begin(), n}, {table.counts.data() + range.begin(), n},
+                                        {table.frame_counters.data() + range.begin(), n});
                       });
     std::memcpy(&run.halved, from_halved, 8);
   } else {

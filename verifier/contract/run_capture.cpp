@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "core/capture_writer.h"
+#include "core/count_words.h"
 #include "core/error.h"
-#include "core/shared/packed_sums.h"
 
 namespace hpsf {
 namespace {
@@ -32,8 +32,8 @@ capture::TableBuffers BuffersOf(const HashTableDump& t, std::vector<std::uint32_
     packed.counts.resize(t.counts.size());
     for (std::size_t s = 0; s < t.counts.size(); ++s) {
       for (int c = 0; c < 3; ++c) packed.sums[3 * s + std::size_t(c)] = std::uint32_t(t.fixed_sums[s][c]);
-      packed.counts[s] = shared::PackCountWord(std::uint32_t(t.counts[s]), t.frame_counters[s]);
     }
+    PackCountWords(t.counts, t.frame_counters, packed.counts);
     b.packed_sums = packed.sums;
     b.count_words = packed.counts;
   } else {
