@@ -18,6 +18,7 @@
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/grid_batch.h"
+#include "property_tests/loaded_table_frames.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "verifier/checker/table_checker.h"
 #include "vulkan/vulkan_filter.h"
@@ -44,32 +45,13 @@ FilterConfig CellConfig() {
   return config;
 }
 
-struct Frame {
-  HashedRun run;
-  std::string name;
-};
-
-// Frame 0 on the emulator, its table loaded with `count` in record 0's slot, then frame 1 from that table on the
-// emulator with `kernel`, and on Vulkan (mapped and staged) with the shader `accumulate_spv` (empty: built in).
-std::vector<Frame> SecondFrames(std::uint64_t count, AccumulateKernelFn kernel, const std::string& accumulate_spv,
-                                HashTableDump& loaded) {
-  const RecordBatch batch = CellBatch();
-  FilterConfig config = CellConfig();
-  EmulatedRun first = EmulatedFilter(batch, config, EmulatorOptions{});
-  loaded = std::move(first.table);
-  loaded.counts[first.placements[0]] = count;
-  config.frame = 1;
-  std::vector<Frame> frames;
-  frames.push_back({EmulatedFilter(batch, config, EmulatorOptions{}, kernel, &loaded), "emulated"});
-  for (const StagingPolicy staging : kStagingPolicies) {
-    VulkanFilter vulkan(TestDevice(staging), accumulate_spv);
-    vulkan.LoadTable(loaded);
-    frames.push_back({vulkan.Run(batch, config, true), std::string("vulkan, staging ") + ToString(staging)});
-  }
-  return frames;
+// Frame 1 from a table whose record 0 slot holds `count` (property_tests/loaded_table_frames.h).
+std::vector<LoadedFrame> SecondFrames(std::uint64_t count, AccumulateKernelFn kernel, const std::string& accumulate_spv,
+                                      HashTableDump& loaded) {
+  return FramesFromLoadedCount(count, CellBatch(), CellConfig(), loaded, kernel, accumulate_spv);
 }
 
-std::vector<TableViolation> Check(const Frame& frame, const HashTableDump& before) {
+std::vector<TableViolation> Check(const LoadedFrame& frame, const HashTableDump& before) {
   const RecordBatch batch = CellBatch();
   return CheckTable({frame.run.table, batch.records, frame.run.keys, frame.run.placements, &before, {}, 1});
 }
@@ -78,7 +60,7 @@ std::vector<TableViolation> Check(const Frame& frame, const HashTableDump& befor
 // as a count mismatch beyond 64 bits (and the total with it); one add short of the wrap, nothing is reported.
 TEST(CountOverflow, A64BitCountThatWrapsIsReportedByEveryBackendAndNamedByTheChecker) {
   HashTableDump loaded;
-  for (const Frame& frame : SecondFrames(~std::uint64_t(0) - 2, AccumulateKernel, "", loaded)) {
+  for (const LoadedFrame& frame : SecondFrames(~std::uint64_t(0) - 2, AccumulateKernel, "", loaded)) {
     EXPECT_EQ(frame.run.count_wraps, 1u) << frame.name;
     const std::uint32_t slot = frame.run.placements[0];
     EXPECT_EQ(frame.run.table.counts[slot], kRecordsPerCell - 3) << frame.name;
@@ -93,7 +75,7 @@ TEST(CountOverflow, A64BitCountThatWrapsIsReportedByEveryBackendAndNamedByTheChe
           << frame.name << ": " << v.ToString();
     }
   }
-  for (const Frame& frame : SecondFrames(~std::uint64_t(0) - kRecordsPerCell, AccumulateKernel, "", loaded)) {
+  for (const LoadedFrame& frame : SecondFrames(~std::uint64_t(0) - kRecordsPerCell, AccumulateKernel, "", loaded)) {
     EXPECT_EQ(frame.run.count_wraps, 0u) << frame.name;
     EXPECT_EQ(frame.run.table.counts[frame.run.placements[0]], ~std::uint64_t(0)) << frame.name;
     EXPECT_TRUE(Check(frame, loaded).empty()) << frame.name << ": " << Check(frame, loaded).front().ToString();
@@ -105,15 +87,15 @@ TEST(CountOverflow, A64BitCountThatWrapsIsReportedByEveryBackendAndNamedByTheChe
 TEST(CountOverflow, D12A32BitCounterIsCaughtByTheCheckerAndTheImage) {
   const std::uint64_t count = (std::uint64_t(1) << 32) - 2;
   HashTableDump loaded;
-  const std::vector<Frame> right = SecondFrames(count, AccumulateKernel, "", loaded);
-  for (const Frame& frame : right) {
+  const std::vector<LoadedFrame> right = SecondFrames(count, AccumulateKernel, "", loaded);
+  for (const LoadedFrame& frame : right) {
     EXPECT_EQ(frame.run.table.counts[frame.run.placements[0]], count + kRecordsPerCell) << frame.name;
     EXPECT_TRUE(Check(frame, loaded).empty()) << frame.name;
   }
-  const std::vector<Frame> d12 =
+  const std::vector<LoadedFrame> d12 =
       SecondFrames(count, D12Count32Bit, HPSF_SHADER_VARIANT_DIR "/accumulate_D12.spv", loaded);
   for (std::size_t b = 0; b < d12.size(); ++b) {
-    const Frame& frame = d12[b];
+    const LoadedFrame& frame = d12[b];
     const std::uint32_t slot = frame.run.placements[0];
     EXPECT_EQ(frame.run.table.counts[slot], kRecordsPerCell - 2) << frame.name << ": the 32-bit counter wrapped";
     const std::vector<TableViolation> violations = Check(frame, loaded);

@@ -21,6 +21,7 @@
 #include "emulated/emulated_filter.h"
 #include "property_tests/grid_batch.h"
 #include "property_tests/hashed_backends.h"
+#include "property_tests/loaded_table_frames.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "verifier/checker/table_checker.h"
@@ -213,27 +214,9 @@ TEST(PackedSums, ASumThatWrapsWithinAFrameIsCountedAndNamedByTheChecker) {
   }
 }
 
-struct LoadedFrame {
-  HashedRun run;
-  std::string name;
-};
-
-// Frame 0 on the emulator, its table loaded with `count` in record 0's slot, then frame 1 from that table on the
-// emulator and on Vulkan (mapped and staged).
+// Frame 1 from a table whose record 0 slot holds `count` (property_tests/loaded_table_frames.h).
 std::vector<LoadedFrame> FromLoadedCount(std::uint32_t count, const RecordBatch& batch, HashTableDump& loaded) {
-  FilterConfig config = PackedConfig(2);
-  EmulatedRun first = EmulatedFilter(batch, config, EmulatorOptions{});
-  loaded = std::move(first.table);
-  loaded.counts[first.placements[0]] = count;
-  config.frame = 1;
-  std::vector<LoadedFrame> frames;
-  frames.push_back({EmulatedFilter(batch, config, EmulatorOptions{}, AccumulateKernel, &loaded), "emulated"});
-  for (const StagingPolicy staging : kStagingPolicies) {
-    VulkanFilter vulkan(TestDevice(staging));
-    vulkan.LoadTable(loaded);
-    frames.push_back({vulkan.Run(batch, config, true), std::string("vulkan, staging ") + ToString(staging)});
-  }
-  return frames;
+  return FramesFromLoadedCount(count, batch, PackedConfig(2), loaded);
 }
 
 // A count of 2^20 - 1 before a frame of cell A's 2 records: 2^20 + 1 passes the bound, so the settle halves it up to
