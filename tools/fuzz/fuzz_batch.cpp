@@ -20,7 +20,8 @@ constexpr int kMaxCells = 8;
 // Far enough out that |x / cell| >= 2^31: the record is unkeyable.
 constexpr float kUnkeyableCoordinate = 4.5e9f;
 
-const std::array<float, 8> kContributions = {0.5f, 1.0f, 0.0f, 1e-3f, 3.25f, 1e4f, 0x1p-20f, 65504.0f};
+// 2.5e6 is past 2^31 at packed-decimal's scale 1000: one record halves a cell, two wrap its 32-bit sum.
+const std::array<float, 8> kContributions = {0.5f, 1.0f, 0.0f, 1e-3f, 3.25f, 2.5e6f, 0x1p-20f, 65504.0f};
 const std::array<float, 4> kOffsetsInCell = {0.5f, 0.0f, 0.25f, 0.99951171875f};  // 0: on the cell's lower boundary
 const std::array<glm::vec3, 4> kNormals = {glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 0.0f, -1.0f),
                                            glm::vec3(-0.0f, 1.0f, 0.0f), glm::vec3(1.0f, -0.0f, 0.0f)};
@@ -61,12 +62,16 @@ glm::ivec3 SearchCell(const FilterConfig& config, glm::ivec3 from,
   return from;
 }
 
-FilterConfig DecodeConfig(FuzzedDataProvider& input, bool& constructed_keys) {
+FilterConfig DecodeConfig(FuzzedDataProvider& input, bool packed_sums, bool& constructed_keys) {
   FilterConfig c;
   c.capacity = 1u << input.ConsumeIntegralInRange<std::uint32_t>(0, kFuzzMaxCapacityLog2);
   c.probe_limit = input.ConsumeIntegralInRange<std::uint32_t>(1, c.capacity);
   c.fingerprint_bits = input.ConsumeIntegralInRange<std::uint32_t>(8, 32);
-  c.accumulation = input.ConsumeBool() ? Accumulation::kFloat32 : Accumulation::kFixed64;
+  // One byte, whose low bit picks float32 as ConsumeBool did, so inputs saved before packed sums decode as they did.
+  const int sums = input.ConsumeIntegralInRange<int>(0, 3);
+  c.accumulation = sums % 2 == 1              ? Accumulation::kFloat32
+                   : sums == 2 && packed_sums ? Accumulation::kPackedDecimal
+                                              : Accumulation::kFixed64;
   c.seed = input.ConsumeIntegral<std::uint32_t>();
   const std::uint8_t normal = input.ConsumeIntegralInRange<std::uint8_t>(0, 3);
   c.normal = normal == 0   ? NormalKey{NormalMode::kNone, 0}
@@ -184,10 +189,10 @@ Record DecodeRecord(FuzzedDataProvider& input, const std::vector<glm::ivec3>& ce
 
 }  // namespace
 
-FuzzCase DecodeFuzzCase(FuzzedDataProvider& input) {
+FuzzCase DecodeFuzzCase(FuzzedDataProvider& input, bool packed_sums) {
   FuzzCase c;
   bool constructed_keys = true;
-  c.config = DecodeConfig(input, constructed_keys);
+  c.config = DecodeConfig(input, packed_sums, constructed_keys);
   c.faithful = DecodeFaithful(input);
   c.fast.mode = simt::Mode::kFast;
   c.fast.threads = 2;
