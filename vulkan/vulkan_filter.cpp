@@ -221,6 +221,22 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A pass over the table's slots (the settle, the temporal blend, evict and reclaim): `program` with `push`, one
+// invocation per slot, or with compaction one per entry of the occupied list, dispatched by the indirect arguments
+// compaction wrote into the list's header.
+template <typename Push>
+void DispatchOverSlots(vk::raii::CommandBuffer& cb, const ComputeProgram& program, const Push& push,
+                       const DeviceBuffer* occupied_header, std::uint32_t capacity, std::uint32_t slots_per_workgroup) {
+  cb.bindPipeline(vk::PipelineBindPoint::eCompute, *program.pipeline);
+  cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *program.layout, 0, *program.set, nullptr);
+  cb.pushConstants<Push>(*program.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
+  if (occupied_header) {
+    cb.dispatchIndirect(*occupied_header->buffer, kOccupiedDispatchOffset);
+  } else {
+    cb.dispatch(vulkan_internal::WorkgroupsFor(capacity, slots_per_workgroup), 1, 1);
+  }
+}
+
 }  // namespace
 
 struct VulkanFilter::Impl {
@@ -707,6 +723,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     });
   }
 
+  // The passes over slots step the occupied list's entries instead, with compaction.
+  const DeviceBuffer* const listed = compacting ? &p.occupied_header : nullptr;
+
   // The temporal blend (temporal.comp): the table was copied into the previous one before the accumulate, then
   // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
   if (blending) {
@@ -721,14 +740,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                          accumulated, nullptr, nullptr);
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *temporal.pipeline);
-      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *temporal.layout, 0, *temporal.set, nullptr);
-      cb.pushConstants<TemporalPush>(*temporal.layout, vk::ShaderStageFlagBits::eCompute, 0, temporal_push);
-      if (compacting) {
-        cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
-      } else {
-        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kTemporalSlotsPerWorkgroup), 1, 1);
-      }
+      DispatchOverSlots(cb, temporal, temporal_push, listed, config.capacity, kTemporalSlotsPerWorkgroup);
     });
   }
 
@@ -745,14 +757,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer,
                          vk::PipelineStageFlagBits::eComputeShader, {}, accumulated, nullptr, nullptr);
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *settle.pipeline);
-      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *settle.layout, 0, *settle.set, nullptr);
-      cb.pushConstants<SettlePush>(*settle.layout, vk::ShaderStageFlagBits::eCompute, 0, settle_push);
-      if (compacting) {
-        cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
-      } else {
-        cb.dispatch(vulkan_internal::WorkgroupsFor(config.capacity, kSettleSlotsPerWorkgroup), 1, 1);
-      }
+      DispatchOverSlots(cb, settle, settle_push, listed, config.capacity, kSettleSlotsPerWorkgroup);
     });
   }
 
@@ -783,19 +788,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                       vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
       cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, cleared,
                          nullptr, nullptr);
-      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *eviction.pipeline);
-      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *eviction.layout, 0, *eviction.set, nullptr);
       const std::vector<std::uint32_t> passes =
           by_priority ? std::vector<std::uint32_t>{2u, 0u, 1u} : std::vector<std::uint32_t>{0u, 1u};
       for (std::uint32_t pass : passes) {
         eviction_push.pass = pass;
-        cb.pushConstants<EvictionPush>(*eviction.layout, vk::ShaderStageFlagBits::eCompute, 0, eviction_push);
-        if (compacting && pass != 2u) {
-          cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
-        } else {
-          cb.dispatch(vulkan_internal::WorkgroupsFor(pass == 2u ? n : config.capacity, kEvictionSlotsPerWorkgroup), 1,
-                      1);
-        }
+        // The select pass steps the records, never the list.
+        DispatchOverSlots(cb, eviction, eviction_push, pass == 2u ? nullptr : listed, pass == 2u ? n : config.capacity,
+                          kEvictionSlotsPerWorkgroup);
         // The evict pass reads the victims the select pass marked, the reclaim the counts the evict pass wrote.
         const vk::MemoryBarrier evicted(vk::AccessFlagBits::eShaderWrite,
                                         vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
