@@ -41,7 +41,8 @@ class CaptureParser {
     offset_ = 16;
     std::uint32_t read = 0;
     auto next = [&](const char(&type)[5], bool optional) -> std::optional<std::string_view> {
-      if (read == chunks || PeekType() != capture::ChunkType(type)) {
+      // An optional chunk may be the last one missing: the count of known chunks then names the header's excess.
+      if (read == chunks || (optional && offset_ == bytes_.size()) || PeekType() != capture::ChunkType(type)) {
         if (optional) return std::nullopt;
         throw Fail(offset_, read == chunks
                                 ? std::string("the header's ") + std::to_string(chunks) + " chunks end before the " +
@@ -111,6 +112,14 @@ class CaptureParser {
                                std::to_string(c.capacity) + " slots");
       }
       Values(*list, list->size(), "OCCL", c.occupied.emplace(), list->size() / 4);
+    }
+    if (const auto list = next("OCCB", true)) {
+      if (!c.before || !c.occupied) throw Fail(chunk_, "OCCB: a list before the frame without TBEF and OCCL");
+      if (list->size() % 4 != 0 || list->size() / 4 > c.capacity) {
+        throw Fail(chunk_, "OCCB: " + std::to_string(list->size()) + " bytes, not a list of at most " +
+                               std::to_string(c.capacity) + " slots");
+      }
+      Values(*list, list->size(), "OCCB", c.occupied_before.emplace(), list->size() / 4);
     }
     if (read != chunks)
       throw Fail(offset_,

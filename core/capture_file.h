@@ -50,6 +50,7 @@ struct Capture {
   std::optional<CapturedTable> before;
   CapturedTable after;
   std::optional<std::vector<std::uint32_t>> occupied;  // the OCCL chunk: the list of occupied slots after the frame
+  std::optional<std::vector<std::uint32_t>> occupied_before;  // OCCB: the list before it (with TBEF and OCCL)
   std::size_t record_count() const { return home_slots.size(); }
 };
 

@@ -185,6 +185,33 @@ TEST(CaptureFile, AnOccupiedListLongerThanTheTableIsNamed) {
   ExpectInputError(longer, "OCCL: 36 bytes, not a list of at most 8 slots");
 }
 
+// The list before the frame (OCCB) follows OCCL and round-trips; the writer refuses one without a table before the
+// frame and a list after it, or longer than the table.
+TEST(CaptureFile, TheListBeforeTheFrameRoundTripsBesideTheTableBefore) {
+  const Arrays a;
+  const capture::TableBuffers before{a.tags_before, a.sums, {}, a.counts, a.last_seen, {}, {}, {}};
+  const std::vector<std::uint32_t> listed_before = {3, 5};
+  const std::span<const std::uint32_t> before_view = listed_before;
+  capture::FrameCapture c = Written(a, nullptr, &before, true);
+  c.occupied = &a.occupied_view;
+  c.occupied_before = &before_view;
+  const std::string path = TempPath("list_before.hpsfc");
+  ASSERT_EQ(capture::WriteCapture(path, c), "");
+  const Capture read = ReadCapture(path);
+  EXPECT_EQ(read.occupied, a.occupied);
+  EXPECT_EQ(read.occupied_before, listed_before);
+  capture::FrameCapture no_table = Written(a, nullptr, nullptr, true);
+  no_table.occupied = &a.occupied_view;
+  no_table.occupied_before = &before_view;
+  EXPECT_EQ(capture::WriteCapture(TempPath("no_table.hpsfc"), no_table),
+            TempPath("no_table.hpsfc") + ": occupied_before: without a table before the frame and a list after it");
+  const std::vector<std::uint32_t> long_list(9, 1);
+  const std::span<const std::uint32_t> long_view = long_list;
+  c.occupied_before = &long_view;
+  EXPECT_EQ(capture::WriteCapture(TempPath("long_before.hpsfc"), c),
+            TempPath("long_before.hpsfc") + ": occupied_before: more entries than the capacity");
+}
+
 TEST(CaptureFile, Float32SumsWithoutTheOptionalChunksRoundTrip) {
   Arrays a;
   std::vector<float> float_sums(24);

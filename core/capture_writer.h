@@ -92,6 +92,8 @@ struct FrameCapture {
   // With compaction (passes.compaction "occupied-list"): the list of occupied slots after the frame, in the engine's
   // order, at most capacity entries; the judge holds it to the table's occupied slots.
   const std::span<const std::uint32_t>* occupied = nullptr;
+  // Optional, with `before` and `occupied`: the list the frame's passes started from, held to the table before.
+  const std::span<const std::uint32_t>* occupied_before = nullptr;
 };
 
 namespace detail {
@@ -205,6 +207,10 @@ inline std::string CaptureProblem(const FrameCapture& c) {
     if (c.before->last_seen.empty() != c.after.last_seen.empty()) return "before and after: last_seen in one only";
   }
   if (c.occupied && c.occupied->size() > c.capacity) return "occupied: more entries than the capacity";
+  if (c.occupied_before) {
+    if (!c.before || !c.occupied) return "occupied_before: without a table before the frame and a list after it";
+    if (c.occupied_before->size() > c.capacity) return "occupied_before: more entries than the capacity";
+  }
   return "";
 }
 
@@ -217,7 +223,8 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return path + ": cannot write " + temporary;
-    const std::uint32_t chunks = 9 + (c.hpsf_records ? 1 : 0) + (c.before ? 1 : 0) + (c.occupied ? 1 : 0);
+    const std::uint32_t chunks =
+        9 + (c.hpsf_records ? 1 : 0) + (c.before ? 1 : 0) + (c.occupied ? 1 : 0) + (c.occupied_before ? 1 : 0);
     out.write(kMagic, sizeof kMagic);
     out.write(reinterpret_cast<const char*>(&kVersion), 4);
     out.write(reinterpret_cast<const char*>(&chunks), 4);
@@ -260,6 +267,7 @@ inline std::string WriteCapture(const std::string& path, const FrameCapture& c) 
     if (c.before) detail::WriteTable(s, ChunkType("TBEF"), *c.before, c, last_seen);
     detail::WriteTable(s, ChunkType("TAFT"), c.after, c, last_seen);
     if (c.occupied) words("OCCL", *c.occupied);
+    if (c.occupied_before) words("OCCB", *c.occupied_before);
     out.close();
     if (!out) {
       std::remove(temporary.c_str());

@@ -498,6 +498,43 @@ TEST(CaptureJudgement, ATeamsOccupiedListIsHeldToItsTable) {
   }
 }
 
+// The list a compacted frame's passes started from (OCCB), captured beside the table before it: an emulator
+// sequence's own passes the judge, and the same list with one slot listed twice fails level 2 alone, naming the list
+// before the frame.
+TEST(CaptureJudgement, TheListBeforeTheFrameIsHeldToTheTableBefore) {
+  FilterConfig config = Crowded();
+  config.eviction = ParseEviction("stale:1");
+  config.compaction = Compaction::kOccupiedList;
+  config.frames = 2;
+  const std::string dir = CaptureDir("list-before");
+  Crosschecker checker({"reference", "emulated"});
+  checker.ObserveFrames([&](const std::string& name, const RecordBatch& batch, std::uint32_t frame,
+                            const HashedRun& run, const HashTableDump* before) {
+    WriteRunCapture(dir + "/" + name + "-frame-" + std::to_string(frame) + ".hpsfc", TableDeclarationText(config),
+                    batch, frame, run, before);
+  });
+  ASSERT_TRUE(checker.CheckFrames(TracedFrames(LoadScene("cornell"), 32, 2, 2), config, EmulatorOptions{}).Passed());
+  const std::string path = dir + "/emulated-frame-1.hpsfc";
+  Capture capture = ReadCapture(path);
+  ASSERT_TRUE(capture.occupied_before);
+  ASSERT_GT(capture.occupied_before->size(), 2u);
+  EXPECT_FALSE(ReadCapture(dir + "/emulated-frame-0.hpsfc").occupied_before) << "frame 0 started from no table";
+  FilterConfig declared;
+  ApplyTableDeclarationText(capture.declaration, path, declared);
+  const CrosscheckReport right = JudgeCapture(capture, declared);
+  EXPECT_TRUE(right.Passed()) << right.FirstFailure();
+  EXPECT_NE(right.levels[1].note.find("its occupied list held to it"), std::string::npos) << right.levels[1].note;
+  std::vector<std::uint32_t>& list = *capture.occupied_before;
+  list.back() = list[1];
+  const CrosscheckReport twice = JudgeCapture(capture, declared);
+  EXPECT_EQ(FailedLevels(twice), std::set<int>{2});
+  EXPECT_NE(
+      twice.FirstFailure().find("capture, before the frame: occupied list differs from the occupied slots at slot " +
+                                std::to_string(list[1])),
+      std::string::npos)
+      << twice.FirstFailure();
+}
+
 // Level 4 between two captures of one frame: a rerun that repeats each record's count and sums passes, one whose
 // cell holds other sums fails naming the record, and a capture of other inputs is no rerun at all.
 TEST(CaptureJudgement, ARerunIsHeldToWhatARerunMustRepeat) {

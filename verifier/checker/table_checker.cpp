@@ -213,6 +213,12 @@ std::string TableViolation::ToString() const {
   return detail.empty() ? s : s + ": " + detail;
 }
 
+std::vector<TableViolation> CheckOccupiedListOf(const HashTableDump& table) {
+  std::vector<TableViolation> violations;
+  CheckOccupiedList(table, violations);
+  return violations;
+}
+
 std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   const HashTableDump& t = in.table;
   const shared::ProbeScheme scheme = ProbeSchemeOf(t);

@@ -78,6 +78,10 @@ struct TableCheckInput {
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& input);
 
+// The occupied list alone (kOccupiedList): each slot whose tag is set listed once, nothing else. CheckTable holds a
+// compacted table's list to it; the capture judge holds a team's list before the frame to the table before.
+std::vector<TableViolation> CheckOccupiedListOf(const HashTableDump& table);
+
 }  // namespace hpsf
 
 #endif  // HPSF_VERIFIER_CHECKER_TABLE_CHECKER_H

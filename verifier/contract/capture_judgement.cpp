@@ -247,6 +247,14 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config, const
   run.placements = capture.placements;
   std::optional<HashTableDump> before;
   if (capture.before) before = TableOf(*capture.before, capture, config, fixed_point_bits);
+  // A team's list the frame's passes started from: held to the table before the frame, as the list after is to the
+  // table after (a slot it missed was neither settled, blended nor evicted by a pass over the list).
+  if (before && capture.occupied_before) {
+    before->compacted = true;
+    before->occupied = *capture.occupied_before;
+    for (const TableViolation& v : CheckOccupiedListOf(*before))
+      tables.Fail("capture, before the frame: " + v.ToString());
+  }
   TableCheckInput input{run.table, records, run.keys, run.placements};
   input.before = before ? &*before : nullptr;
   input.eviction = config.eviction;
@@ -254,7 +262,8 @@ CrosscheckReport JudgeCapture(const Capture& capture, FilterConfig config, const
   input.temporal = config.temporal;
   input.normal_in_index = config.normal_in_index;
   for (const TableViolation& v : CheckTable(input)) tables.Fail("capture: " + v.ToString());
-  tables.note = std::string("table checker") + (before ? ", from the captured table before the frame" : "");
+  tables.note = std::string("table checker") + (before ? ", from the captured table before the frame" : "") +
+                (capture.occupied_before ? ", its occupied list held to it" : "");
 
   ClassifiedSlots classes(config.eviction.by_priority(), false, config.normal_in_index);
   const std::vector<bool>& classified = classes.AddFrame(run);

@@ -95,6 +95,8 @@ void WriteRunCapture(const std::string& path, const std::string& declaration, co
   c.after = BuffersOf(run.table, tags_after, packed_after);
   const std::span<const std::uint32_t> occupied = run.table.occupied;
   if (run.table.compacted) c.occupied = &occupied;
+  const std::span<const std::uint32_t> occupied_before = before ? before->occupied : std::span<const std::uint32_t>();
+  if (before && before->compacted && run.table.compacted) c.occupied_before = &occupied_before;
   if (const std::string error = capture::WriteCapture(path, c); !error.empty()) throw InputError(error);
 }
 
