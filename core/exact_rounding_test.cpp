@@ -1,6 +1,6 @@
 // core/shared/exact_rounding.h against the C library, on every binade a blend's sums and counts reach: the halves
 // and quarters around each integer, the doubles next to them, and the edges at 2^52 and past 2^64. The GLSL side is
-// held by the blend tests (temporal_blend_test.cpp), which failed on lavapipe without AVX-512 with GLSL's roundEven.
+// held by the blend tests (temporal_blend_test.cpp), which failed with GLSL's roundEven on lavapipe on an AVX2 CPU.
 #include "core/shared/exact_rounding.h"
 
 #include <cmath>
