@@ -438,9 +438,9 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   }
   if (a.config.accumulation == Accumulation::kPackedDecimal) {
     a.config.fixed_point_bits.reset();
-    // Half of them bright sequences, so the settle's halving runs. A record's channel below B / (1000 n), for the n records of
-    // the largest frame, keeps a cell's adds of one frame below B, so no word wraps: a settled sum is below 2^31, and
-    // with B = 2^31 a frame's adds keep it below 2^32. A blend may exceed the integrated sum by one average
+    // Half of them bright sequences, so the settle's halving runs. A record's channel below B / (1000 n), for the n
+    // records of the largest frame, keeps a cell's adds of one frame below B, so no word wraps: a settled sum is below
+    // 2^31, and with B = 2^31 a frame's adds keep it below 2^32. A blend may exceed the integrated sum by one average
     // (core/shared/temporal_blend.h), so a blending case takes B = 2^30. A cell that gathers most of a frame's
     // records still reaches 2^31 within a few frames and halves.
     if (sums_draws.Bits() % 2u == 0u) {
