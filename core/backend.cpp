@@ -46,6 +46,8 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.eviction == next.eviction, "--eviction");
   require(first.temporal == next.temporal, "--temporal");
   require(first.forced == next.forced, "--force-effect");
+  require(first.levels == next.levels, "--levels");
+  require(first.min_count == next.min_count, "--min-count");
 }
 
 }  // namespace hpsf

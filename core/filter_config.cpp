@@ -9,6 +9,7 @@
 #include "core/shared/fixed_point.h"
 #include "core/shared/float_bits.h"
 #include "core/shared/full_key.h"
+#include "core/shared/levels.h"
 
 namespace hpsf {
 namespace {
@@ -139,6 +140,27 @@ void FilterConfig::Validate() const {
   if (accumulation == Accumulation::kPackedDecimal && fixed_point_bits) {
     throw ConfigError("--fixed-point-bits", "applies to fixed64; packed-decimal sums are at the scale 1000");
   }
+  if (levels < 1 || levels > shared::kMaxLevels) {
+    throw ConfigError("--levels",
+                      "must lie in [1, " + std::to_string(shared::kMaxLevels) + "]; got " + std::to_string(levels));
+  }
+  if (min_count < 1) throw ConfigError("--min-count", "must be >= 1; got " + std::to_string(min_count));
+  if (min_count > 1 && levels == 1) {
+    throw ConfigError("--min-count", "chooses among a record's levels, which needs --levels 2 or more");
+  }
+  // What the passes over records other than the accumulate and the resolve do not yet know about coarser levels.
+  if (levels > 1 && level_seed.enabled) {
+    throw ConfigError("--levels",
+                      "does not yet combine with --level-change seed, whose pass seeds a record's own cell only");
+  }
+  if (levels > 1 && compaction != Compaction::kNone) {
+    throw ConfigError("--levels",
+                      "does not yet combine with --compaction, whose gather lists a record's own cell only");
+  }
+  if (levels > 1 && eviction.by_priority()) {
+    throw ConfigError("--levels",
+                      "does not yet combine with priority eviction, whose selection reads a record's own cell only");
+  }
 }
 
 std::string FilterConfig::ToString() const {
@@ -161,6 +183,8 @@ std::string FilterConfig::ToString() const {
          (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) +
          (level_seed.enabled ? " level_change: " + level_seed.ToString() : std::string()) +
          (compaction != Compaction::kNone ? " compaction: " + hpsf::ToString(compaction) : std::string()) +
+         (levels != 1 ? " levels: " + std::to_string(levels) : std::string()) +
+         (min_count != 1 ? " min_count: " + std::to_string(min_count) : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 

@@ -56,6 +56,10 @@ struct FilterConfig {
   Temporal temporal;         // --temporal: how a cell blends its history with a frame (core/temporal.h)
   LevelSeed level_seed;      // --level-change: how a cell new at another level starts (core/level_seed.h)
   Compaction compaction = Compaction::kNone;  // --compaction: the passes over slots step a list (core/compaction.h)
+  // --levels: a record is added to its own cell and the levels - 1 coarser cells that hold it (core/shared/levels.h)
+  std::uint32_t levels = 1;
+  // --min-count: the resolve reads a record's finest level whose count reaches it, else the coarsest
+  std::uint32_t min_count = 1;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // Throws ConfigError for the first invalid option.

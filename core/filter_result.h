@@ -40,12 +40,16 @@ struct FilterStats {
   std::uint64_t cells_halved = 0;       // packed-decimal cells the frame's settle halved
   std::uint64_t cells_evicted = 0;      // cells the frame's eviction removed (core/eviction.h)
   std::uint64_t cells_seeded = 0;       // cells new in the frame seeded from another level (core/level_seed.h)
+  // [k]: records whose resolve read their cell k levels above their own (--levels, core/shared/levels.h)
+  std::vector<std::uint64_t> resolved_at_level;
 };
 
 struct FilterResult {
   Image image;
   std::vector<TableCell> cells;
   std::vector<std::uint32_t> placement;  // per record: index into cells, or kNoCell
+  // With --levels L > 1: [(k - 1) n + i], record i's cell k levels above its own, k = 1 .. L - 1
+  std::vector<std::uint32_t> coarser_placement;
   FilterStats stats;
 };
 

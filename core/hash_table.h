@@ -34,6 +34,7 @@ struct HashTableDump {
   KeyIdentity key_identity = KeyIdentity::kFingerprint;  // kFull: every tag is a full key (64 bits)
   Accumulation accumulation = Accumulation::kFixed64;
   int fixed_point_bits = 0;
+  std::uint32_t levels = 1;  // --levels: each record is added at its own cell and levels - 1 coarser ones
   std::vector<SlotTag> tags;
   std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64, and packed-decimal's 32-bit words
   std::vector<std::array<float, 3>> float_sums;          // float32

@@ -9,6 +9,7 @@
 #include "core/hash_table.h"
 #include "core/image.h"
 #include "core/key_batch.h"
+#include "core/shared/levels.h"
 
 namespace hpsf {
 
@@ -17,6 +18,10 @@ struct HashedRun {
   HashTableDump table;
   std::vector<KeyResult> keys;            // per record
   std::vector<std::uint32_t> placements;  // per record: a slot, kProbeFailure or kNotPlaced
+  // With --levels L > 1: [(k - 1) n + i], record i's placement k levels above its own cell (core/shared/levels.h)
+  std::vector<std::uint32_t> coarser_placements;
+  std::vector<std::uint64_t> resolved_at_level;  // [k]: records whose resolve read the slot k levels above their own
+  std::uint32_t min_count = 1;                   // the resolve's --min-count
   std::uint64_t probe_failures = 0;
   std::uint64_t wraps = 0;                   // integer adds whose sum wrapped (64 bits, or packed-decimal's 32)
   std::uint64_t count_wraps = 0;             // adds whose count wrapped (64 bits, D12, or packed-decimal's 24)
@@ -34,10 +39,24 @@ struct HashedRun {
   std::vector<bool> seeded_slots;
 };
 
+// Record i's placement k levels above its own cell (k = 0: its own); kNotPlaced past what the backend wrote.
+std::uint32_t LevelPlacement(const HashedRun& run, std::size_t i, std::uint32_t k);
+
+// The slot record i's resolve reads (core/shared/levels.h): its finest placed level whose count reaches min_count,
+// else its coarsest placed one; slot >= capacity where none is placed.
+shared::LevelChoice ResolvedSlot(const HashedRun& run, std::size_t i);
+
+// Fills run.resolved_at_level from ResolvedSlot of every record placed at some level.
+void CountResolvedLevels(HashedRun& run);
+
 // Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).
 std::vector<bool> AliasedSlots(const HashedRun& run);
 
-// Probe failures and the probe-length histogram, from the placements and slot0 of each record.
+// Adds the coarser levels' probe failures and lengths (core/shared/levels.h) to the run's, from their placements and
+// the slot0 of their keys (derived from each record's own by `params`).
+void CountCoarserProbes(HashedRun& run, const KeyParams& params);
+
+// Probe failures and the probe-length histogram, from the placements and slot0 of each record, every level's.
 void CountProbes(HashedRun& run);
 
 }  // namespace hpsf

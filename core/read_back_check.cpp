@@ -54,6 +54,23 @@ std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t fram
             ", capacity " + std::to_string(t.capacity) + ")");
     }
   }
+  // The coarser levels' placements (core/shared/levels.h): slots or the two markers. Whether a slot is among its
+  // derived key's candidates is the table checker's to judge (its key is not the shader's word).
+  const std::size_t n = run.placements.size();
+  if (t.levels > 1 && run.coarser_placements.size() != std::size_t(t.levels - 1) * n) {
+    fault("coarser placements: " + std::to_string(run.coarser_placements.size()) + " words for " +
+          std::to_string(t.levels - 1) + " levels of " + std::to_string(n) + " records");
+  }
+  for (std::size_t at = 0; n > 0 && at < run.coarser_placements.size() && faults.size() < limit; ++at) {
+    const std::uint32_t slot = run.coarser_placements[at];
+    if (slot == kProbeFailure || slot == kNotPlaced) continue;
+    if (slot >= t.capacity) {
+      fault(RecordPrefix(at % n) + "placement " + std::to_string(at / n + 1) + " levels up " + std::to_string(slot) +
+            " is neither a slot below the capacity " + std::to_string(t.capacity) + " nor a marker");
+      continue;
+    }
+    ++placed;
+  }
   if (!t.last_seen.empty()) {
     for (std::size_t s = 0; s < t.last_seen.size() && faults.size() < limit; ++s) {
       if (t.last_seen[s] > frame) {
@@ -69,8 +86,8 @@ std::vector<std::string> ReadBackFaults(const HashedRun& run, std::uint32_t fram
     }
   };
   if (faults.empty()) {  // the bounds below count placed records, which only make sense once placements are valid
-    counter("fixed64 wraps", run.wraps, 3 * placed, "one per channel of each placed record");
-    counter("count wraps", run.count_wraps, placed, "one per placed record");
+    counter("fixed64 wraps", run.wraps, 3 * placed, "one per channel of each placed record and level");
+    counter("count wraps", run.count_wraps, placed, "one per placed record and level");
     counter("evicted", run.evicted, t.capacity, "one per slot");
     counter("seeded", run.seeded, t.capacity, "one per slot");
   }

@@ -1,4 +1,5 @@
-// The accumulate pass of docs/design/algorithm.md, as an emulator kernel: one thread per record; bounded
+// The accumulate pass of docs/design/algorithm.md, as an emulator kernel: one thread per record, at each of its
+// --levels in turn (core/shared/levels.h); bounded
 // linear probing from slot0; a slot whose tag equals the fingerprint is joined, an empty one is claimed with a
 // compare-and-swap; each channel is added atomically, then the count; the record's slot is stored. No slot
 // within the probe limit is a probe failure. fixed64 adds also report wrap (new < old). With eviction, the slot's
@@ -24,7 +25,7 @@ struct TableBuffers {
                              // share a cache line: 64-bit (fixed64), 32-bit float bits (float32) or 32-bit
                              // integers at 1000 (packed-decimal)
   std::uint32_t counts;      // 64-bit; packed-decimal: 32-bit, the count word (core/shared/packed_sums.h)
-  std::uint32_t placements;  // 32-bit, one per record
+  std::uint32_t placements;  // 32-bit, one per record and level, level-major (core/shared/levels.h)
   std::uint32_t wraps;       // 64-bit, two words: fixed64 adds whose sum wrapped, adds whose count wrapped
   std::uint32_t last_seen;   // 32-bit per slot, with eviction only: the last frame a record was added
 };
@@ -34,7 +35,9 @@ struct EvictionArgs;  // emulated/eviction_kernels.h
 
 struct AccumulateArgs {
   std::span<const Record> records;
-  std::span<const KeyResult> keys;         // from core, per record
+  std::span<const KeyResult> keys;         // from core, per record: its own cell's
+  KeyParams key_params{};                  // for the keys of coarser levels (core/shared/levels.h)
+  std::uint32_t levels = 1;                // --levels
   std::span<const std::uint8_t> accepted;  // CheckRecordInputs passed
   std::uint32_t capacity = 0;
   std::uint32_t probe_limit = 0;

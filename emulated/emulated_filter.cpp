@@ -17,6 +17,7 @@
 #include "core/parallel_for.h"
 #include "core/prefetch.h"
 #include "core/resolve.h"
+#include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 #include "emulated/compaction_kernels.h"
@@ -99,6 +100,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   table.fingerprint_bits = config.fingerprint_bits;
   table.key_identity = config.key_identity;
   table.accumulation = config.accumulation;
+  table.levels = config.levels;
   const bool packed = config.accumulation == Accumulation::kPackedDecimal;  // SHaRC's layout, F unused
   table.fixed_point_bits = packed                    ? 0
                            : previous                ? previous->fixed_point_bits
@@ -115,6 +117,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   AccumulateArgs args;
   args.records = batch.records;
   args.keys = run.keys;
+  args.key_params = params;
+  args.levels = config.levels;
   args.accepted = accepted;
   args.capacity = config.capacity;
   args.probe_limit = config.probe_limit;
@@ -132,7 +136,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   // packed-decimal's count word is 32-bit (core/shared/packed_sums.h).
   b.counts = packed ? memory.Allocate32("counts", config.capacity)
                     : memory.Allocate64("counts", config.capacity, std::move(kept.counts));
-  b.placements = memory.Allocate32("placements", n, std::move(kept.placements));
+  // Level-major: record i's level k placement at k n + i (core/shared/levels.h).
+  b.placements = memory.Allocate32("placements", std::size_t(n) * config.levels, std::move(kept.placements));
   b.wraps = memory.Allocate64("wraps", 2);
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
   // Last-seen frames are tracked whenever eviction is asked for; the pass runs where the plan says.
@@ -248,7 +253,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     const std::uint32_t warps = (n + options.warp_size - 1) / options.warp_size;
     std::unique_ptr<simt::Schedule> parsed;
     if (!options.schedule_instance)
-      parsed = simt::MakeSchedule(options.schedule, warps, std::uint64_t(warps) * (2 * config.probe_limit + 6));
+      parsed = simt::MakeSchedule(options.schedule, warps,
+                                  std::uint64_t(warps) * config.levels * (2 * config.probe_limit + 6));
     simt::Schedule* schedule = options.schedule_instance ? options.schedule_instance : parsed.get();
     simt::OperationObserver observer;
     if (!fixed) {
@@ -395,6 +401,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     table.counts = memory.TakeWords64(b.counts);
   }
   run.placements = memory.TakeWords32(b.placements);
+  run.coarser_placements.assign(run.placements.begin() + n, run.placements.end());
+  run.placements.resize(n);
+  run.min_count = config.min_count;
   run.wraps = memory.Words64(b.wraps)[0];
   run.count_wraps = memory.Words64(b.wraps)[1];
   if (fixed) {
@@ -432,6 +441,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   struct Tally {
     std::uint64_t probe_failures = 0;
     std::vector<std::uint64_t> probe_lengths;
+    std::vector<std::uint64_t> resolved_at_level;
   };
   run.image.width = batch.width;
   run.image.height = batch.height;
@@ -453,19 +463,25 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   };
   const shared::ProbeScheme scheme = ProbeSchemeOf(config);
   const Tally tally = ParallelReduce(
-      run.image.pixels.size(), 2048, Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0)},
+      run.image.pixels.size(), 2048,
+      Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0), std::vector<std::uint64_t>(config.levels, 0)},
       [&](std::size_t begin, std::size_t end, Tally tally) {
         for (std::size_t pixel = begin; pixel < end; ++pixel) {
           glm::dvec3 sum(0.0);
           for (std::uint32_t sample = 0; sample < spp; ++sample) {
             const std::size_t i = pixel * spp + sample;
             if (i + kResolveLookahead < end * spp) prefetch_slot(run.placements[i + kResolveLookahead]);
-            const std::uint32_t slot = run.placements[i];
-            if (slot == kProbeFailure) ++tally.probe_failures;
+            const std::uint32_t own = run.placements[i];
+            if (own == kProbeFailure) ++tally.probe_failures;
+            if (own < config.capacity) {
+              const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, own);
+              if (index != shared::kNoCandidate) ++tally.probe_lengths[index];
+            }
+            const shared::LevelChoice chosen = ResolvedSlot(run, i);
+            const std::uint32_t slot = chosen.slot;
             glm::dvec3 average;
             if (slot < config.capacity) {
-              const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, slot);
-              if (index != shared::kNoCandidate) ++tally.probe_lengths[index];
+              ++tally.resolved_at_level[chosen.level];
               for (int c = 0; c < 3; ++c) {
                 const double channel_sum = packed
                                                ? double(table.fixed_sums[slot][c]) / double(shared::kPackedDecimalScale)
@@ -483,6 +499,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       [](Tally a, const Tally& b) {
         a.probe_failures += b.probe_failures;
         for (std::size_t k = 0; k < a.probe_lengths.size(); ++k) a.probe_lengths[k] += b.probe_lengths[k];
+        for (std::size_t k = 0; k < a.resolved_at_level.size(); ++k) a.resolved_at_level[k] += b.resolved_at_level[k];
         return a;
       });
   run.probe_failures = tally.probe_failures;
@@ -491,6 +508,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
       run.tombstones += table.tags[s] != kEmptyTag && table.counts[s] == 0;
   }
   run.probe_lengths = tally.probe_lengths;
+  CountCoarserProbes(run, params);
+  run.resolved_at_level = tally.resolved_at_level;
   kept.accepted = std::move(accepted);
   kept.entering = std::move(entering);
   run.timings.resolve_ms = clock.LapMs();

@@ -14,6 +14,7 @@
 #include "core/level_seed.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 
@@ -32,8 +33,10 @@ void EvictCells(const FilterConfig& config, FilterResult& result) {
   }
   result.stats.cells_evicted = result.cells.size() - kept.size();
   result.cells = std::move(kept);
-  for (std::uint32_t& cell : result.placement) {
-    if (cell != kNoCell) cell = renumbered[cell];
+  for (std::vector<std::uint32_t>* placements : {&result.placement, &result.coarser_placement}) {
+    for (std::uint32_t& cell : *placements) {
+      if (cell != kNoCell) cell = renumbered[cell];
+    }
   }
 }
 
@@ -101,6 +104,52 @@ void SettleCells(FilterResult& result) {
   }
 }
 
+// Adds record r to the cell of `key` (new or not), as the device adds it; returns the cell's index.
+std::uint32_t AddToCell(const KeyResult& key, const Record& r, const FilterConfig& config, float scale,
+                        std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key, FilterResult& result) {
+  const bool fixed = IntegerSums(config.accumulation);
+  const bool packed = config.accumulation == Accumulation::kPackedDecimal;
+  FilterStats& stats = result.stats;
+  const shared::KeyWords& w = key.words;
+  const std::array<std::uint32_t, 6> words = {w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
+  auto [it, inserted] = cell_of_key.emplace(words, static_cast<std::uint32_t>(result.cells.size()));
+  if (inserted) result.cells.push_back(TableCell{words});
+  TableCell& cell = result.cells[it->second];
+  for (int c = 0; c < 3; ++c) {
+    if (fixed) {
+      const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], scale);
+      cell.fixed_sum[c] += add;
+      if (packed) cell.fixed_sum[c] &= 0xFFFFFFFFu;        // a 32-bit word, as the device's
+      stats.fixed_point_wraps += cell.fixed_sum[c] < add;  // only a sequence brighter than its F allowed
+    } else {
+      cell.float_sum[c] += r.contribution[c];
+    }
+  }
+  if (packed) {  // the count's 24 bits carry into the frame counter, as the device's add of 1 to the word
+    const std::uint32_t word = shared::PackCountWord(std::uint32_t(cell.count), cell.frames) + 1u;
+    cell.count = shared::PackedCount(word);
+    cell.frames = shared::PackedFrames(word);
+    stats.count_wraps += cell.count == 0;
+  } else {
+    stats.count_wraps += ++cell.count == 0;
+  }
+  cell.last_seen = config.frame;
+  return it->second;
+}
+
+// The cell record i's resolve reads (core/shared/levels.h): its finest level whose count reaches --min-count.
+shared::LevelChoice ChooseCell(const FilterResult& result, const FilterConfig& config, std::size_t i) {
+  const std::size_t n = result.placement.size();
+  const auto cells = static_cast<std::uint32_t>(result.cells.size());
+  shared::LevelChoice choice = shared::NoLevelChosen();
+  for (std::uint32_t k = 0; k < config.levels; ++k) {
+    const std::uint32_t cell = k == 0 ? result.placement[i] : result.coarser_placement[std::size_t(k - 1) * n + i];
+    const std::uint64_t count = cell < cells ? result.cells[cell].count : 0;
+    choice = shared::ChooseLevel(choice, k, cell, count, cells, config.min_count);
+  }
+  return choice;
+}
+
 }  // namespace
 
 FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous,
@@ -130,6 +179,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
     for (std::size_t c = 0; c < result.cells.size(); ++c) cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
   }
   result.placement.assign(batch.records.size(), kNoCell);
+  result.coarser_placement.assign(std::size_t(config.levels - 1) * batch.records.size(), kNoCell);
   std::vector<KeyResult> keys(batch.records.size());
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     const Record& r = batch.records[i];
@@ -147,31 +197,11 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
       ++stats.unkeyable;
       continue;
     }
-    const shared::KeyWords& w = keys[i].words;
-    const std::array<std::uint32_t, 6> key = {w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
-    auto [it, inserted] = cell_of_key.emplace(key, static_cast<std::uint32_t>(result.cells.size()));
-    if (inserted) result.cells.push_back(TableCell{key});
-    TableCell& cell = result.cells[it->second];
-    for (int c = 0; c < 3; ++c) {
-      if (fixed) {
-        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], scale);
-        cell.fixed_sum[c] += add;
-        if (packed) cell.fixed_sum[c] &= 0xFFFFFFFFu;        // a 32-bit word, as the device's
-        stats.fixed_point_wraps += cell.fixed_sum[c] < add;  // only a sequence brighter than its F allowed
-      } else {
-        cell.float_sum[c] += r.contribution[c];
-      }
+    for (std::uint32_t k = 0; k < config.levels; ++k) {
+      const std::uint32_t cell =
+          AddToCell(shared::KeyAtLevel(params, keys[i], k), r, config, scale, cell_of_key, result);
+      (k == 0 ? result.placement[i] : result.coarser_placement[std::size_t(k - 1) * batch.records.size() + i]) = cell;
     }
-    if (packed) {  // the count's 24 bits carry into the frame counter, as the device's add of 1 to the word
-      const std::uint32_t word = shared::PackCountWord(std::uint32_t(cell.count), cell.frames) + 1u;
-      cell.count = shared::PackedCount(word);
-      cell.frames = shared::PackedFrames(word);
-      stats.count_wraps += cell.count == 0;
-    } else {
-      stats.count_wraps += ++cell.count == 0;
-    }
-    cell.last_seen = config.frame;
-    result.placement[i] = it->second;
   }
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
   if (planned.level_seed) SeedNewCells(config, previous, cell_of_key, result);
@@ -195,8 +225,12 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
   stats.mean_records_per_cell = stats.cells ? double(in_cells) / double(stats.cells) : 0.0;
 
   std::vector<std::optional<glm::dvec3>> cell_average(batch.records.size());
+  stats.resolved_at_level.assign(config.levels, 0);
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    if (result.placement[i] != kNoCell) cell_average[i] = averages[result.placement[i]];
+    const shared::LevelChoice chosen = ChooseCell(result, config, i);
+    if (chosen.slot == kNoCell) continue;
+    cell_average[i] = averages[chosen.slot];
+    ++stats.resolved_at_level[chosen.level];
   }
   result.image = ResolvePixels(batch, cell_average);
   return result;

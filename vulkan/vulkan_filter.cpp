@@ -125,9 +125,11 @@ struct ResolvePush {
   std::uint32_t capacity;
   std::uint32_t pixel_count;
   std::uint32_t samples_per_pixel;
+  std::uint32_t levels;     // --levels: the placements hold levels words per record, level-major
+  std::uint32_t min_count;  // --min-count (core/shared/levels.h)
   std::uint32_t reserved;
 };
-static_assert(sizeof(ResolvePush) == 24, "push constants of resolve.glsl");
+static_assert(sizeof(ResolvePush) == 32, "push constants of resolve.glsl");
 
 // The stable interface: binding i of table_interface.glsl.
 constexpr BindingKind kAccumulateBindings[] = {
@@ -538,6 +540,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   table.fingerprint_bits = config.fingerprint_bits;
   table.key_identity = config.key_identity;
   table.accumulation = config.accumulation;
+  table.levels = config.levels;
 
   // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record),
   // written into the kernels' buffers where the host maps them, else into staging buffers copied over.
@@ -549,7 +552,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.sums, vk::DeviceSize(sum_bytes));
   p.Ensure(p.counts, vk::DeviceSize(count_bytes));
   p.Ensure(p.halved, 8);
-  p.Ensure(p.placements, vk::DeviceSize(n) * 4);
+  // Level-major: record i's level k placement at k n + i (core/shared/levels.h).
+  const std::size_t placement_bytes = std::size_t(n) * config.levels * 4;
+  p.Ensure(p.placements, vk::DeviceSize(placement_bytes));
   p.Ensure(p.stats, 16);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
@@ -618,7 +623,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
       {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
        AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
-       by_priority ? 1u : 0u, SharedProbeKind(config.probing), 0},
+       by_priority ? 1u : 0u, SharedProbeKind(config.probing), config.levels},
       MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -814,8 +819,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   DeviceBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   const std::uint32_t pixel_count = batch.width * batch.height;
-  const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits), config.capacity, pixel_count,
-                                 batch.samples_per_pixel, 0};
+  const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits),
+                                 config.capacity,
+                                 pixel_count,
+                                 batch.samples_per_pixel,
+                                 config.levels,
+                                 config.min_count,
+                                 0};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
@@ -829,7 +839,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   vulkan_internal::Transfer download(p.device, p.staging);
   const void* from_pixels = download.Download(p.pixels, pixel_bytes);
   const void* from_keys = download.Download(p.keys, std::size_t(n) * sizeof(KeyResult));
-  const void* from_placements = download.Download(p.placements, std::size_t(n) * 4);
+  const void* from_placements = download.Download(p.placements, placement_bytes);
   const void* from_tags = download.Download(p.tags, tag_bytes);
   const void* from_counts = download.Download(p.counts, count_bytes);
   const void* from_sums = download.Download(p.sums, sum_bytes);
@@ -846,6 +856,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.image = Image(batch.width, batch.height);
   ResizeOnHugePages(run.keys, n);
   ResizeOnHugePages(run.placements, n);
+  run.coarser_placements.resize(std::size_t(n) * (config.levels - 1));
   ResizeOnHugePages(table.tags, config.capacity);
   ResizeOnHugePages(table.counts, config.capacity);
   if (fixed || packed) {
@@ -853,11 +864,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   } else {
     ResizeOnHugePages(table.float_sums, config.capacity);
   }
-  const auto copies = {CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
-                       CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
-                       CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
-                       CopyOut{&run.wraps, from_stats, 8},
-                       CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
+  const auto copies = {
+      CopyOut{run.image.pixels.data(), from_pixels, pixel_bytes},
+      CopyOut{run.keys.data(), from_keys, std::size_t(n) * sizeof(KeyResult)},
+      CopyOut{run.placements.data(), from_placements, std::size_t(n) * 4},
+      CopyOut{run.coarser_placements.data(), static_cast<const char*>(from_placements) + std::size_t(n) * 4,
+              run.coarser_placements.size() * 4},
+      CopyOut{&run.wraps, from_stats, 8},
+      CopyOut{&run.count_wraps, static_cast<const char*>(from_stats) + 8, 8}};
   for (const CopyOut& copy : copies) ParallelCopy(copy);
   if (packed) {  // 32-bit words, widened; the count word split into its count and frame counter
     table.frame_counters.resize(config.capacity);
@@ -896,6 +910,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.timings.read_back_ms = MillisecondsSince(start);
   // Every word came from a shader, perhaps a team's: checked before any is used as an index.
   FinishReadBack(run, config.frame, p.ShaderNames());
+  CountCoarserProbes(run, push.key);
+  run.min_count = config.min_count;
+  CountResolvedLevels(run);
   p.table =
       Impl::TableShape{config.capacity, config.accumulation, config.key_identity, table.fixed_point_bits, compacting};
   return run;

@@ -34,7 +34,10 @@ struct TableParams {
   // or tombstone slot (accumulate.glsl).
   uint claim_tombstones;
   uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow: the order of a key's candidates
-  uint reserved;      // 0; keeps TemporalParams after it 8-byte aligned
+  // Multi-level accumulation (core/shared/levels.h): a record is added at its own level and levels - 1 coarser ones,
+  // its level k placement at placements[k n + i]; 1 adds it to its own cell only. Also keeps TemporalParams after it
+  // 8-byte aligned.
+  uint levels;
 };
 
 HPSF_FN ProbeScheme ProbeSchemeOf(TableParams t) { return MakeProbeScheme(t.probe_scheme, t.capacity, t.probe_limit); }

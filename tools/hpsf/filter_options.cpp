@@ -76,6 +76,16 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "occupied-list (a list of the occupied slots kept beside the table, so they cost in proportion to "
                   "those)")
       ->capture_default_str();
+  command
+      .add_option("--levels", c.levels,
+                  "Multi-level accumulation: each record is added to its own cell and the LEVELS - 1 coarser cells "
+                  "that hold it (each twice the edge of the one below, nested exactly), 1..8")
+      ->capture_default_str();
+  command
+      .add_option("--min-count", c.min_count,
+                  "The resolve reads a record's finest level whose count reaches this, else its coarsest "
+                  "(needs --levels 2 or more)")
+      ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction; repeatable): the same bits, at the pass's cost");
@@ -156,6 +166,8 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"level_change", c.level_seed.ToString()},
           {"temporal", c.temporal.ToString()},
           {"compaction", ToString(c.compaction)},
+          {"levels", c.levels},
+          {"min_count", c.min_count},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

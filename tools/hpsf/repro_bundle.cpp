@@ -121,6 +121,8 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 "--fixed-point-bits",
                                 c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
+  if (c.levels != 1)
+    a.insert(a.end(), {"--levels", std::to_string(c.levels), "--min-count", std::to_string(c.min_count)});
   if (c.compaction != Compaction::kNone) a.insert(a.end(), {"--compaction", ToString(c.compaction)});
   if (c.key_identity != KeyIdentity::kFingerprint) a.insert(a.end(), {"--key-identity", ToString(c.key_identity)});
   const bool faithful = emulator.mode == simt::Mode::kFaithful;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/level_seed.h"
+#include "core/level_touches.h"
 #include "core/shared/level_seed.h"
 
 namespace hpsf {
@@ -38,16 +39,18 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     if (evicts_under_pressure_) keys_here_.assign(capacity, {});
   }
   if (seeds_levels_) previous_key_of_ = key_of_;
+  // Every level a record was added at is a touch of its own (core/level_touches.h).
+  const LevelTouches touches(run.table, run.keys, run.placements, run.coarser_placements, normal_in_index_);
   auto key_of = [&](std::size_t i) {
-    const shared::KeyWords& w = run.keys[i].words;
+    const shared::KeyWords& w = touches.keys()[i].words;
     return FullKey{w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
   };
-  for (std::size_t i = 0; i < run.placements.size(); ++i) {
-    if (run.placements[i] == kProbeFailure) failed_.insert(key_of(i));
-    if (run.placements[i] == kProbeFailure && seeds_levels_) tainted_.insert(key_of(i));
+  for (std::size_t i = 0; i < touches.size(); ++i) {
+    if (touches.placements()[i] == kProbeFailure) failed_.insert(key_of(i));
+    if (touches.placements()[i] == kProbeFailure && seeds_levels_) tainted_.insert(key_of(i));
   }
-  for (std::size_t i = 0; i < run.placements.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
+  for (std::size_t i = 0; i < touches.size(); ++i) {
+    const std::uint32_t slot = touches.placements()[i];
     if (slot >= capacity) continue;
     const FullKey key = key_of(i);
     if (seeds_levels_ && !key_of_[slot] && SeedTainted(key)) after_failure_[slot] = true;  // new, seeded from taint
@@ -68,7 +71,7 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     aliased_slots_ += aliased_[s];
   }
   classified_records_ = 0;
-  for (const std::uint32_t slot : run.placements) classified_records_ += slot < capacity && classified_[slot];
+  for (const std::uint32_t slot : touches.placements()) classified_records_ += slot < capacity && classified_[slot];
   any_ = any_ || run.probe_failures > 0 || std::find(classified_.begin(), classified_.end(), true) != classified_.end();
   // A slot left empty or a tombstone (no count) starts afresh in the next frame.
   for (std::size_t s = 0; s < capacity; ++s) {

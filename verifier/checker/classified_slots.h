@@ -31,7 +31,8 @@ class ClassifiedSlots {
   // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
   const std::vector<bool>& AddFrame(const HashedRun& run);
 
-  // This frame's figures: slots aliased, records placed in classified slots, probe failures.
+  // This frame's figures: slots aliased, records placed in classified slots (with --levels, each level of a record
+  // once), probe failures.
   std::uint64_t aliased_slots() const { return aliased_slots_; }
   std::uint64_t classified_records() const { return classified_records_; }
   // Whether any slot was classified or any record failed, in any frame so far.

@@ -6,8 +6,10 @@
 #include <set>
 
 #include "core/input_check.h"
+#include "core/level_touches.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
 
 namespace hpsf {
@@ -21,6 +23,14 @@ std::string Records(const std::vector<std::uint32_t>& records) {
     s += (s.empty() ? "" : ", ") + std::to_string(records[i]);
   if (records.size() > kMaxRecordsNamed) s += ", ... (" + std::to_string(records.size()) + " in all)";
   return s;
+}
+
+// Touch t adds record t mod n at t / n levels above its own cell (core/shared/levels.h): t = i with one level.
+const Record& RecordOf(const TableCheckInput& in, std::uint32_t touch) { return in.records[touch % in.records.size()]; }
+
+std::vector<std::uint32_t> RecordsOf(const TableCheckInput& in, std::vector<std::uint32_t> touches) {
+  for (std::uint32_t& t : touches) t = static_cast<std::uint32_t>(t % in.records.size());
+  return touches;
 }
 
 std::string Decimal(unsigned __int128 x) {
@@ -44,14 +54,14 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
   const float scale = shared::PowerOfTwo(t.fixed_point_bits);
   const shared::TemporalParams params = MakeTemporalParams(in.temporal);
   auto fail = [&](std::string detail) {
-    violations.push_back({TableInvariant::kTemporalBlend, s, here, std::move(detail)});
+    violations.push_back({TableInvariant::kTemporalBlend, s, RecordsOf(in, here), std::move(detail)});
   };
   CellState accumulated = before;
   accumulated.count += here.size();
   std::array<double, 3> frame_exact{};
   for (std::uint32_t i : here) {
     for (int c = 0; c < 3; ++c) {
-      const float v = in.records[i].contribution[c];
+      const float v = RecordOf(in, i).contribution[c];
       accumulated.fixed_sum[c] += shared::ToFixedPoint(v, scale);
       frame_exact[c] += double(v);
     }
@@ -107,14 +117,14 @@ glm::uvec4 BlendPacked(const TableCheckInput& in, std::uint32_t s, const std::ve
   const CellState wide = BlendCellState(MakeTemporalParams(in.temporal), Accumulation::kFixed64, before, added);
   for (int c = 0; c < 3; ++c) {
     if (wide.fixed_sum[c] > 0xFFFFFFFFu) {
-      violations.push_back({TableInvariant::kTemporalBlend, s, here,
+      violations.push_back({TableInvariant::kTemporalBlend, s, RecordsOf(in, here),
                             "channel " + std::to_string(c) + ": the blend's sum " + std::to_string(wide.fixed_sum[c]) +
                                 " does not fit packed-decimal's 32 bits"});
     }
   }
   if (wide.count > shared::kPackedCountMask) {
     violations.push_back(
-        {TableInvariant::kTemporalBlend, s, here,
+        {TableInvariant::kTemporalBlend, s, RecordsOf(in, here),
          "the blend's count " + std::to_string(wide.count) + " does not fit packed-decimal's 24 bits"});
   }
   return {
@@ -160,6 +170,92 @@ void CheckOccupiedList(const HashTableDump& t, std::vector<TableViolation>& viol
   }
 }
 
+// --levels: the frame's adds nest (core/shared/levels.h). What it added to a coarser cell's slot is what it added to
+// its children's slots, less the adds of records whose coarsest level the child is, plus the records whose own cell it
+// is. Judged where the relation is exact: each slot involved unaliased, every touch that should reach the parent
+// placed there, and no slot blended (fixed64: counts and sums; float32: counts; packed-decimal, whose settle may halve,
+// and blended slots are judged by their own invariants only).
+void CheckLevelNesting(const TableCheckInput& in, const LevelTouches& touches,
+                       std::vector<TableViolation>& violations) {
+  const HashTableDump& t = in.table;
+  const HashTableDump* before = in.before;
+  if (t.accumulation == Accumulation::kPackedDecimal) return;
+  const bool fixed = t.accumulation == Accumulation::kFixed64;
+  const float scale = SumScale(t.accumulation, t.fixed_point_bits);
+  const std::size_t n = in.records.size();
+  const std::size_t coarsest = std::size_t(t.levels - 1) * n;  // the first touch of the coarsest level
+  struct Adds {
+    std::vector<std::uint32_t> touches;
+    std::optional<std::array<std::uint32_t, 6>> key;
+    bool aliased = false;
+  };
+  std::vector<Adds> at(t.capacity);
+  for (std::uint32_t i = 0; i < touches.size(); ++i) {
+    const std::uint32_t slot = touches.placements()[i];
+    if (slot >= t.capacity) continue;
+    const shared::KeyWords& w = touches.keys()[i].words;
+    const std::array<std::uint32_t, 6> key = {w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
+    at[slot].aliased |= at[slot].key && *at[slot].key != key;
+    at[slot].key = key;
+    at[slot].touches.push_back(i);
+  }
+  auto blended = [&](std::uint32_t s) { return in.temporal.blends() && before && before->counts[s] > 0; };
+  using Sums = std::array<__int128, 4>;  // the count, then the three fixed64 sums
+  auto delta = [&](std::uint32_t s) {
+    Sums d{__int128(t.counts[s]) - __int128(before ? before->counts[s] : 0)};
+    for (int c = 0; c < 3 && fixed; ++c)
+      d[c + 1] = __int128(t.fixed_sums[s][c]) - __int128(before ? before->fixed_sums[s][c] : 0);
+    return d;
+  };
+  auto add = [&](Sums& sums, std::uint32_t touch, int sign) {
+    sums[0] += sign;
+    for (int c = 0; c < 3 && fixed; ++c)
+      sums[c + 1] += sign * __int128(shared::ToFixedPoint(RecordOf(in, touch).contribution[c], scale));
+  };
+  for (std::uint32_t parent = 0; parent < t.capacity; ++parent) {
+    const Adds& here = at[parent];
+    if (here.touches.empty() || here.aliased || blended(parent)) continue;
+    Sums expected{};
+    std::vector<std::uint32_t> children;
+    bool exact = true;
+    for (const std::uint32_t touch : here.touches) {
+      if (touch < n) {
+        add(expected, touch, +1);  // the record's own cell
+        continue;
+      }
+      const std::uint32_t child = touches.placements()[touch - n];
+      if (child >= t.capacity) exact = false;  // the child's add failed: the parent holds more than its children
+      if (exact && std::find(children.begin(), children.end(), child) == children.end()) children.push_back(child);
+    }
+    for (const std::uint32_t child : children) {
+      if (!exact) break;
+      if (at[child].aliased || blended(child)) exact = false;
+      const Sums d = delta(child);
+      for (int w = 0; w < 4; ++w) expected[w] += d[w];
+      for (const std::uint32_t touch : at[child].touches) {
+        if (touch >= coarsest) {
+          add(expected, touch, -1);  // the record's coarsest level: it reaches no parent
+        } else if (touches.placements()[touch + n] != parent) {
+          exact = false;  // a record of the child that went elsewhere (failed): judged by the placement checks
+        }
+      }
+    }
+    if (!exact) continue;
+    const Sums got = delta(parent);
+    if (got == expected) continue;
+    const int word = got[0] != expected[0] ? 0 : got[1] != expected[1] ? 1 : got[2] != expected[2] ? 2 : 3;
+    std::string detail = word == 0 ? "the frame added count " + Decimal(std::uint64_t(got[0])) + ", its children " +
+                                         Decimal(std::uint64_t(expected[0]))
+                                   : "channel " + std::to_string(word - 1) + ": the frame added " +
+                                         Decimal(std::uint64_t(got[word])) + ", its children " +
+                                         Decimal(std::uint64_t(expected[word]));
+    std::string listed;
+    for (const std::uint32_t child : children) listed += (listed.empty() ? "" : ", ") + std::to_string(child);
+    violations.push_back(
+        {TableInvariant::kLevelNesting, parent, RecordsOf(in, here.touches), detail + " (child slots " + listed + ")"});
+  }
+}
+
 }  // namespace
 
 const char* ToString(TableInvariant invariant) {
@@ -202,6 +298,8 @@ const char* ToString(TableInvariant invariant) {
       return "occupied list differs from the occupied slots";
     case TableInvariant::kPackedSettle:
       return "packed-decimal slot differs from the settle of its exact sums";
+    case TableInvariant::kLevelNesting:
+      return "coarser cell differs from the children that reach it";
   }
   return "?";
 }
@@ -240,7 +338,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   auto float_before = [&](std::uint32_t s, int c) { return before && !fixed ? before->float_sums[s][c] : 0.0f; };
   auto violate = [&](TableInvariant invariant, std::uint32_t slot, std::vector<std::uint32_t> records,
                      std::string detail) {
-    violations.push_back({invariant, slot, std::move(records), std::move(detail)});
+    violations.push_back({invariant, slot, RecordsOf(in, std::move(records)), std::move(detail)});
   };
   if (t.compacted) CheckOccupiedList(t, violations);
 
@@ -254,12 +352,14 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   auto window_tag = [&](std::uint32_t s) {
     return evicting && (t.tags[s] == kEmptyTag || tombstone_tag(t.tags[s])) ? tag_before(s) : t.tags[s];
   };
+  // Per slot, the touches placed there: with one level, the records.
+  const LevelTouches touches(t, in.keys, in.placements, in.coarser_placements, in.normal_in_index);
   std::vector<std::vector<std::uint32_t>> placed(t.capacity);
-  for (std::uint32_t i = 0; i < in.records.size(); ++i) {
-    const KeyResult& key = in.keys[i];
+  for (std::uint32_t i = 0; i < touches.size(); ++i) {
+    const KeyResult& key = touches.keys()[i];
     const SlotTag identity = StoredIdentity(key);  // a fingerprint, or a full key (core/key_identity.h)
-    const std::uint32_t slot = in.placements[i];
-    const bool keyed = key.status == shared::kKeyed && CheckRecordInputs(in.records[i]) == InputVerdict::kAccepted;
+    const std::uint32_t slot = touches.placements()[i];
+    const bool keyed = key.status == shared::kKeyed && CheckRecordInputs(RecordOf(in, i)) == InputVerdict::kAccepted;
     if (!keyed || slot == kNotPlaced) {
       if (keyed != (slot != kNotPlaced))
         violate(TableInvariant::kPlacementOfUnkeyedRecord, 0xFFFFFFFFu, {i},
@@ -335,11 +435,11 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   auto last_seen_before = [&](std::uint32_t s) { return before && evicting ? before->last_seen[s] : 0u; };
   // Priority: in the window of each record that found no slot, the untouched live slot of lowest priority.
   std::vector<std::uint32_t> victim_of(priority ? t.capacity : 0, kNotPlaced);  // per slot, a record choosing it
-  for (std::uint32_t i = 0; priority && i < in.records.size(); ++i) {
-    if (in.placements[i] != kProbeFailure || in.keys[i].slot0 >= t.capacity) continue;
+  for (std::uint32_t i = 0; priority && i < touches.size(); ++i) {
+    if (touches.placements()[i] != kProbeFailure || touches.keys()[i].slot0 >= t.capacity) continue;
     std::optional<std::uint32_t> victim;
     for (std::uint32_t probe = 0; probe < t.probe_limit; ++probe) {
-      const std::uint32_t s = shared::CandidateSlot(scheme, in.keys[i].slot0, probe);
+      const std::uint32_t s = shared::CandidateSlot(scheme, touches.keys()[i].slot0, probe);
       if (!placed[s].empty() || tag_before(s) == kEmptyTag || tombstone_tag(tag_before(s)) || count_before(s) == 0)
         continue;
       auto priority_of = [&](std::uint32_t slot) {
@@ -377,7 +477,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     const CellLookup lookup = [&](const shared::KeyWords& w) { return FindInTable(*before, w, in.normal_in_index); };
     std::set<std::array<std::uint32_t, 6>> tried;
     for (std::size_t n = 0; n < here.size(); ++n) {
-      const shared::KeyWords& w = in.keys[here[n]].words;
+      const shared::KeyWords& w = touches.keys()[here[n]].words;
       if (!tried.insert({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra}).second) continue;
       const CellState seed = SeedOf(w, in.level_seed, fixed, lookup);
       if (n == 0 || seed.count + here.size() == t.counts[s]) chosen = seed;
@@ -455,7 +555,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       expected_total_count += base_count + here.size();
       for (int c = 0; c < 3; ++c) {
         placed_total[c] += fixed_base(c);
-        for (std::uint32_t i : here) placed_total[c] += shared::ToFixedPoint(in.records[i].contribution[c], scale);
+        for (std::uint32_t i : here) placed_total[c] += shared::ToFixedPoint(RecordOf(in, i).contribution[c], scale);
       }
       continue;
     }
@@ -477,7 +577,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       std::array<unsigned __int128, 3> exact{};
       for (int c = 0; c < 3; ++c) {
         exact[c] = fixed_base(c);
-        for (std::uint32_t i : here) exact[c] += shared::ToFixedPoint(in.records[i].contribution[c], scale);
+        for (std::uint32_t i : here) exact[c] += shared::ToFixedPoint(RecordOf(in, i).contribution[c], scale);
       }
       const unsigned __int128 exact_count = (unsigned __int128)base_count + here.size();
       bool in_range = true;
@@ -533,7 +633,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       unsigned __int128 exact = fixed_base(c);
       double exact_float = double(float_base(c)), magnitude = std::abs(exact_float);
       for (std::uint32_t i : here) {
-        const float v = in.records[i].contribution[c];
+        const float v = RecordOf(in, i).contribution[c];
         exact += shared::ToFixedPoint(v, scale);
         exact_float += double(v);
         magnitude += std::abs(double(v));
@@ -564,6 +664,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       }
     }
   }
+  if (t.levels > 1) CheckLevelNesting(in, touches, violations);
   if (total_count != expected_total_count) {
     violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {},
             "count " + Decimal(total_count) + ", expected " + Decimal(expected_total_count));

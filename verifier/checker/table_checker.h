@@ -13,7 +13,10 @@
 // in float32 its count exactly (ema; adaptive: between the frame's count and the capped history's plus it) and
 // its average within the bounds of the history's and the frame's averages, widened by float32's rounding. With
 // compaction (core/compaction.h), the table's occupied list holds every slot whose tag is set exactly once and no
-// other slot, whatever its order.
+// other slot, whatever its order. With --levels (core/shared/levels.h) each of a record's levels is judged as a record
+// of its own (a touch: its key derived from the record's own, its placement, the record's contribution), and the
+// levels nest: what a frame added to a coarser cell is what it added to its children by the records that reach it,
+// plus the records whose own cell it is.
 #ifndef HPSF_VERIFIER_CHECKER_TABLE_CHECKER_H
 #define HPSF_VERIFIER_CHECKER_TABLE_CHECKER_H
 
@@ -51,6 +54,7 @@ enum class TableInvariant {
   kCellSplit,                   // a record claimed a slot though its cell lived in the window before the frame
   kOccupiedList,                // with compaction: the list misses an occupied slot, lists one twice, or an empty one
   kPackedSettle,                // packed-decimal: a slot is not the settle (halving, frame counter) of its exact sums
+  kLevelNesting,                // --levels: a coarser cell's frame adds differ from those of its children that reach it
 };
 const char* ToString(TableInvariant invariant);
 
@@ -73,7 +77,10 @@ struct TableCheckInput {
   std::uint32_t frame = 0;      // this frame's number
   Temporal temporal = {};       // the sequence's temporal mode
   LevelSeed level_seed = {};    // the sequence's --level-change
-  bool normal_in_index = true;  // the key's, for the neighbours' windows a seed is looked up in
+  bool normal_in_index = true;  // the key's, for the neighbours' windows a seed is looked up in and coarser levels
+  // With table.levels L > 1 (core/shared/levels.h), record i is also added k levels above its own cell, k = 1 .. L - 1,
+  // placed at coarser_placements[(k - 1) n + i]. The checker derives those cells' keys from the records' own.
+  std::span<const std::uint32_t> coarser_placements = {};
 };
 
 std::vector<TableViolation> CheckTable(const TableCheckInput& input);

@@ -58,6 +58,7 @@ std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, 
 void CheckFrameTable(const std::string& who, const RecordBatch& batch, const HashedRun& run,
                      const std::optional<HashTableDump>& before, const FilterConfig& config, LevelVerdict& tables) {
   TableCheckInput input{run.table, batch.records, run.keys, run.placements};
+  input.coarser_placements = run.coarser_placements;
   input.before = before ? &*before : nullptr;
   input.eviction = config.eviction;
   input.frame = config.frame;
@@ -77,13 +78,21 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
                                    LevelVerdict& ideal) {
   const bool fixed = IntegerSums(config.accumulation);  // fixed64 or packed-decimal: exact
   std::uint64_t compared = 0, failures = 0;
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    const std::uint32_t slot = run.placements[i], cell = reference.placement[i];
+  // Each level of a record in turn (core/shared/levels.h): its own cell, then the coarser ones.
+  const std::size_t n = batch.records.size();
+  for (std::size_t touch = 0; touch < n * run.table.levels; ++touch) {
+    const std::size_t i = touch % n;
+    const std::uint32_t k = std::uint32_t(touch / n);
+    const std::uint32_t slot = LevelPlacement(run, i, k);
+    const std::size_t at = std::size_t(k - 1) * n + i;
+    const std::uint32_t cell = k == 0                                    ? reference.placement[i]
+                               : at < reference.coarser_placement.size() ? reference.coarser_placement[at]
+                                                                         : kNoCell;
+    const std::string record = "record " + std::to_string(i) + (k > 0 ? " (" + std::to_string(k) + " levels up)" : "");
     failures += slot == kProbeFailure;
     if (slot == kProbeFailure || (slot < run.table.capacity && classified[slot])) continue;
     if ((slot < run.table.capacity) != (cell != kNoCell)) {
-      ideal.Fail(prefix + "record " + std::to_string(i) +
-                 ": placed in the table but not in the reference, or the other way round");
+      ideal.Fail(prefix + record + ": placed in the table but not in the reference, or the other way round");
       continue;
     }
     if (cell == kNoCell) continue;
@@ -95,13 +104,12 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
         !fixed && config.temporal.mode == TemporalMode::kAdaptive && before && before->counts[slot] != 0;
     if (adaptive_float_history) continue;
     if (run.table.counts[slot] != c.count) {
-      ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": count " +
+      ideal.Fail(prefix + record + " at slot " + std::to_string(slot) + ": count " +
                  std::to_string(run.table.counts[slot]) + ", reference " + std::to_string(c.count));
     } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
-      ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) +
-                 ": sums differ from the reference cell's");
+      ideal.Fail(prefix + record + " at slot " + std::to_string(slot) + ": sums differ from the reference cell's");
     } else if (!run.table.frame_counters.empty() && run.table.frame_counters[slot] != c.frames) {
-      ideal.Fail(prefix + "record " + std::to_string(i) + " at slot " + std::to_string(slot) + ": frame counter " +
+      ideal.Fail(prefix + record + " at slot " + std::to_string(slot) + ": frame counter " +
                  std::to_string(run.table.frame_counters[slot]) + ", reference " + std::to_string(c.frames));
     }
   }

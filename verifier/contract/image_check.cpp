@@ -26,8 +26,9 @@ SlotSums SumsByPlacement(const RecordBatch& batch, const HashedRun& run) {
   SlotSums s{std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)),
              std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)),
              std::vector<std::uint64_t>(run.table.capacity, 0)};
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
+  for (std::size_t touch = 0; touch < batch.records.size() * run.table.levels; ++touch) {
+    const std::size_t i = touch % batch.records.size();
+    const std::uint32_t slot = LevelPlacement(run, i, std::uint32_t(touch / batch.records.size()));
     if (slot >= run.table.capacity) continue;
     ++s.records[slot];
     const glm::dvec3 c(batch.records[i].contribution);
@@ -52,7 +53,7 @@ std::string Describe(std::size_t pixel, int channel, float got, double expected,
 void CheckFixed(const RecordBatch& batch, const HashedRun& run, std::vector<std::string>& out) {
   std::vector<std::optional<glm::dvec3>> averages(batch.records.size());
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    const std::uint32_t slot = run.placements[i];
+    const std::uint32_t slot = ResolvedSlot(run, i).slot;
     if (slot >= run.table.capacity) continue;
     glm::dvec3 average;
     for (int c = 0; c < 3; ++c) {
@@ -80,7 +81,7 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
     for (std::uint32_t s = 0; s < spp; ++s) {
       const Record& r = batch.records[p * spp + s];
       if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
-      const std::uint32_t slot = run.placements[p * spp + s];
+      const std::uint32_t slot = ResolvedSlot(run, p * spp + s).slot;
       std::optional<glm::dvec3> average;
       // A slot that carried samples into the frame, or was seeded from another level (core/level_seed.h), holds more
       // than this frame's records: level 2 bounds its sum.

@@ -14,20 +14,27 @@ bool SameBits(const std::vector<std::array<float, 3>>& a, const std::vector<std:
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
-bool Placed(const HashedRun& run, std::size_t record) { return run.placements[record] < run.table.capacity; }
+// Touch t: record t mod n at t / n levels above its own cell (core/shared/levels.h).
+std::uint32_t TouchSlot(const HashedRun& run, std::size_t touch) {
+  const std::size_t n = run.placements.size();
+  return LevelPlacement(run, touch % n, std::uint32_t(touch / n));
+}
+bool Placed(const HashedRun& run, std::size_t touch) { return TouchSlot(run, touch) < run.table.capacity; }
 
 // Per record: placed in both runs or in neither, and its slot's count (and in fixed64 its sums) the same in both.
 void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, bool sums,
                               std::vector<std::string>& out) {
   const bool fixed = IntegerSums(first.table.accumulation);
-  for (std::size_t i = 0; i < first.placements.size() && out.size() < kDifferencesShown; ++i) {
-    const std::string record = "record " + std::to_string(i) + ": ";
+  const std::size_t n = first.placements.size();
+  for (std::size_t i = 0; i < n * first.table.levels && out.size() < kDifferencesShown; ++i) {
+    const std::string record = "record " + std::to_string(i % n) +
+                               (i >= n ? " (" + std::to_string(i / n) + " levels up)" : std::string()) + ": ";
     if (Placed(first, i) != Placed(second, i)) {
       out.push_back(record + "placed in one run and not in the other");
       continue;
     }
     if (!Placed(first, i)) continue;
-    const std::uint32_t a = first.placements[i], b = second.placements[i];
+    const std::uint32_t a = TouchSlot(first, i), b = TouchSlot(second, i);
     if (first.table.counts[a] != second.table.counts[b]) {
       out.push_back(record + "its slot's count is " + std::to_string(first.table.counts[a]) + " in one run (slot " +
                     std::to_string(a) + ") and " + std::to_string(second.table.counts[b]) + " in the other (slot " +
@@ -40,7 +47,8 @@ void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, b
 }
 
 void CompareWholeTables(const HashedRun& first, const HashedRun& second, std::vector<std::string>& out) {
-  if (first.placements != second.placements) out.push_back("the placements differ");
+  if (first.placements != second.placements || first.coarser_placements != second.coarser_placements)
+    out.push_back("the placements differ");
   if (first.table.tags != second.table.tags) out.push_back("the tags differ");
   if (first.table.counts != second.table.counts) out.push_back("the counts differ");
   if (first.table.fixed_sums != second.table.fixed_sums) out.push_back("the fixed-point sums differ");

@@ -10,6 +10,7 @@
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
 #include "../../core/shared/key.h"
+#include "../../core/shared/levels.h"
 #include "../../core/shared/fixed_point.h"
 #include "../../core/shared/packed_sums.h"
 #include "../../core/shared/table_params.h"
@@ -194,21 +195,8 @@ KeyResult TeamKey(KeyResult k, KeyParams p) {
 }
 #endif
 
-void AccumulateRecord(uint i, KeyParams p, TableParams t) {
-#if defined(HPSF_DEFECT_EVICT_RACE)
-  EvictDuringAccumulate(i, t);
-#endif
-  if (accepted[i] == 0u) {  // rejected on the host: its bits may be NaN, so no key is computed
-    StoreKeyResult(i, EmptyKeyResult(kKeyNoVertex));
-    placements[i] = kPlacementNotPlaced;
-    return;
-  }
-  Record r = LoadRecord(i);
-  KeyResult k = ComputeKey(p, r);
-#if defined(HPSF_TEAM_KEY) || defined(HPSF_TEAM_KEY_ZERO)
-  k = TeamKey(k, p);
-#endif
-  StoreKeyResult(i, k);
+// Probes for record r's cell of key k, adds r there and returns its slot (or a placement marker).
+uint PlaceRecord(KeyResult k, Record r, KeyParams p, TableParams t) {
   uint placement = kPlacementNotPlaced;
   if (k.status == kKeyed) {
     placement = kPlacementProbeFailure;
@@ -274,7 +262,36 @@ void AccumulateRecord(uint i, KeyParams p, TableParams t) {
     if (t.track_last_seen != 0u) last_seen[placement] = t.frame;
   }
 #endif
-  placements[i] = placement;
+  return placement;
+}
+
+void AccumulateRecord(uint i, KeyParams p, TableParams t) {
+#if defined(HPSF_DEFECT_EVICT_RACE)
+  EvictDuringAccumulate(i, t);
+#endif
+  if (accepted[i] == 0u) {  // rejected on the host: its bits may be NaN, so no key is computed
+    StoreKeyResult(i, EmptyKeyResult(kKeyNoVertex));
+    for (uint level = 0u; level < t.levels; ++level)
+      placements[LevelPlacementIndex(i, level, p.record_count)] = kPlacementNotPlaced;
+    return;
+  }
+  Record r = LoadRecord(i);
+  KeyResult own = ComputeKey(p, r);
+#if defined(HPSF_TEAM_KEY) || defined(HPSF_TEAM_KEY_ZERO)
+  own = TeamKey(own, p);
+#endif
+  StoreKeyResult(i, own);
+  // The record's own cell, then each coarser one (core/shared/levels.h), its key derived from the own key.
+  for (uint level = 0u; level < t.levels; ++level) {
+#if defined(HPSF_DEFECT_LEVEL_UNJITTERED)  // coarser cells keyed at the unjittered position: they no longer nest
+    KeyParams unjittered = p;
+    unjittered.jitter_scale = 0.0;
+    KeyResult k = level == 0u ? own : KeyAtLevel(p, ComputeKey(unjittered, r), level);
+#else
+    KeyResult k = KeyAtLevel(p, own, level);
+#endif
+    placements[LevelPlacementIndex(i, level, p.record_count)] = PlaceRecord(k, r, p, t);
+  }
 #if defined(HPSF_GARBAGE_OUTPUT)
   WriteGarbage(i, t);
 #endif

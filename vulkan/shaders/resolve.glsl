@@ -4,7 +4,8 @@
 // records in sample order. In double, operation for operation as core/resolve.cpp, so that with the same table
 // the image is the same bits. resolve_fixed64.comp, resolve_float32.comp and resolve_packed_decimal.comp define the
 // sums type (and packed-decimal the count word's, HPSF_COUNT_TYPE uint). The test suite
-// compiles it once more per defect (HPSF_DEFECT_AVERAGE_OFF_BY_ONE, HPSF_DEFECT_AVERAGE_IN_FLOAT), run through
+// compiles it once more per defect (HPSF_DEFECT_AVERAGE_OFF_BY_ONE, HPSF_DEFECT_AVERAGE_IN_FLOAT,
+// HPSF_DEFECT_LEVEL_WRONG_COUNT), run through
 // --resolve-spv as a team's own resolve would be.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
@@ -14,6 +15,7 @@
 #include "../../core/shared/record_layout.h"
 #include "../../core/shared/table_params.h"
 #include "../../core/shared/packed_sums.h"
+#include "../../core/shared/levels.h"
 #ifndef HPSF_COUNT_TYPE
 #define HPSF_COUNT_TYPE uint64_t
 #endif
@@ -37,11 +39,38 @@ struct ResolveParams {  // vulkan_filter.cpp's ResolvePush
   uint capacity;
   uint pixel_count;
   uint samples_per_pixel;
+  uint levels;     // the placements hold `levels` words per record, level-major (core/shared/levels.h)
+  uint min_count;  // the resolve reads a record's finest level whose count reaches it, else its coarsest
   uint reserved;
 };
 layout(push_constant) uniform Params { ResolveParams params; };
 
 dvec3 D(vec4 v) { return dvec3(double(v.x), double(v.y), double(v.z)); }
+
+uint64_t SlotCount(uint slot) {
+#ifdef HPSF_PACKED_DECIMAL
+  return uint64_t(PackedCount(counts[slot]));
+#else
+  return uint64_t(counts[slot]);
+#endif
+}
+
+// The slot record i reads: its finest placed level whose count reaches min_count (core/shared/levels.h).
+uint ResolvedSlot(uint i, ResolveParams p) {
+  uint records = p.pixel_count * p.samples_per_pixel;
+  LevelChoice choice = NoLevelChosen();
+  for (uint level = 0u; level < p.levels; ++level) {
+    uint slot = placements[LevelPlacementIndex(i, level, records)];
+#if defined(HPSF_DEFECT_LEVEL_WRONG_COUNT)  // each level judged by the count of the record's own cell
+    uint own = placements[i];
+    uint64_t count = own < p.capacity ? SlotCount(own) : 0ul;
+#else
+    uint64_t count = slot < p.capacity ? SlotCount(slot) : 0ul;
+#endif
+    choice = ChooseLevel(choice, level, slot, count, p.capacity, p.min_count);
+  }
+  return choice.slot;
+}
 
 void ResolvePixel(uint pixel, ResolveParams p) {
   precise dvec3 sum = dvec3(0.0LF);
@@ -51,7 +80,7 @@ void ResolvePixel(uint pixel, ResolveParams p) {
     Record r = LoadShadingFields(i);
     precise dvec3 value = D(r.radiance_before);
     if (RecordHasVertex(r)) {
-      uint slot = placements[i];
+      uint slot = ResolvedSlot(i, p);
       precise dvec3 incident = D(r.contribution);
       if (slot < p.capacity) {
 #ifdef HPSF_PACKED_DECIMAL
