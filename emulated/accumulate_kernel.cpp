@@ -9,13 +9,21 @@
 
 namespace hpsf {
 
+KeyResult KeyOfLevel(const AccumulateArgs& args, std::uint32_t record, std::uint32_t level) {
+  return shared::KeyAtLevel(args.key_params, args.keys[record], level);
+}
+
 simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return AccumulateLevels(ctx, args, KeyOfLevel);
+}
+
+simt::KernelTask AccumulateLevels(simt::ThreadContext& ctx, const AccumulateArgs& args, LevelKeyFn key_of_level) {
   const std::uint32_t i = ctx.Thread();
   const TableBuffers& b = args.buffers;
   const std::uint32_t n = static_cast<std::uint32_t>(args.keys.size());
   // Each of the record's levels in turn, its own first (core/shared/levels.h).
   for (std::uint32_t k = 0; k < args.levels; ++k) {
-    const KeyResult key = shared::KeyAtLevel(args.key_params, args.keys[i], k);
+    const KeyResult key = key_of_level(args, i, k);
     const std::uint32_t placement = shared::LevelPlacementIndex(i, k, n);
     if (!args.accepted[i] || key.status != shared::kKeyed) {
       co_await ctx.Store(b.placements, placement, kNotPlaced);

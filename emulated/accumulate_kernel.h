@@ -72,6 +72,13 @@ inline bool CountAddWrapped(Accumulation accumulation, std::uint64_t old) {
 
 simt::KernelTask AccumulateKernel(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
+// The key of record's cell `level` levels above its own: KeyOfLevel derives it from the record's own key
+// (core/shared/levels.h); a broken variant keys it otherwise (emulated/defect_injection.h).
+using LevelKeyFn = KeyResult (*)(const AccumulateArgs& args, std::uint32_t record, std::uint32_t level);
+KeyResult KeyOfLevel(const AccumulateArgs& args, std::uint32_t record, std::uint32_t level);
+// AccumulateKernel with the coarser levels keyed by `key_of_level`.
+simt::KernelTask AccumulateLevels(simt::ThreadContext& ctx, const AccumulateArgs& args, LevelKeyFn key_of_level);
+
 // Fast mode's prefetch for the accumulate's thread i (simt::ThreadPrefetch): the tag, sums and count of its key's
 // first slot, where most records end.
 void PrefetchAccumulate(const simt::DeviceMemory& memory, const AccumulateArgs& args, std::uint32_t i);

@@ -7,6 +7,7 @@
 #include "core/hash_table.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
 #include "core/temporal.h"
 #include "emulated/temporal_kernel.h"
@@ -174,6 +175,18 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
   if (!placed) co_await ctx.Store(b.placements, i, kProbeFailure);
 }
 
+// The coarser levels keyed at the unjittered position: the record's own cell is jittered, its parents are not.
+KeyResult UnjitteredKeyOfLevel(const AccumulateArgs& args, std::uint32_t record, std::uint32_t level) {
+  if (level == 0) return args.keys[record];
+  KeyParams unjittered = args.key_params;
+  unjittered.jitter_scale = 0.0f;
+  return shared::KeyAtLevel(args.key_params, shared::ComputeKey(unjittered, args.records[record]), level);
+}
+
+simt::KernelTask LevelUnjittered(simt::ThreadContext& c, const AccumulateArgs& a) {
+  return AccumulateLevels(c, a, UnjitteredKeyOfLevel);
+}
+
 simt::KernelTask D2(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD2AddsAgain); }
 simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) {
   return Mutant(c, a, Defect::kD3ZeroFingerprint);
@@ -287,10 +300,11 @@ Defect ParseDefect(const std::string& text) {
   if (text == "window-past-the-end") return Defect::kWindowPastTheEnd;
   if (text == "weak-cas-old-value") return Defect::kWeakCasOldValue;
   if (text == "full-key-low-word") return Defect::kFullKeyLowWord;
+  if (text == "level-unjittered") return Defect::kLevelUnjittered;
   throw ConfigError("--inject-defect",
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
                     "count-store-join-first, last-seen-claimer-only, full-bucket-masked, window-past-the-end, "
-                    "weak-cas-old-value or full-key-low-word; got '" +
+                    "weak-cas-old-value, full-key-low-word or level-unjittered; got '" +
                         text + "'");
 }
 
@@ -326,6 +340,8 @@ std::string ToString(Defect defect) {
       return "weak-cas-old-value";
     case Defect::kFullKeyLowWord:
       return "full-key-low-word";
+    case Defect::kLevelUnjittered:
+      return "level-unjittered";
   }
   return "?";
 }
@@ -362,6 +378,8 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
       return WeakCasOldValue;
     case Defect::kFullKeyLowWord:
       return FullKeyLowWord;
+    case Defect::kLevelUnjittered:
+      return LevelUnjittered;
   }
   return AccumulateKernel;
 }

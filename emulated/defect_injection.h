@@ -30,11 +30,14 @@ enum class Defect {
   // A full key's bug (--key-identity full): a 64-bit tag matched by its low word alone, as a 32-bit compare of a
   // 64-bit key does, so cells that share the low word (the same x, and y modulo 2^15) share a slot.
   kFullKeyLowWord,
+  // Multi-level accumulation (--levels, core/shared/levels.h): the coarser cells keyed at the record's unjittered
+  // position, so they no longer nest its own (jittered) cell.
+  kLevelUnjittered,
 };
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
 // "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end",
-// "weak-cas-old-value", "full-key-low-word"; a ConfigError naming --inject-defect otherwise.
+// "weak-cas-old-value", "full-key-low-word", "level-unjittered"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 AccumulateKernelFn KernelWithDefect(Defect defect);
