@@ -98,11 +98,12 @@ TEST(ReadBackCheck, StatsCountersAboveWhatTheRunCanProduceAreNamed) {
   run.count_wraps = 3;
   run.evicted = 9;
   run.seeded = 9;
-  EXPECT_EQ(Faults(run),
-            "stats: fixed64 wraps 7 is more than the run can produce (6, one per channel of each placed record)\n"
-            "stats: count wraps 3 is more than the run can produce (2, one per placed record)\n"
-            "stats: evicted 9 is more than the run can produce (8, one per slot)\n"
-            "stats: seeded 9 is more than the run can produce (8, one per slot)\n");
+  EXPECT_EQ(
+      Faults(run),
+      "stats: fixed64 wraps 7 is more than the run can produce (6, one per channel of each placed record and level)\n"
+      "stats: count wraps 3 is more than the run can produce (2, one per placed record and level)\n"
+      "stats: evicted 9 is more than the run can produce (8, one per slot)\n"
+      "stats: seeded 9 is more than the run can produce (8, one per slot)\n");
 }
 
 TEST(ReadBackCheck, FinishReadBackThrowsNamingTheShaderAndKeepsTheKeys) {

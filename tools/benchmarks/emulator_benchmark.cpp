@@ -91,6 +91,25 @@ void BM_EmulatedKeyIdentity(benchmark::State& state) {
 }
 BENCHMARK(BM_EmulatedKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Multi-level accumulation (--levels 1, 2, 3; --min-count 4 above one level, core/shared/levels.h), side by side in
+// one run: what each coarser level adds to the accumulate and the threshold to the resolve.
+void BM_EmulatedLevels(benchmark::State& state) {
+  const RecordBatch& batch = CornellFrame();
+  FilterConfig config = TableConfig();
+  config.levels = std::uint32_t(state.range(0));
+  config.min_count = config.levels > 1 ? 4 : 1;
+  EmulatedBackend backend{EmulatorOptions{}};
+  backend.FilterFrame(batch, config);
+  for (auto _ : state) {
+    backend.Reset();
+    benchmark::DoNotOptimize(backend.FilterFrame(batch, config).pixels.data());
+    ReportRun(state, backend.run());
+  }
+  state.SetLabel("levels " + std::to_string(config.levels));
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
+}
+BENCHMARK(BM_EmulatedLevels)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // What the Vulkan host adds to every frame: the read-back check of core/read_back_check.h (and the probe statistics
 // it hands on to) over the 2M-record frame's run, one thread, beside the whole backend above.
 void BM_ReadBackCheck(benchmark::State& state) {

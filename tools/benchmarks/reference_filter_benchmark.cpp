@@ -22,6 +22,21 @@ void BM_ReferenceFilter(benchmark::State& state) {
 }
 BENCHMARK(BM_ReferenceFilter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// fixed64 with --levels 1, 2, 3 (--min-count 4 above one level): the exact map's cost of each coarser level.
+void BM_ReferenceLevels(benchmark::State& state) {
+  const RecordBatch& batch = CornellBatch();
+  FilterConfig config;
+  config.levels = std::uint32_t(state.range(0));
+  config.min_count = config.levels > 1 ? 4 : 1;
+  for (auto _ : state) {
+    FilterResult result = ReferenceFilter(batch, config);
+    benchmark::DoNotOptimize(result.image.pixels.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * batch.records.size()));
+  state.SetLabel("levels " + std::to_string(config.levels));
+}
+BENCHMARK(BM_ReferenceLevels)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace hpsf
 

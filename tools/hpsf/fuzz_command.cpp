@@ -209,9 +209,13 @@ int Run(FuzzOptions& o, bool options_only) {
   const bool packed_sums =
       (eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv, kEvictionCountsBinding)) &&
       (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding));
-  const AdversarialOptions generate{
-      o.max_records, defect == Defect::kNone, accumulation, backend.on_device, probing, full_keys, fingerprints,
-      packed_sums};
+  // Several levels only where hpsf's own kernels add and resolve them.
+  const bool levels = defect == Defect::kNone && o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone,
+                                    accumulation,  backend.on_device,
+                                    probing,       full_keys,
+                                    fingerprints,  packed_sums,
+                                    levels};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

@@ -65,6 +65,13 @@ void PrintText(const TableStatistics& s, const std::string& input) {
   for (std::size_t k = 0; k < s.records_per_cell.size(); ++k) {
     std::printf(" %llu-%llu: %llu", 1ull << k, (2ull << k) - 1, (unsigned long long)s.records_per_cell[k]);
   }
+  for (std::size_t level = 0; level < s.records_per_coarser_cell.size(); ++level) {
+    std::printf("\nrecords per cell %zu level%s up:", level + 1, level == 0 ? "" : "s");
+    const std::vector<std::uint64_t>& histogram = s.records_per_coarser_cell[level];
+    for (std::size_t k = 0; k < histogram.size(); ++k) {
+      std::printf(" %llu-%llu: %llu", 1ull << k, (2ull << k) - 1, (unsigned long long)histogram[k]);
+    }
+  }
   if (s.jitter.empty()) {
     std::printf("\njitter tests: none (the keys are not hpsf's)\n");
   } else {
@@ -125,9 +132,10 @@ int Run(StatsOptions& o, bool options_only) {
   const RecordBatch batch = LoadOrTraceBatch(o.input, o.trace);
   const auto start = std::chrono::steady_clock::now();
   const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
-  const std::vector<KeyResult> keys =
-      ComputeKeys(batch.records, MakeKeyParams(config, footprint, std::uint32_t(batch.records.size())));
-  const TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
+  const KeyParams params = MakeKeyParams(config, footprint, std::uint32_t(batch.records.size()));
+  const std::vector<KeyResult> keys = ComputeKeys(batch.records, params);
+  TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
+  s.records_per_coarser_cell = RecordsPerCoarserCell(keys, params, config.levels);
   PrintReport(s, o, config, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return s.ExceedsTheory() ? kExitWarn : kExitOk;
 }

@@ -34,6 +34,7 @@
 #include "verifier/gate/gate_file.h"
 #include "verifier/metrics/channel_image.h"
 #include "verifier/metrics/error_split.h"
+#include "verifier/metrics/fireflies.h"
 #include "verifier/metrics/image_metrics.h"
 #include "verifier/metrics/pareto.h"
 #include "verifier/metrics/ssim.h"
@@ -168,10 +169,11 @@ std::string ConfigFile(const fs::path& out, std::size_t index, const SweepConfig
 }
 
 json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::vector<Traced>& traced,
-                   const Image& reference, const Image& reference_variance, Runner& runner) {
+                   const Image& reference, const Image& reference_variance, std::uint32_t reference_spp,
+                   Runner& runner) {
   const ChannelImage reference_channels = ColourChannels(reference);
   std::vector<Image> images;
-  std::vector<double> trace_s, filter_s, mse, relmse, ssim;
+  std::vector<double> trace_s, filter_s, mse, relmse, ssim, fireflies;
   std::map<std::string, std::vector<double>> phases;
   std::uint64_t probe_failures = 0, aliased = 0;
   for (std::size_t k = 0; k < traced.size(); ++k) {
@@ -185,6 +187,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
     mse.push_back(metrics.mse);
     relmse.push_back(metrics.relmse);
     ssim.push_back(SrgbSsim(channels, reference_channels));
+    fireflies.push_back(double(CountFireflies(run.image, c.spp, reference, reference_variance, reference_spp)));
     for (auto it = run.phases.begin(); it != run.phases.end(); ++it) phases[it.key()].push_back(it.value());
     probe_failures += run.probe_failures;
     aliased += run.aliased_slots;
@@ -207,6 +210,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
                  {"mse", mean(mse)},
                  {"relmse", mean(relmse)},
                  {"ssim", mean(ssim)},
+                 {"fireflies", mean(fireflies)},
                  {"probe_failures", probe_failures},
                  {"aliased_slots", aliased}};
   for (const auto& [name, value] : c.filter) result["filter"][name] = value;
@@ -310,6 +314,7 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
                                             "mse",
                                             "relmse",
                                             "ssim",
+                                            "fireflies",
                                             "bias2",
                                             "bias2_standard_error",
                                             "mean_error",
@@ -410,7 +415,8 @@ int Run(SweepOptions& o, bool options_only) {
       }
       traced_spp = c.spp;
     }
-    results[i] = MeasureConfig(c, filter_configs[i], traced, reference_image, reference_variance, runner);
+    results[i] =
+        MeasureConfig(c, filter_configs[i], traced, reference_image, reference_variance, o.reference_spp, runner);
     std::ofstream(path) << json{{"description", description}, {"result", results[i]}}.dump(2) << "\n";
     ++done;
     if (terminal) {

@@ -67,6 +67,7 @@ std::string RenderSweepHtml(const std::string& scene, const nlohmann::json& conf
     row->SetValue("TOTAL_S", Figure(c.value("total_s", nlohmann::json())));
     row->SetValue("RELMSE", Figure(c.value("relmse", nlohmann::json())));
     row->SetValue("SSIM", Figure(c.value("ssim", nlohmann::json())));
+    row->SetValue("FIREFLIES", Figure(c.value("fireflies", nlohmann::json())));
     row->SetValue("REL_BIAS2", Figure(c.value("rel_bias2", nlohmann::json())));
     row->SetValue("REL_VARIANCE", Figure(c.value("rel_variance", nlohmann::json())));
     row->SetValue("FRONTIER", c.value("frontier", false) ? "yes" : "");

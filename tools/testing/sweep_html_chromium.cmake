@@ -1,7 +1,7 @@
 # ctest driver: the page hpsf sweep writes (OUT/sweep.html) works in a real browser. A small sweep of two filter
 # widths; the page names no address but uPlot's licence banner (it loads nothing), lists every configuration, and
 # headless Chromium loads it with no console output and no uncaught exception and draws both charts (the page's
-# script sets data-ready="1" and data-charts="2" on <body>, an error handler records failures in data-errors); a
+# script sets data-ready="1" and data-charts="3" on <body>, an error handler records failures in data-errors); a
 # screenshot is kept in the build tree for a person to look at.
 # Inputs: HPSF, CHROMIUM (empty when CMake found none), OUT.
 set(dir ${OUT}/sweep_html)
@@ -28,16 +28,16 @@ if(NOT rows EQUAL 10)  # pt at 2 spp values, hpsf and radius at 2 spp values x 2
 endif()
 
 include(${CMAKE_CURRENT_LIST_DIR}/chromium_page.cmake)
-chromium_check_page(${page} ${dir} 1400 1300 "data-ready=\"1\"" "data-charts=\"2\"")
+chromium_check_page(${page} ${dir} 1400 1300 "data-ready=\"1\"" "data-charts=\"3\"")
 # uPlot draws each chart on a canvas.
 string(REGEX MATCHALL "<canvas" canvases "${dom}")
 list(LENGTH canvases canvases)
-if(NOT canvases EQUAL 2)
-  message(FATAL_ERROR "the page has ${canvases} canvases, not 2")
+if(NOT canvases EQUAL 3)
+  message(FATAL_ERROR "the page has ${canvases} canvases, not 3")
 endif()
 file(SIZE ${screenshot} bytes)
 message("screenshot: ${screenshot}, ${bytes} bytes")
-# The page with its two charts compresses to about 150 kB; a page without them to about 60 kB (Chromium 156).
+# The page with its three charts compresses to about 150 kB; a page without them to about 60 kB (Chromium 156).
 if(bytes LESS 90000)
   message(FATAL_ERROR "${screenshot} is ${bytes} bytes: the charts are missing")
 endif()

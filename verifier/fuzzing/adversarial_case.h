@@ -63,6 +63,9 @@ struct AdversarialOptions {
   bool fingerprints = true;
   // Whether a case may draw packed-decimal sums: false where a team's eviction shader reads 64-bit counts only.
   bool packed_sums = true;
+  // Whether a case may add records at several levels (--levels): false where a broken kernel or a team's accumulate
+  // or resolve shader runs, which need not know them.
+  bool levels = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -102,6 +102,12 @@ class Shrinker {
     if (!keep_.temporal && c.config.temporal.mode != TemporalMode::kIntegrate) {
       attempt([](AdversarialCase& a) { a.config.temporal = {}; });
     }
+    if (c.config.levels > 1) {
+      attempt([](AdversarialCase& a) {
+        a.config.levels = 1;
+        a.config.min_count = 1;
+      });
+    }
     if (c.config.fixed_point_bits) attempt([](AdversarialCase& a) { a.config.fixed_point_bits.reset(); });
     if (c.config.fingerprint_bits != 32) attempt([](AdversarialCase& a) { a.config.fingerprint_bits = 32; });
     if (!keep_.key_identity && c.config.key_identity != KeyIdentity::kFingerprint) {

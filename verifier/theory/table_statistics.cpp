@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <map>
 
 #include <boost/math/distributions/binomial.hpp>
 
+#include "core/shared/levels.h"
 #include "verifier/theory/alias_theory.h"
 #include "verifier/theory/probe_theory.h"
 
@@ -105,6 +107,34 @@ std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys, std::vector
 
 namespace {
 
+// [b]: keys with 2^b .. 2^(b+1) - 1 results.
+std::vector<std::uint64_t> Log2Histogram(const std::vector<std::uint64_t>& per_key) {
+  std::vector<std::uint64_t> histogram;
+  for (const std::uint64_t n : per_key) {
+    const std::size_t bucket = std::size_t(std::bit_width(n) - 1);
+    if (histogram.size() <= bucket) histogram.resize(bucket + 1, 0);
+    ++histogram[bucket];
+  }
+  return histogram;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::uint64_t>> RecordsPerCoarserCell(std::span<const KeyResult> keys, const KeyParams& params,
+                                                              std::uint32_t levels) {
+  std::vector<std::vector<std::uint64_t>> by_level;
+  std::vector<KeyResult> coarser(keys.size());
+  for (std::uint32_t k = 1; k < levels; ++k) {
+    for (std::size_t i = 0; i < keys.size(); ++i) coarser[i] = shared::KeyAtLevel(params, keys[i], k);
+    std::vector<std::uint64_t> per_key;
+    DistinctKeys(coarser, &per_key);
+    by_level.push_back(Log2Histogram(per_key));
+  }
+  return by_level;
+}
+
+namespace {
+
 // hpsf_keys: the keys are hpsf's, whose fingerprint at any width is recomputed from the key words, and whose jitter
 // is tested; else the identities are taken as given, at the declared width only.
 TableStatistics MeasureStatistics(std::uint64_t records, std::span<const KeyResult> keys, const FilterConfig& config,
@@ -122,12 +152,8 @@ TableStatistics MeasureStatistics(std::uint64_t records, std::span<const KeyResu
   for (const std::uint64_t n : per_key) s.keyed_records += n;
   s.distinct_keys = distinct.size();
   s.load = double(s.distinct_keys) / double(s.capacity);
-  for (const std::uint64_t n : per_key) {
-    const std::size_t bucket = std::size_t(std::log2(double(n)));
-    if (s.records_per_cell.size() <= bucket) s.records_per_cell.resize(bucket + 1, 0);
-    ++s.records_per_cell[bucket];
-    s.max_records_per_cell = std::max(s.max_records_per_cell, n);
-  }
+  s.records_per_cell = Log2Histogram(per_key);
+  for (const std::uint64_t n : per_key) s.max_records_per_cell = std::max(s.max_records_per_cell, n);
   if (distinct.empty()) return s;
 
   WindowFullOverTheFill window_full(s.capacity, s.distinct_keys);
@@ -228,6 +254,7 @@ nlohmann::json TableStatistics::ToJson() const {
                         {"mean", mean_probes},
                         {"mean_theory", mean_probes_theory}}},
                       {"records_per_cell", {{"log2_histogram", records_per_cell}, {"max", max_records_per_cell}}},
+                      {"records_per_coarser_cell", records_per_coarser_cell},
                       {"extrapolated_alias_rate_32", extrapolated_alias_rate_32},
                       {"exceeds_theory", ExceedsTheory()}};
   for (const ProbeLimitFigure& f : probe_limits) {

@@ -58,12 +58,20 @@ struct TableStatistics {
   double extrapolated_alias_rate_32 = 0.0;      // aliases per key at 32 bits, from the widths measured
   std::vector<std::uint64_t> records_per_cell;  // [k]: keys with 2^k .. 2^(k+1) - 1 records
   std::uint64_t max_records_per_cell = 0;
+  // With --levels L > 1: [k - 1][b], the cells k levels above the records' own (core/shared/levels.h) that
+  // 2^b .. 2^(b+1) - 1 records reach at that level, k = 1 .. L - 1.
+  std::vector<std::vector<std::uint64_t>> records_per_coarser_cell;
   std::vector<JitterVerdict> jitter;
   double jitter_alpha = 0.0;  // each jitter test's level (Sidak, family 0.001)
 
   bool ExceedsTheory() const;  // any rate above its theory, or a jitter test rejected
   nlohmann::json ToJson() const;
 };
+
+// The records-per-cell histogram of each coarser level (TableStatistics::records_per_coarser_cell), its keys derived
+// from the records' own by `params`.
+std::vector<std::vector<std::uint64_t>> RecordsPerCoarserCell(std::span<const KeyResult> keys, const KeyParams& params,
+                                                              std::uint32_t levels);
 
 // The distinct full keys among the keyed results, in the order they first come, and how many results carry each.
 std::vector<KeyResult> DistinctKeys(std::span<const KeyResult> keys,

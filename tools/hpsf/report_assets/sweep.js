@@ -35,12 +35,13 @@
   }
 
   // xLog: the x axis's logarithm base (2 for filter widths, which a sweep doubles; 10 for times).
-  function chart(id, xLabel, yLabel, xLog, series, points) {
+  // yDistr: uPlot's distribution of the y scale, 3 (log, the default) or 1 (linear, for counts that may be 0).
+  function chart(id, xLabel, yLabel, xLog, series, points, yDistr) {
     var target = document.getElementById(id);
     var width = Math.min(1100, target.clientWidth || 1100);
     var options = {
       width: width, height: 460,
-      scales: { x: { time: false, distr: 3, log: xLog }, y: { distr: 3 } },
+      scales: { x: { time: false, distr: 3, log: xLog }, y: { distr: yDistr || 3 } },
       axes: [{ label: xLabel, stroke: "#c9ccd1", grid: { stroke: "#3a3d42" }, values: ticks },
              { label: yLabel, stroke: "#c9ccd1", grid: { stroke: "#3a3d42" }, values: ticks, size: 60 }],
       series: [{ label: xLabel }].concat(series),
@@ -72,6 +73,26 @@
     points.push(mine.filter(function (c) { return c.frontier; }).map(function (c) { return [c.total_s, c.relmse]; }));
   });
   chart("pareto", "seconds per frame", "relMSE", 10, series, points);
+  ++drawn;
+
+  // Fireflies (pixels past 5 sigma of path tracing at their spp) against time, one series per configuration's
+  // method and filter settings other than the spp, so plain, multi-level and other filters read apart.
+  var fireflyGroups = {}, fireflyOrder = [];
+  configs.forEach(function (c) {
+    if (typeof c.fireflies !== "number" || !positive(c.total_s)) return;
+    var label = c.method + (c.backend === "-" ? "" : "/" + c.backend) + (c.filter ? " " + Object.keys(c.filter).sort()
+      .map(function (k) { return k + "=" + c.filter[k]; }).join(" ") : "");
+    if (!fireflyGroups[label]) { fireflyGroups[label] = []; fireflyOrder.push(label); }
+    fireflyGroups[label].push([c.total_s, c.fireflies]);
+  });
+  var fireflySeries = [], fireflyPoints = [];
+  fireflyOrder.forEach(function (label, g) {
+    var colour = colourOf(label.split("/")[0].split(" ")[0], g);
+    fireflySeries.push({ label: label, stroke: colour, width: 1.5, spanGaps: true,
+                         points: { show: true, size: 7, fill: colour } });
+    fireflyPoints.push(fireflyGroups[label].sort(function (a, b) { return a[0] - b[0]; }));
+  });
+  chart("fireflies", "seconds per frame", "fireflies per image", 10, fireflySeries, fireflyPoints, 1);
   ++drawn;
 
   // Groups of configurations that differ only in their filter width.

@@ -26,6 +26,13 @@ line. Plain path tracing's frontier is the line to beat at equal time.</p>
 <div id="pareto"></div>
 </section>
 <section class="chart">
+<h2>Fireflies against time per frame</h2>
+<p>The pixels of an image further from the converged image than 5 standard deviations of path tracing at their spp,
+in some channel (mean over the seeds; verifier/metrics/fireflies.h). One line per method and filter settings, over
+the spp swept.</p>
+<div id="fireflies"></div>
+</section>
+<section class="chart">
 <h2>relMSE's bias^2 and variance against filter width</h2>
 <p>One colour per configuration swept only in its filter width: bias^2 solid, variance dashed. A bias^2 at or below
 0 (below what the seeds resolve) is left out.</p>
@@ -33,11 +40,11 @@ line. Plain path tracing's frontier is the line to beat at equal time.</p>
 <p id="no-width" hidden>The grid sweeps fewer than two filter widths.</p>
 </section>
 <table class="configurations">
-<thead><tr><th>configuration</th><th>method</th><th>spp</th><th>s per frame</th><th>relMSE</th><th>SSIM</th>
+<thead><tr><th>configuration</th><th>method</th><th>spp</th><th>s per frame</th><th>relMSE</th><th>SSIM</th><th>fireflies</th>
 <th>bias^2</th><th>variance</th><th>on its frontier</th><th>pt's relMSE at equal time</th></tr></thead>
 <tbody>
 {{#CONFIG}}<tr><td>{{ID}}</td><td>{{METHOD}}</td><td>{{SPP}}</td><td>{{TOTAL_S}}</td><td>{{RELMSE}}</td>
-<td>{{SSIM}}</td><td>{{REL_BIAS2}}</td><td>{{REL_VARIANCE}}</td><td>{{FRONTIER}}</td><td>{{PT_AT_EQUAL_TIME}}</td></tr>
+<td>{{SSIM}}</td><td>{{FIREFLIES}}</td><td>{{REL_BIAS2}}</td><td>{{REL_VARIANCE}}</td><td>{{FRONTIER}}</td><td>{{PT_AT_EQUAL_TIME}}</td></tr>
 {{/CONFIG}}
 </tbody>
 </table>
