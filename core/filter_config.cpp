@@ -148,15 +148,7 @@ void FilterConfig::Validate() const {
   if (min_count > 1 && levels == 1) {
     throw ConfigError("--min-count", "chooses among a record's levels, which needs --levels 2 or more");
   }
-  // What the passes over records other than the accumulate and the resolve do not yet know about coarser levels.
-  if (levels > 1 && level_seed.enabled) {
-    throw ConfigError("--levels",
-                      "does not yet combine with --level-change seed, whose pass seeds a record's own cell only");
-  }
-  if (levels > 1 && compaction != Compaction::kNone) {
-    throw ConfigError("--levels",
-                      "does not yet combine with --compaction, whose gather lists a record's own cell only");
-  }
+  // Priority eviction's selection reads a record's own key to find its window; it does not yet know coarser levels.
   if (levels > 1 && eviction.by_priority()) {
     throw ConfigError("--levels",
                       "does not yet combine with priority eviction, whose selection reads a record's own cell only");

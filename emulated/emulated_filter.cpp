@@ -332,7 +332,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
                        0};
     seed.seeded = memory.Allocate32("seeded", config.capacity);
     seed.seeded_count = memory.Allocate64("seeded_count", 1);
-    launch(n, [&](simt::ThreadContext& ctx) { return LevelSeedKernel(ctx, seed); });
+    launch(n * config.levels, [&](simt::ThreadContext& ctx) { return LevelSeedKernel(ctx, seed); });
     run.seeded = memory.Words64(seed.seeded_count)[0];
     const std::span<const std::uint32_t> flags = std::as_const(memory).Words32(seed.seeded);
     run.seeded_slots.resize(config.capacity);
@@ -341,8 +341,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   // A skipped pass reads zero, not the clock's few nanoseconds between two laps.
   run.timings.level_seed_ms = seeding ? clock.LapMs() : 0.0;
   if (compacting) {
+    // Every level's placements (core/shared/levels.h): a coarser cell is listed as any other.
     launch(
-        n, [&](simt::ThreadContext& ctx) { return GatherOccupiedKernel(ctx, compaction); },
+        n * config.levels, [&](simt::ThreadContext& ctx) { return GatherOccupiedKernel(ctx, compaction); },
         [&](std::uint32_t i) {
           memory.Prefetch({list.listed, std::as_const(memory).Words32(b.placements)[i]});
         });

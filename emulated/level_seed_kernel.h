@@ -1,4 +1,5 @@
-// The seed pass of resolution changes (core/level_seed.h) as an emulator kernel, one thread per record, after the
+// The seed pass of resolution changes (core/level_seed.h) as an emulator kernel, one thread per record and level (a
+// touch, core/shared/levels.h: thread t is record t mod n at t / n levels above its own cell), after the
 // accumulate and before the temporal blend: a record placed in a slot that held no samples before the frame
 // claims the slot's seeding with a compare-and-swap on a per-slot flag (0 to 1), so one record per slot seeds it;
 // it computes its cell's seed from the table before the frame (read on the host side: that table is not written

@@ -435,6 +435,13 @@ foreach(bug full-bucket-masked window-past-the-end weak-cas-old-value)
       -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
   set_tests_properties(HpsfFuzz.FindsShippedBug${bug}InTheEmulator PROPERTIES LABELS "unit;schemes;untrusted")
 endforeach()
+# Coarser levels keyed at the unjittered position (--levels, core/shared/levels.h): hpsf fuzz draws several levels
+# for this kernel, which adds them, and finds, shrinks and reproduces it.
+add_test(NAME HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_level_unjittered
+    -DMAX_RECORDS=2 "-DARGS=--backend;emulated;--inject-defect;level-unjittered;--runs;200;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator PROPERTIES LABELS "unit;levels;untrusted")
 foreach(bug FULL_BUCKET_MASKED:bucket WINDOW_PAST_THE_END:bucket-window)
   string(REPLACE ":" ";" bug ${bug})
   list(GET bug 0 shader)

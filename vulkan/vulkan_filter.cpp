@@ -105,8 +105,10 @@ struct LevelSeedPush {
   std::uint32_t probe_scheme;
   std::uint32_t key_identity;
   std::uint32_t packed;  // 1 with packed-decimal: 32-bit sums and count words (core/shared/packed_sums.h)
+  std::uint32_t levels;  // --levels: the pass runs over every level's placements (core/shared/levels.h)
+  std::uint32_t reserved;
 };
-static_assert(sizeof(LevelSeedPush) == 40, "push constants of level_seed.comp");
+static_assert(sizeof(LevelSeedPush) == 48, "push constants of level_seed.comp");
 constexpr std::uint32_t kLevelSeedRecordsPerWorkgroup = 64;
 
 struct CompactionPush {
@@ -678,7 +680,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                   n,
                                   SharedProbeKind(config.probing),
                                   KeyIdentityWord(config.key_identity),
-                                  packed ? 1u : 0u};
+                                  packed ? 1u : 0u,
+                                  config.levels,
+                                  0};
     run.timings.level_seed_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -687,7 +691,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *level_seed.pipeline);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *level_seed.layout, 0, *level_seed.set, nullptr);
       cb.pushConstants<LevelSeedPush>(*level_seed.layout, vk::ShaderStageFlagBits::eCompute, 0, seed_push);
-      cb.dispatch(vulkan_internal::WorkgroupsFor(n, kLevelSeedRecordsPerWorkgroup), 1, 1);
+      cb.dispatch(vulkan_internal::WorkgroupsFor(n * config.levels, kLevelSeedRecordsPerWorkgroup), 1, 1);
     });
   }
 
@@ -700,14 +704,17 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect;
   DeviceBuffer* const compaction_buffers[] = {&p.placements,      &p.tags,         &p.listed, &p.occupied,
                                               &p.occupied_header, &p.next_occupied};
-  CompactionPush compaction_push{0, n, config.capacity, config.key_identity == KeyIdentity::kFull ? 1u : 0u};
+  // The gather walks every level's placements (core/shared/levels.h): its record_count is the placement words.
+  const std::uint32_t placement_words = n * config.levels;
+  CompactionPush compaction_push{0, placement_words, config.capacity,
+                                 config.key_identity == KeyIdentity::kFull ? 1u : 0u};
   const auto compaction_pass = [&](vk::raii::CommandBuffer& cb, ComputeProgram& compaction, std::uint32_t pass) {
     compaction_push.pass = pass;
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *compaction.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *compaction.layout, 0, *compaction.set, nullptr);
     cb.pushConstants<CompactionPush>(*compaction.layout, vk::ShaderStageFlagBits::eCompute, 0, compaction_push);
     if (pass == 0) {
-      cb.dispatch(vulkan_internal::WorkgroupsFor(n, kCompactionItemsPerWorkgroup), 1, 1);
+      cb.dispatch(vulkan_internal::WorkgroupsFor(placement_words, kCompactionItemsPerWorkgroup), 1, 1);
     } else if (pass == 1) {
       cb.dispatchIndirect(*p.occupied_header.buffer, kOccupiedDispatchOffset);
     } else {

@@ -32,6 +32,16 @@ HPSF_FN KeyWords ParentKeyWords(KeyWords w) {
   return p;
 }
 
+// The cell k levels above (ParentKeyWords k times): multi-level accumulation's coarser cells (core/shared/levels.h).
+HPSF_FN KeyWords CoarserKeyWords(KeyWords w, uint k) {
+  KeyWords c = w;
+  c.cell_x = uint(int(w.cell_x) >> k);
+  c.cell_y = uint(int(w.cell_y) >> k);
+  c.cell_z = uint(int(w.cell_z) >> k);
+  c.level = w.level + k;
+  return c;
+}
+
 // The parent's share that seeds a child: its sums and count shifted right by 3 + shift (an eighth of the parent, as
 // its volume splits in 8, weighted 2^-shift: Binder's compromise between less variance and a visible coarse
 // estimate). Exact in fixed64 (a shift) and in float32 (a power of two, far from the subnormals for radiance).

@@ -10,20 +10,12 @@
 
 #include "full_key.h"
 #include "key.h"
+#include "level_seed.h"
 #include "table_params.h"
 
 HPSF_SHARED_BEGIN
 
 const uint kMaxLevels = 8u;  // --levels: 1 (a record's own cell only) .. 8
-
-HPSF_FN KeyWords CoarserKeyWords(KeyWords w, uint k) {
-  KeyWords c = w;
-  c.cell_x = uint(int(w.cell_x) >> k);
-  c.cell_y = uint(int(w.cell_y) >> k);
-  c.cell_z = uint(int(w.cell_z) >> k);
-  c.level = w.level + k;
-  return c;
-}
 
 // The key of the cell k levels above a record's own, computed from its own key (the key path runs once). A full key
 // always fits: the cell words only shrink, and the level word stays below 254 + kMaxLevels < 512.

@@ -209,8 +209,9 @@ int Run(FuzzOptions& o, bool options_only) {
   const bool packed_sums =
       (eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv, kEvictionCountsBinding)) &&
       (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding));
-  // Several levels only where hpsf's own kernels add and resolve them.
-  const bool levels = defect == Defect::kNone && o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+  // Several levels only where hpsf's own kernels add and resolve them (the level-unjittered kernel adds them, wrongly).
+  const bool levels = (defect == Defect::kNone || defect == Defect::kLevelUnjittered) &&
+                      o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
   const AdversarialOptions generate{o.max_records, defect == Defect::kNone,
                                     accumulation,  backend.on_device,
                                     probing,       full_keys,

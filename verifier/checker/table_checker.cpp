@@ -175,7 +175,8 @@ void CheckOccupiedList(const HashTableDump& t, std::vector<TableViolation>& viol
 // is. Judged where the relation is exact: each slot involved unaliased, every touch that should reach the parent
 // placed there, and no slot blended (fixed64: counts and sums; float32: counts; packed-decimal, whose settle may halve,
 // and blended slots are judged by their own invariants only).
-void CheckLevelNesting(const TableCheckInput& in, const LevelTouches& touches,
+// seeds: per slot, the seed a new slot started from (core/level_seed.h), which is no child's add.
+void CheckLevelNesting(const TableCheckInput& in, const LevelTouches& touches, const std::vector<CellState>& seeds,
                        std::vector<TableViolation>& violations) {
   const HashTableDump& t = in.table;
   const HashTableDump* before = in.before;
@@ -202,9 +203,11 @@ void CheckLevelNesting(const TableCheckInput& in, const LevelTouches& touches,
   auto blended = [&](std::uint32_t s) { return in.temporal.blends() && before && before->counts[s] > 0; };
   using Sums = std::array<__int128, 4>;  // the count, then the three fixed64 sums
   auto delta = [&](std::uint32_t s) {
-    Sums d{__int128(t.counts[s]) - __int128(before ? before->counts[s] : 0)};
-    for (int c = 0; c < 3 && fixed; ++c)
-      d[c + 1] = __int128(t.fixed_sums[s][c]) - __int128(before ? before->fixed_sums[s][c] : 0);
+    Sums d{__int128(t.counts[s]) - __int128(before ? before->counts[s] : 0) - __int128(seeds[s].count)};
+    for (int c = 0; c < 3 && fixed; ++c) {
+      d[c + 1] = __int128(t.fixed_sums[s][c]) - __int128(before ? before->fixed_sums[s][c] : 0) -
+                 __int128(seeds[s].fixed_sum[c]);
+    }
     return d;
   };
   auto add = [&](Sums& sums, std::uint32_t touch, int sign) {
@@ -488,6 +491,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
   // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
   std::array<unsigned __int128, 3> table_total{}, placed_total{};
+  std::vector<CellState> seeds(t.levels > 1 ? t.capacity : 0);  // for the level nesting
   // Counts in 128 bits: a 64-bit count that wrapped (D12) must not look right because the checker's sum wrapped too.
   unsigned __int128 total_count = 0, expected_total_count = 0;
   auto sums_are_zero = [&](std::uint32_t s) {
@@ -543,6 +547,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     }
     // A slot new this frame may start from its seed (core/level_seed.h) instead of nothing.
     const CellState seed = SeedOfSlot(s, here);
+    if (t.levels > 1) seeds[s] = seed;
     const std::uint64_t base_count = evicted_by_policy ? 0 : count_before(s) + seed.count;
     auto fixed_base = [&](int c) -> std::uint64_t {
       return evicted_by_policy ? 0 : fixed_before(s, c) + seed.fixed_sum[c];
@@ -664,7 +669,7 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
       }
     }
   }
-  if (t.levels > 1) CheckLevelNesting(in, touches, violations);
+  if (t.levels > 1) CheckLevelNesting(in, touches, seeds, violations);
   if (total_count != expected_total_count) {
     violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {},
             "count " + Decimal(total_count) + ", expected " + Decimal(expected_total_count));

@@ -41,6 +41,8 @@ layout(push_constant) uniform Params {  // vulkan_filter.cpp's LevelSeedPush
   uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow
   uint key_identity;  // kIdentityFingerprint or kIdentityFull (core/shared/full_key.h)
   uint packed;        // 1: packed-decimal, 32-bit integer sums and count words (core/shared/packed_sums.h)
+  uint levels;        // --levels: placements hold levels words per record, level-major (core/shared/levels.h)
+  uint reserved;
 };
 
 // A slot's samples before the frame: packed-decimal's count bits, without the frame counter.
@@ -89,8 +91,10 @@ Neighbour Find(KeyWords words) {
   return n;
 }
 
-void Seed(uint i) {
-  uint slot = placements[i];
+// Touch t: record t mod n at t / n levels above its own cell (core/shared/levels.h).
+void Seed(uint t) {
+  uint i = t % record_count;
+  uint slot = placements[t];
   if (slot >= capacity || PreviousCount(slot) != 0ul) return;  // not placed, or not new
   if (atomicCompSwap(seeded[slot], 0u, 1u) != 0u) return;       // another record seeds it
   uvec4 v0 = key_vectors[i * 3u], v1 = key_vectors[i * 3u + 1u];
@@ -101,6 +105,7 @@ void Seed(uint i) {
   cell.level = v0.w;
   cell.normal = v1.x;
   cell.extra = v1.y;
+  cell = CoarserKeyWords(cell, t / record_count);
   // SeedOf: the children's sums where any child holds samples, else the parent's share.
   uint64_t count = 0ul;
   uint64_t fixed_sum[3] = uint64_t[3](0ul, 0ul, 0ul);
@@ -147,5 +152,5 @@ void Seed(uint i) {
 
 void main() {
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  for (uint i = gl_GlobalInvocationID.x; i < record_count; i += stride) Seed(i);
+  for (uint t = gl_GlobalInvocationID.x; t < record_count * levels; t += stride) Seed(t);
 }
