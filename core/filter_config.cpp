@@ -148,11 +148,6 @@ void FilterConfig::Validate() const {
   if (min_count > 1 && levels == 1) {
     throw ConfigError("--min-count", "chooses among a record's levels, which needs --levels 2 or more");
   }
-  // Priority eviction's selection reads a record's own key to find its window; it does not yet know coarser levels.
-  if (levels > 1 && eviction.by_priority()) {
-    throw ConfigError("--levels",
-                      "does not yet combine with priority eviction, whose selection reads a record's own cell only");
-  }
 }
 
 std::string FilterConfig::ToString() const {

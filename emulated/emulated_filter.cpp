@@ -239,6 +239,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     eviction.evicted = memory.Allocate64("evicted", 1);
     if (config.eviction.by_priority()) {
       eviction.keys = run.keys;
+      eviction.levels = config.levels;
+      eviction.normal_in_index = config.normal_in_index;
       eviction.victims = memory.Allocate32("victims", config.capacity);
     }
     args.eviction = &eviction;
@@ -360,7 +362,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.timings.settle_ms = packed ? clock.LapMs() : 0.0;
   if (evicting) {
     if (config.eviction.by_priority()) {
-      launch(n, [&](simt::ThreadContext& ctx) { return eviction_kernels.select(ctx, eviction); });
+      launch(n * config.levels, [&](simt::ThreadContext& ctx) { return eviction_kernels.select(ctx, eviction); });
     }
     launch_per_slot([&](simt::ThreadContext& ctx) { return EvictKernel(ctx, eviction); });
     launch_per_slot([&](simt::ThreadContext& ctx) { return eviction_kernels.reclaim(ctx, eviction); });

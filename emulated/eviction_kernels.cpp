@@ -9,16 +9,21 @@
 namespace hpsf {
 
 simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArgs& args) {
-  const std::uint32_t i = ctx.Thread();
+  // Touch t: record t mod n at t / n levels above its own cell (core/shared/levels.h).
+  const std::uint32_t t = ctx.Thread();
+  const auto n = static_cast<std::uint32_t>(args.keys.size());
   const TableBuffers& b = args.buffers;
-  if (co_await ctx.Load(b.placements, i) != kProbeFailure) co_return;
+  if (co_await ctx.Load(b.placements, t) != kProbeFailure) co_return;
+  const KeyResult& own = args.keys[t % n];
+  const std::uint32_t slot0 =
+      t < n ? own.slot0 : shared::Slot0AtLevel(own.words, t / n, args.normal_in_index ? 1u : 0u, args.capacity - 1u);
   bool found = false;
   std::uint32_t victim = 0;
   SlotTag victim_tag = 0;
   std::uint64_t victim_priority = 0;
   const shared::ProbeScheme scheme = args.scheme();
   for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
-    const std::uint32_t slot = shared::CandidateSlot(scheme, args.keys[i].slot0, probe);
+    const std::uint32_t slot = shared::CandidateSlot(scheme, slot0, probe);
     const SlotTag tag = co_await ctx.Load(b.tags, slot);
     if (tag == kEmptyTag || tag == shared::kTombstoneTag) continue;
     const std::uint64_t word = co_await ctx.Load(b.counts, slot);

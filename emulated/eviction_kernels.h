@@ -44,10 +44,13 @@ struct EvictionArgs {
   OccupiedList list{};  // with compaction: evict and reclaim launch one thread per entry
   // packed-decimal: the counts are count words (core/shared/packed_sums.h), whose count bits the priority reads.
   bool packed_counts = false;
+  // --levels (core/shared/levels.h): the selection runs per touch, a coarser one's window from its derived slot0.
+  std::uint32_t levels = 1;
+  bool normal_in_index = true;
   shared::ProbeScheme scheme() const { return MakeProbeScheme(probing, capacity, probe_limit); }
 };
 
-simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArgs& args);  // per record
+simt::KernelTask SelectVictimsKernel(simt::ThreadContext& ctx, const EvictionArgs& args);  // per record and level
 simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args);          // per slot
 simt::KernelTask ReclaimKernel(simt::ThreadContext& ctx, const EvictionArgs& args);        // per slot
 

@@ -73,8 +73,10 @@ struct EvictionPush {
   std::uint32_t compacted;      // 1: passes 0 and 1 step the occupied list, dispatched indirectly
   std::uint32_t full_keys;      // 1: 64-bit tags (--key-identity full)
   std::uint32_t packed_counts;  // 1: packed-decimal's 32-bit count words
+  std::uint32_t levels;         // --levels: the select pass runs per record and level
+  std::uint32_t normal_in_index;
 };
-static_assert(sizeof(EvictionPush) == 48, "push constants of eviction.comp");
+static_assert(sizeof(EvictionPush) == 56, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct TemporalPush {
@@ -792,7 +794,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                SharedProbeKind(config.probing),
                                compacting ? 1u : 0u,
                                config.key_identity == KeyIdentity::kFull ? 1u : 0u,
-                               packed ? 1u : 0u};
+                               packed ? 1u : 0u,
+                               config.levels,
+                               config.normal_in_index ? 1u : 0u};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -805,8 +809,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       for (std::uint32_t pass : passes) {
         eviction_push.pass = pass;
         // The select pass steps the records, never the list.
-        DispatchOverSlots(cb, eviction, eviction_push, pass == 2u ? nullptr : listed, pass == 2u ? n : config.capacity,
-                          kEvictionSlotsPerWorkgroup);
+        DispatchOverSlots(cb, eviction, eviction_push, pass == 2u ? nullptr : listed,
+                          pass == 2u ? n * config.levels : config.capacity, kEvictionSlotsPerWorkgroup);
         // The evict pass reads the victims the select pass marked, the reclaim the counts the evict pass wrote.
         const vk::MemoryBarrier evicted(vk::AccessFlagBits::eShaderWrite,
                                         vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);

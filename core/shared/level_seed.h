@@ -42,6 +42,12 @@ HPSF_FN KeyWords CoarserKeyWords(KeyWords w, uint k) {
   return c;
 }
 
+// The first candidate slot of that cell (core/shared/key_words.h's index hash), for the passes that walk a coarser
+// cell's window from its own key words.
+HPSF_FN uint Slot0AtLevel(KeyWords own, uint k, uint normal_in_index, uint capacity_mask) {
+  return IndexHash(CoarserKeyWords(own, k), normal_in_index) & capacity_mask;
+}
+
 // The parent's share that seeds a child: its sums and count shifted right by 3 + shift (an eighth of the parent, as
 // its volume splits in 8, weighted 2^-shift: Binder's compromise between less variance and a visible coarse
 // estimate). Exact in fixed64 (a shift) and in float32 (a power of two, far from the subnormals for radiance).

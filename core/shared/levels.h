@@ -25,7 +25,7 @@ HPSF_FN KeyResult KeyAtLevel(KeyParams p, KeyResult own, uint k) {
   c.words = CoarserKeyWords(own.words, k);
   c.level = own.level + int(k);
   StoredIdentity identity = IdentityOfWords(c.words, p.key_identity, p.fingerprint_bits);
-  c.slot0 = IndexHash(c.words, p.normal_in_index) & p.capacity_mask;
+  c.slot0 = Slot0AtLevel(own.words, k, p.normal_in_index, p.capacity_mask);
   c.fingerprint = identity.words.x;
   c.identity_high = identity.words.y;
   return c;

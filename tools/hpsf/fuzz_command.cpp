@@ -366,7 +366,8 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
        "--inject-defect", o->defect,
        "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
        "count-store-claim-first, count-store-join-first, last-seen-claimer-only, and the shipped bugs "
-       "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full)")
+       "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full; "
+       "level-unjittered with --levels 2 or more)")
       ->capture_default_str();
   CLI::Option* time =
       c->add_option("--time", o->seconds, "Stop after this many seconds (default 60 when --runs is not given)");

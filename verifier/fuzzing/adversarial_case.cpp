@@ -463,8 +463,7 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   // generator of its own, so a seed's cases are otherwise what they were.
   RecordGenerator level_draws(
       shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 4u, 0u}, 0xADF4u));
-  // (Priority eviction's selection does not know the levels yet, core/filter_config.h.)
-  if (options.levels && !a.config.eviction.by_priority() && level_draws.Bits() % 4u == 0u) {
+  if (options.levels && level_draws.Bits() % 4u == 0u) {
     a.config.levels = 2u + level_draws.Bits() % 2u;
     a.config.min_count = 1u + level_draws.Bits() % 4u;
   }

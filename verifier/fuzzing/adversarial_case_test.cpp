@@ -196,25 +196,24 @@ TEST(AdversarialCase, AGivenModeHoldsInEveryFamily) {
 }
 
 // A quarter of the cases add their records at 2 or 3 levels (core/shared/levels.h) with a threshold of 1 to 4, with
-// resolution changes and compaction among them; none where the options say the kernels do not know the levels, and
-// none under priority eviction, which does not yet.
+// compaction and priority eviction among them; none where the options say the kernels do not know the levels.
 TEST(AdversarialCase, SeveralLevelsAreDrawnWhereTheKernelsKnowThem) {
-  int with_levels = 0, with_seed = 0, with_compaction = 0;
+  int with_levels = 0, with_compaction = 0, with_priority = 0;
   std::set<std::uint32_t> thresholds;
-  constexpr int kRuns = 800;
+  constexpr int kRuns = 3000;
   for (std::uint64_t run = 0; run < kRuns; ++run) {
     const AdversarialCase c = MakeAdversarialCase(6, run);
     if (c.config.levels == 1) continue;
     ++with_levels;
-    with_seed += c.config.level_seed.enabled;
     with_compaction += c.config.compaction != Compaction::kNone;
     thresholds.insert(c.config.min_count);
+    with_priority += c.config.eviction.by_priority();
     EXPECT_LE(c.config.levels, 3u);
-    EXPECT_FALSE(c.config.eviction.by_priority());
   }
   EXPECT_GT(with_levels, kRuns / 6);
   EXPECT_LT(with_levels, kRuns / 3);
-  EXPECT_GT(with_seed + with_compaction, 0);
+  EXPECT_GT(with_compaction, 0);
+  EXPECT_GT(with_priority, 0);
   EXPECT_EQ(thresholds, (std::set<std::uint32_t>{1, 2, 3, 4}));
   AdversarialOptions none;
   none.levels = false;

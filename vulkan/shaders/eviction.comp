@@ -15,6 +15,7 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #include "../../core/shared/prelude.h"
 #include "../../core/shared/eviction_priority.h"
+#include "../../core/shared/level_seed.h"
 #include "../../core/shared/packed_sums.h"
 #include "../../core/shared/table_params.h"
 
@@ -47,6 +48,8 @@ layout(push_constant) uniform Params {
   uint compacted;           // 1: dispatched indirectly, one invocation per entry of the occupied list
   uint full_keys;           // 1 with --key-identity full: 64-bit tags (slot_tags.glsl)
   uint packed_counts;       // 1 with packed-decimal: 32-bit count words (core/shared/packed_sums.h)
+  uint levels;              // --levels: the select pass runs per record and level (core/shared/levels.h)
+  uint normal_in_index;     // the key's, for a coarser level's slot0
 };
 
 // packed-decimal's whole count word, as the emulator's eviction kernels read it: a live cell's is never 0 (its count
@@ -66,9 +69,22 @@ void ClearCount(uint slot) {
 
 ProbeScheme Scheme() { return MakeProbeScheme(probe_scheme, capacity, probe_limit); }
 
-void SelectVictim(uint i) {
-  if (placements[i] != kPlacementProbeFailure) return;
+// Touch t: record t mod n at t / n levels above its own cell (core/shared/levels.h).
+void SelectVictim(uint t) {
+  if (placements[t] != kPlacementProbeFailure) return;
+  uint i = t % record_count;
   uint slot0 = key_vectors[i * 3u + 1u].z;
+  if (t >= record_count) {
+    uvec4 v0 = key_vectors[i * 3u], v1 = key_vectors[i * 3u + 1u];
+    KeyWords own;
+    own.cell_x = v0.x;
+    own.cell_y = v0.y;
+    own.cell_z = v0.z;
+    own.level = v0.w;
+    own.normal = v1.x;
+    own.extra = v1.y;
+    slot0 = Slot0AtLevel(own, t / record_count, normal_in_index, capacity - 1u);
+  }
   bool found = false;
   uint victim = 0u;
   uint64_t victim_tag = 0ul;
@@ -123,7 +139,7 @@ void Reclaim(uint slot) {
 void main() {
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
   if (pass == 2u) {
-    for (uint i = gl_GlobalInvocationID.x; i < record_count; i += stride) SelectVictim(i);
+    for (uint t = gl_GlobalInvocationID.x; t < record_count * levels; t += stride) SelectVictim(t);
     return;
   }
   uint steps = compacted != 0u ? occupied_count : capacity;
