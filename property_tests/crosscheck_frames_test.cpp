@@ -18,6 +18,7 @@
 #include "core/temporal.h"
 #include "emulated/defect_injection.h"
 #include "emulated/emulated_backend.h"
+#include "property_tests/crosscheck_report_figures.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
@@ -32,15 +33,6 @@ namespace {
 using Key = std::array<std::uint32_t, 6>;
 
 const std::vector<std::string> kAllBackends = {"reference", "emulated", "vulkan"};
-
-const LevelVerdict& Level(const CrosscheckReport& report, int level) { return report.levels[std::size_t(level - 1)]; }
-
-const QualityFigures& QualityOf(const CrosscheckReport& report, const std::string& backend) {
-  for (const QualityFigures& q : report.quality) {
-    if (q.backend == backend) return q;
-  }
-  throw std::runtime_error("no quality figures for " + backend);
-}
 
 // Four frames of the animated Cornell box (camera, light and cube move) pass the contract with every policy (priority
 // with 24-bit fingerprints; this table has room, so it evicts nothing: priority_eviction_tests puts it under

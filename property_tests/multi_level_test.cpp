@@ -16,6 +16,7 @@
 #include "emulated/emulated_backend.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/constructed_cells.h"
+#include "property_tests/crosscheck_report_figures.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_filter.h"
@@ -27,15 +28,6 @@ namespace hpsf::testing {
 namespace {
 
 const std::vector<std::string> kAllBackends = {"reference", "emulated", "vulkan"};
-
-const LevelVerdict& Level(const CrosscheckReport& report, int level) { return report.levels[std::size_t(level - 1)]; }
-
-const QualityFigures& QualityOf(const CrosscheckReport& report, const std::string& backend) {
-  for (const QualityFigures& q : report.quality) {
-    if (q.backend == backend) return q;
-  }
-  throw std::runtime_error("no quality figures for " + backend);
-}
 
 // The Cornell box and the furnace, one frame and three of the animated box (ema blending, stale eviction), in a roomy
 // table and a crowded one (probe failures and 8-bit aliases at every level), in each accumulation: every level of

@@ -14,6 +14,7 @@
 #include "core/temporal.h"
 #include "emulated/emulated_filter.h"
 #include "property_tests/constructed_cells.h"
+#include "property_tests/crosscheck_report_figures.h"
 #include "property_tests/hashed_backends.h"
 #include "property_tests/traced_batch.h"
 #include "tracer/scene_file.h"
@@ -24,8 +25,6 @@ namespace hpsf::testing {
 namespace {
 
 const std::vector<std::string> kAllBackends = {"reference", "emulated", "vulkan"};
-
-const LevelVerdict& Level(const CrosscheckReport& report, int level) { return report.levels[std::size_t(level - 1)]; }
 
 struct Scheme {
   ProbeKind kind;

@@ -73,40 +73,36 @@ void BM_EmulatedFast(benchmark::State& state) {
 }
 BENCHMARK(BM_EmulatedFast)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The same with each key identity (0 fingerprints, 32-bit tags; 1 full keys, 64-bit tags, core/key_identity.h), so
-// that their costs are read side by side in one run.
-void BM_EmulatedKeyIdentity(benchmark::State& state) {
+// Frames of the Cornell batch through one backend under `config`, its phases reported, labelled `label`.
+void FilterFrames(benchmark::State& state, const FilterConfig& config, const std::string& label) {
   const RecordBatch& batch = CornellFrame();
-  FilterConfig config = TableConfig();
-  config.key_identity = state.range(0) == 0 ? KeyIdentity::kFingerprint : KeyIdentity::kFull;
   EmulatedBackend backend{EmulatorOptions{}};
-  backend.FilterFrame(batch, config);
+  backend.FilterFrame(batch, config);  // the first frame touches its arrays' pages
   for (auto _ : state) {
     backend.Reset();
     benchmark::DoNotOptimize(backend.FilterFrame(batch, config).pixels.data());
     ReportRun(state, backend.run());
   }
-  state.SetLabel(ToString(config.key_identity));
+  state.SetLabel(label);
   state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
+}
+
+// The same with each key identity (0 fingerprints, 32-bit tags; 1 full keys, 64-bit tags, core/key_identity.h), so
+// that their costs are read side by side in one run.
+void BM_EmulatedKeyIdentity(benchmark::State& state) {
+  FilterConfig config = TableConfig();
+  config.key_identity = state.range(0) == 0 ? KeyIdentity::kFingerprint : KeyIdentity::kFull;
+  FilterFrames(state, config, ToString(config.key_identity));
 }
 BENCHMARK(BM_EmulatedKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Multi-level accumulation (--levels 1, 2, 3; --min-count 4 above one level, core/shared/levels.h), side by side in
 // one run: what each coarser level adds to the accumulate and the threshold to the resolve.
 void BM_EmulatedLevels(benchmark::State& state) {
-  const RecordBatch& batch = CornellFrame();
   FilterConfig config = TableConfig();
   config.levels = std::uint32_t(state.range(0));
   config.min_count = config.levels > 1 ? 4 : 1;
-  EmulatedBackend backend{EmulatorOptions{}};
-  backend.FilterFrame(batch, config);
-  for (auto _ : state) {
-    backend.Reset();
-    benchmark::DoNotOptimize(backend.FilterFrame(batch, config).pixels.data());
-    ReportRun(state, backend.run());
-  }
-  state.SetLabel("levels " + std::to_string(config.levels));
-  state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
+  FilterFrames(state, config, "levels " + std::to_string(config.levels));
 }
 BENCHMARK(BM_EmulatedLevels)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
