@@ -48,6 +48,7 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.forced == next.forced, "--force-effect");
   require(first.levels == next.levels, "--levels");
   require(first.min_count == next.min_count, "--min-count");
+  require(first.neighbour_search == next.neighbour_search, "--neighbour-search");
 }
 
 }  // namespace hpsf

@@ -145,8 +145,13 @@ void FilterConfig::Validate() const {
                       "must lie in [1, " + std::to_string(shared::kMaxLevels) + "]; got " + std::to_string(levels));
   }
   if (min_count < 1) throw ConfigError("--min-count", "must be >= 1; got " + std::to_string(min_count));
-  if (min_count > 1 && levels == 1) {
-    throw ConfigError("--min-count", "chooses among a record's levels, which needs --levels 2 or more");
+  if (min_count > 1 && levels == 1 && !neighbour_search) {
+    throw ConfigError("--min-count",
+                      "chooses among a record's levels or starts a search, which needs --levels 2 or more or "
+                      "--neighbour-search");
+  }
+  if (neighbour_search && min_count == 1) {
+    throw ConfigError("--neighbour-search", "searches cells below --min-count, which needs --min-count 2 or more");
   }
 }
 
@@ -172,6 +177,7 @@ std::string FilterConfig::ToString() const {
          (compaction != Compaction::kNone ? " compaction: " + hpsf::ToString(compaction) : std::string()) +
          (levels != 1 ? " levels: " + std::to_string(levels) : std::string()) +
          (min_count != 1 ? " min_count: " + std::to_string(min_count) : std::string()) +
+         (neighbour_search ? " neighbour_search: on" : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 

@@ -60,6 +60,9 @@ struct FilterConfig {
   std::uint32_t levels = 1;
   // --min-count: the resolve reads a record's finest level whose count reaches it, else the coarsest
   std::uint32_t min_count = 1;
+  // --neighbour-search: a record whose chosen cell holds fewer than min_count samples also reads the stencil of cells
+  // nearest its jittered position (core/shared/neighbour_search.h)
+  bool neighbour_search = false;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // Throws ConfigError for the first invalid option.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/neighbour_search.h"
 
 namespace hpsf {
 
@@ -42,6 +43,10 @@ struct FilterStats {
   std::uint64_t cells_seeded = 0;       // cells new in the frame seeded from another level (core/level_seed.h)
   // [k]: records whose resolve read their cell k levels above their own (--levels, core/shared/levels.h)
   std::vector<std::uint64_t> resolved_at_level;
+  // --neighbour-search (core/shared/neighbour_search.h): records whose resolve searched, and the neighbour cells
+  // their lookups found
+  std::uint64_t records_searched = 0;
+  std::uint64_t neighbours_read = 0;
 };
 
 struct FilterResult {
@@ -50,6 +55,8 @@ struct FilterResult {
   std::vector<std::uint32_t> placement;  // per record: index into cells, or kNoCell
   // With --levels L > 1: [(k - 1) n + i], record i's cell k levels above its own, k = 1 .. L - 1
   std::vector<std::uint32_t> coarser_placement;
+  // With --neighbour-search: each record that searched, in record order, and the cells (indices into cells) it read
+  std::vector<NeighbourReads> neighbour_reads;
   FilterStats stats;
 };
 

@@ -3,6 +3,8 @@
 #include <array>
 #include <optional>
 
+#include "core/level_seed.h"
+
 namespace hpsf {
 
 std::uint32_t LevelPlacement(const HashedRun& run, std::size_t i, std::uint32_t k) {
@@ -27,6 +29,48 @@ void CountResolvedLevels(HashedRun& run) {
   for (std::size_t i = 0; i < run.placements.size(); ++i) {
     const shared::LevelChoice chosen = ResolvedSlot(run, i);
     if (chosen.slot < run.table.capacity) ++run.resolved_at_level[chosen.level];
+  }
+}
+
+NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen) {
+  const CellFinder in_table = [&](const shared::KeyWords& w) {
+    return FindSlotInTable(run.table, w, run.key_params.normal_in_index != 0);
+  };
+  return SearchNeighbours(run.key_params, r, shared::ComputeKey(run.key_params, r), chosen, std::uint32_t(i), in_table);
+}
+
+std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r, std::size_t i, NeighbourReads* reads,
+                                          const SlotSearch* search) {
+  const HashTableDump& table = run.table;
+  const shared::LevelChoice chosen = ResolvedSlot(run, i);
+  if (chosen.slot >= table.capacity) return std::nullopt;
+  const bool integer = IntegerSums(table.accumulation);
+  StencilTotal total;
+  const auto add = [&](std::uint32_t slot) {
+    total.Add(integer ? table.fixed_sums[slot] : std::array<std::uint64_t, 3>{},
+              integer ? std::array<float, 3>{} : table.float_sums[slot], table.counts[slot]);
+  };
+  add(chosen.slot);
+  if (Searches(run.neighbour_search, chosen, table.capacity)) {
+    const NeighbourReads searched = search ? (*search)(r, i, chosen) : SearchInTable(run, r, i, chosen);
+    for (const std::uint32_t slot : searched.cells) {
+      if (slot != kNotRead) add(slot);
+    }
+    if (reads) *reads = searched;
+  }
+  return total.Average(table.accumulation, table.fixed_point_bits);
+}
+
+void CountSearches(HashedRun& run, const RecordBatch& batch) {
+  run.records_searched = run.neighbours_read = 0;
+  if (!run.neighbour_search) return;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    const shared::LevelChoice chosen = ResolvedSlot(run, i);
+    if (!Searches(true, chosen, run.table.capacity)) continue;
+    NeighbourReads reads;
+    ResolvedAverage(run, batch.records[i], i, &reads);
+    ++run.records_searched;
+    for (const std::uint32_t slot : reads.cells) run.neighbours_read += slot != kNotRead;
   }
 }
 

@@ -4,11 +4,15 @@
 #define HPSF_CORE_HASHED_RUN_H
 
 #include <cstdint>
+#include <optional>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/hash_table.h"
 #include "core/image.h"
 #include "core/key_batch.h"
+#include "core/neighbour_search.h"
 #include "core/shared/levels.h"
 
 namespace hpsf {
@@ -22,6 +26,10 @@ struct HashedRun {
   std::vector<std::uint32_t> coarser_placements;
   std::vector<std::uint64_t> resolved_at_level;  // [k]: records whose resolve read the slot k levels above their own
   std::uint32_t min_count = 1;                   // the resolve's --min-count
+  bool neighbour_search = false;                 // the resolve's --neighbour-search
+  KeyParams key_params{};              // the host's, from which the search's checks compute a record's position again
+  std::uint64_t records_searched = 0;  // records whose resolve searched (core/shared/neighbour_search.h)
+  std::uint64_t neighbours_read = 0;   // the neighbour slots their lookups found
   std::uint64_t probe_failures = 0;
   std::uint64_t wraps = 0;                   // integer adds whose sum wrapped (64 bits, or packed-decimal's 32)
   std::uint64_t count_wraps = 0;             // adds whose count wrapped (64 bits, D12, or packed-decimal's 24)
@@ -48,6 +56,22 @@ shared::LevelChoice ResolvedSlot(const HashedRun& run, std::size_t i);
 
 // Fills run.resolved_at_level from ResolvedSlot of every record placed at some level.
 void CountResolvedLevels(HashedRun& run);
+
+// A record's search in a hashed table: the stencil's slots around its chosen level.
+using SlotSearch = std::function<NeighbourReads(const Record& r, std::size_t i, const shared::LevelChoice& chosen)>;
+
+// The search a correct resolve runs: SearchNeighbours with the record's key computed again, each corner looked up in
+// the table as read back (core/level_seed.h's FindSlotInTable).
+NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen);
+
+// What record i's resolve reads in the run's table and averages: its chosen slot and, where it searches
+// (core/neighbour_search.h), the slots `search` found (by default SearchInTable). Nothing where no level is placed.
+// reads, when given, receives the search's.
+std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r, std::size_t i,
+                                          NeighbourReads* reads = nullptr, const SlotSearch* search = nullptr);
+
+// Fills run.records_searched and run.neighbours_read from ResolvedAverage of every record.
+void CountSearches(HashedRun& run, const RecordBatch& batch);
 
 // Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).
 std::vector<bool> AliasedSlots(const HashedRun& run);

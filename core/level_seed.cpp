@@ -6,6 +6,7 @@
 #include "core/hash_table.h"
 #include "core/shared/full_key.h"
 #include "core/shared/level_seed.h"
+#include "core/shared/lookup.h"
 
 namespace hpsf {
 
@@ -68,8 +69,9 @@ std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const s
   const shared::ProbeScheme scheme = ProbeSchemeOf(table);
   for (std::uint32_t probe = 0; probe < table.probe_limit; ++probe) {
     const std::uint32_t s = shared::CandidateSlot(scheme, slot0, probe);
-    if (table.tags[s] == kEmptyTag) break;
-    if (table.tags[s] == tag && table.counts[s] != 0) return s;
+    const std::uint32_t step = shared::LookupStep(table.tags[s], tag, table.counts[s]);
+    if (step == shared::kLookupEnd) break;
+    if (step == shared::kLookupFound) return s;
   }
   return std::nullopt;
 }

@@ -33,14 +33,23 @@ enum class Defect {
   // Multi-level accumulation (--levels, core/shared/levels.h): the coarser cells keyed at the record's unjittered
   // position, so they no longer nest its own (jittered) cell.
   kLevelUnjittered,
+  // The resolve's neighbourhood search (--neighbour-search, emulated/broken_search.h): a lookup that claims, one that
+  // stops at a tombstone, a stencil whose side comes from truncation.
+  kSearchClaims,
+  kSearchStopsAtTombstone,
+  kStencilTruncated,
 };
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
 // "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end",
-// "weak-cas-old-value", "full-key-low-word", "level-unjittered"; a ConfigError naming --inject-defect otherwise.
+// "weak-cas-old-value", "full-key-low-word", "level-unjittered", "search-claims", "search-stops-at-tombstone",
+// "stencil-truncated"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
+// The accumulate kernel a defect runs (hpsf's own where the defect lies in another pass).
 AccumulateKernelFn KernelWithDefect(Defect defect);
+// The options with the defect's broken resolve search, where it has one.
+EmulatorOptions WithDefect(EmulatorOptions options, Defect defect);
 
 // D7 (docs/design/defects.md), in the eviction pass (emulated/eviction_kernels.h): the reclaim empties every tombstone,
 // so an eviction leaves a hole that a live cell's key probed past; its next lookup claims the hole and splits the cell.

@@ -407,6 +407,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.coarser_placements.assign(run.placements.begin() + n, run.placements.end());
   run.placements.resize(n);
   run.min_count = config.min_count;
+  run.neighbour_search = config.neighbour_search;
+  run.key_params = params;
   run.wraps = memory.Words64(b.wraps)[0];
   run.count_wraps = memory.Words64(b.wraps)[1];
   if (fixed) {
@@ -445,6 +447,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     std::uint64_t probe_failures = 0;
     std::vector<std::uint64_t> probe_lengths;
     std::vector<std::uint64_t> resolved_at_level;
+    std::uint64_t records_searched = 0;
+    std::uint64_t neighbours_read = 0;
   };
   run.image.width = batch.width;
   run.image.height = batch.height;
@@ -465,8 +469,16 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
     PrefetchLine(&table.counts[slot]);
   };
   const shared::ProbeScheme scheme = ProbeSchemeOf(config);
+  // A record whose chosen cell holds fewer than min_count samples searches its neighbours (core/neighbour_search.h).
+  // A broken search that claims writes the table: then the pixels are resolved on one thread, in order.
+  const bool broken_search = options.search_defect != SearchDefect::kNone;
+  const SlotSearch search = broken_search
+                                ? BrokenSearch(options.search_defect, run)
+                                : SlotSearch([&](const Record& r, std::size_t i, const shared::LevelChoice& c) {
+                                    return SearchInTable(run, r, i, c);
+                                  });
   const Tally tally = ParallelReduce(
-      run.image.pixels.size(), 2048,
+      run.image.pixels.size(), broken_search ? run.image.pixels.size() + 1 : 2048,
       Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0), std::vector<std::uint64_t>(config.levels, 0)},
       [&](std::size_t begin, std::size_t end, Tally tally) {
         for (std::size_t pixel = begin; pixel < end; ++pixel) {
@@ -483,7 +495,13 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
             const shared::LevelChoice chosen = ResolvedSlot(run, i);
             const std::uint32_t slot = chosen.slot;
             glm::dvec3 average;
-            if (slot < config.capacity) {
+            if (slot < config.capacity && Searches(config.neighbour_search, chosen, config.capacity)) {
+              ++tally.resolved_at_level[chosen.level];
+              NeighbourReads reads;
+              average = *ResolvedAverage(run, batch.records[i], i, &reads, &search);
+              ++tally.records_searched;
+              for (const std::uint32_t found : reads.cells) tally.neighbours_read += found != kNotRead;
+            } else if (slot < config.capacity) {
               ++tally.resolved_at_level[chosen.level];
               for (int c = 0; c < 3; ++c) {
                 const double channel_sum = packed
@@ -503,6 +521,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
         a.probe_failures += b.probe_failures;
         for (std::size_t k = 0; k < a.probe_lengths.size(); ++k) a.probe_lengths[k] += b.probe_lengths[k];
         for (std::size_t k = 0; k < a.resolved_at_level.size(); ++k) a.resolved_at_level[k] += b.resolved_at_level[k];
+        a.records_searched += b.records_searched;
+        a.neighbours_read += b.neighbours_read;
         return a;
       });
   run.probe_failures = tally.probe_failures;
@@ -513,6 +533,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   run.probe_lengths = tally.probe_lengths;
   CountCoarserProbes(run, params);
   run.resolved_at_level = tally.resolved_at_level;
+  run.records_searched = tally.records_searched;
+  run.neighbours_read = tally.neighbours_read;
   kept.accepted = std::move(accepted);
   kept.entering = std::move(entering);
   run.timings.resolve_ms = clock.LapMs();

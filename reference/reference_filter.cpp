@@ -12,6 +12,7 @@
 #include "core/input_check.h"
 #include "core/key_batch.h"
 #include "core/level_seed.h"
+#include "core/neighbour_search.h"
 #include "core/resolve.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/levels.h"
@@ -226,11 +227,38 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
 
   std::vector<std::optional<glm::dvec3>> cell_average(batch.records.size());
   stats.resolved_at_level.assign(config.levels, 0);
+  std::map<std::array<std::uint32_t, 6>, std::uint32_t> live_cell_of_key;  // after eviction's renumbering
+  if (config.neighbour_search) {
+    for (std::size_t c = 0; c < result.cells.size(); ++c) {
+      if (result.cells[c].count > 0) live_cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
+    }
+  }
+  const CellFinder find = [&](const shared::KeyWords& w) -> std::optional<std::uint32_t> {
+    const auto it = live_cell_of_key.find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
+    return it == live_cell_of_key.end() ? std::nullopt : std::optional<std::uint32_t>(it->second);
+  };
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     const shared::LevelChoice chosen = ChooseCell(result, config, i);
     if (chosen.slot == kNoCell) continue;
-    cell_average[i] = averages[chosen.slot];
     ++stats.resolved_at_level[chosen.level];
+    if (!Searches(config.neighbour_search, chosen, kNoCell)) {
+      cell_average[i] = averages[chosen.slot];
+      continue;
+    }
+    const NeighbourReads reads = SearchNeighbours(params, batch.records[i], keys[i], chosen, std::uint32_t(i), find);
+    StencilTotal total;
+    const auto add = [&](std::uint32_t cell) {
+      total.Add(result.cells[cell].fixed_sum, result.cells[cell].float_sum, result.cells[cell].count);
+    };
+    add(chosen.slot);
+    for (const std::uint32_t cell : reads.cells) {
+      if (cell == kNotRead) continue;
+      add(cell);
+      ++stats.neighbours_read;
+    }
+    cell_average[i] = total.Average(config.accumulation, stats.fixed_point_bits);
+    ++stats.records_searched;
+    result.neighbour_reads.push_back(reads);
   }
   result.image = ResolvePixels(batch, cell_average);
   return result;

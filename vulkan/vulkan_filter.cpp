@@ -129,11 +129,15 @@ struct ResolvePush {
   std::uint32_t capacity;
   std::uint32_t pixel_count;
   std::uint32_t samples_per_pixel;
-  std::uint32_t levels;     // --levels: the placements hold levels words per record, level-major
-  std::uint32_t min_count;  // --min-count (core/shared/levels.h)
-  std::uint32_t reserved;
+  std::uint32_t levels;            // --levels: the placements hold levels words per record, level-major
+  std::uint32_t min_count;         // --min-count (core/shared/levels.h)
+  std::uint32_t neighbour_search;  // --neighbour-search (core/shared/neighbour_search.h)
+  KeyParams key;                   // a searching record's key and position are computed again
+  std::uint32_t probe_limit;       // the lookups' window
+  std::uint32_t probe_scheme;
+  std::uint32_t reserved[2];
 };
-static_assert(sizeof(ResolvePush) == 32, "push constants of resolve.glsl");
+static_assert(sizeof(ResolvePush) == 112, "push constants of resolve.glsl");
 
 // The stable interface: binding i of table_interface.glsl.
 constexpr BindingKind kAccumulateBindings[] = {
@@ -160,7 +164,8 @@ constexpr BindingKind kSettleBindings[] = {BindingKind::kStorageBuffer, BindingK
                                            BindingKind::kStorageBuffer};
 constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer,
                                             BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
-                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
+                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
+                                            BindingKind::kStorageBuffer};
 
 struct CopyOut {
   void* to;
@@ -827,7 +832,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
 
   // Resolve: a separate pass, 16 pixels per invocation.
   ComputeProgram& resolve = p.Resolve(config.accumulation);
-  DeviceBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts, &p.placements, &p.accepted, &p.pixels};
+  DeviceBuffer* const resolve_buffers[] = {&p.records,  &p.sums,   &p.counts, &p.placements,
+                                           &p.accepted, &p.pixels, &p.tags};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   const std::uint32_t pixel_count = batch.width * batch.height;
   const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits),
@@ -836,7 +842,11 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                  batch.samples_per_pixel,
                                  config.levels,
                                  config.min_count,
-                                 0};
+                                 config.neighbour_search ? 1u : 0u,
+                                 push.key,
+                                 config.probe_limit,
+                                 SharedProbeKind(config.probing),
+                                 {0, 0}};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
@@ -923,7 +933,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   FinishReadBack(run, config.frame, p.ShaderNames());
   CountCoarserProbes(run, push.key);
   run.min_count = config.min_count;
+  run.neighbour_search = config.neighbour_search;
+  run.key_params = push.key;
   CountResolvedLevels(run);
+  CountSearches(run, batch);
   p.table =
       Impl::TableShape{config.capacity, config.accumulation, config.key_identity, table.fixed_point_bits, compacting};
   return run;

@@ -16,8 +16,14 @@ struct Cell {
 
 // inverse_size is 2^-l under level of detail (then the product is exact unless it leaves the normal range)
 // or the host's correctly rounded 1 / cell_size.
-HPSF_FN Cell CellOf(vec3 position, float inverse_size) {
+// The position in units of the cell size, before the floor: q.
+HPSF_FN vec3 CellCoordinates(vec3 position, float inverse_size) {
   HPSF_PRECISE vec3 q = Flush(position * inverse_size);
+  return q;
+}
+
+HPSF_FN Cell CellOf(vec3 position, float inverse_size) {
+  vec3 q = CellCoordinates(position, inverse_size);
   Cell c;
   // Checked on the float before conversion; NaN fails the comparison and so is unkeyable too.
   c.keyable = all(lessThan(abs(q), vec3(kCellLimit)));

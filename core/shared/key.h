@@ -59,9 +59,15 @@ HPSF_FN RngCounter JitterCounter(KeyParams p, Record r) {
   return c;
 }
 
-HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
-  if (!RecordHasVertex(r)) return EmptyKeyResult(kKeyNoVertex);
+// Where a record's key is taken: its jittered position, the level of its cell and 1 / the cell's size. The resolve's
+// neighbourhood search (core/shared/neighbour_search.h) reads it again for a record whose cell has few samples.
+struct KeyPosition {
+  vec3 jittered;
+  int level;           // l' after jitter (the fixed level of the cell size with level of detail off)
+  float inverse_size;  // 2^-l' under level of detail, else the host's 1 / cell_size
+};
 
+HPSF_FN KeyPosition JitteredKeyPosition(KeyParams p, Record r) {
   vec3 x = vec3(r.position);
   vec3 x_prev = vec3(r.previous);
   float d_prefix = r.position.w;
@@ -76,15 +82,24 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   float cell_before = PowerOfTwo(level_before);
   float cell_size = lod ? cell_before : p.cell_size;
   HPSF_PRECISE float amplitude = Flush(p.jitter_scale * cell_size);
-  vec3 jittered = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
+  KeyPosition at;
+  at.jittered = JitterInTangentPlane(x, vec3(r.tangent), vec3(r.bitangent), amplitude, u1, u2);
   // The level is recomputed after the jitter (docs/design/defects.md, D5): the cell must match the jittered position.
-  int level_after = LevelOfDetail(p.footprint_scale, PathLength(d_prefix, jittered, x_prev), p.level_min, p.level_max);
+  int level_after =
+      LevelOfDetail(p.footprint_scale, PathLength(d_prefix, at.jittered, x_prev), p.level_min, p.level_max);
   int level_fixed = UnbiasedExponent(p.cell_size);
-  int level = lod ? level_after : level_fixed;
+  at.level = lod ? level_after : level_fixed;
   float inverse_after = PowerOfTwo(-level_after);
-  float inverse_size = lod ? inverse_after : p.inverse_cell_size;
+  at.inverse_size = lod ? inverse_after : p.inverse_cell_size;
+  return at;
+}
 
-  Cell cell = CellOf(jittered, inverse_size);
+HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
+  if (!RecordHasVertex(r)) return EmptyKeyResult(kKeyNoVertex);
+
+  KeyPosition at = JitteredKeyPosition(p, r);
+  int level = at.level;
+  Cell cell = CellOf(at.jittered, at.inverse_size);
   KeyWords words;
   words.cell_x = uint(cell.index.x);
   words.cell_y = uint(cell.index.y);

@@ -84,8 +84,11 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command
       .add_option("--min-count", c.min_count,
                   "The resolve reads a record's finest level whose count reaches this, else its coarsest "
-                  "(needs --levels 2 or more)")
+                  "(needs --levels 2 or more, or --neighbour-search)")
       ->capture_default_str();
+  command.add_flag("--neighbour-search", c.neighbour_search,
+                   "A record whose chosen cell holds fewer than --min-count samples also reads the 2^3 cells of its "
+                   "level nearest its jittered position, found by lookup, and averages them by count");
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction; repeatable): the same bits, at the pass's cost");
@@ -168,6 +171,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"compaction", ToString(c.compaction)},
           {"levels", c.levels},
           {"min_count", c.min_count},
+          {"neighbour_search", c.neighbour_search},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

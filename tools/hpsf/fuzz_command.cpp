@@ -367,7 +367,8 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
        "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
        "count-store-claim-first, count-store-join-first, last-seen-claimer-only, and the shipped bugs "
        "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full; "
-       "level-unjittered with --levels 2 or more)")
+       "level-unjittered with --levels 2 or more; search-claims, search-stops-at-tombstone and stencil-truncated, "
+       "resolves with --neighbour-search)")
       ->capture_default_str();
   CLI::Option* time =
       c->add_option("--time", o->seconds, "Stop after this many seconds (default 60 when --runs is not given)");

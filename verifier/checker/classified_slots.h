@@ -38,8 +38,13 @@ class ClassifiedSlots {
   // Whether any slot was classified or any record failed, in any frame so far.
   bool any() const { return any_; }
 
- private:
   using FullKey = std::array<std::uint32_t, 6>;
+  // After AddFrame: the cell a live slot holds (the full key last placed there), for the lookups that find it.
+  const std::optional<FullKey>& KeyOf(std::uint32_t slot) const { return key_of_[slot]; }
+  // Whether a cell lost records to a probe failure (or, with pressure, an eviction) in some frame so far.
+  bool Lost(const FullKey& key) const { return failed_.contains(key); }
+
+ private:
   bool SeedTainted(const FullKey& key) const;
   bool LookupAliased(const shared::KeyWords& neighbour) const;
 

@@ -28,7 +28,10 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"evicted", run.evicted},
                       {"tombstones", run.tombstones},
                       {"seeded", run.seeded},
-                      {"halved", run.halved}};
+                      {"halved", run.halved},
+                      {"resolved_at_level", run.resolved_at_level},
+                      {"records_searched", run.records_searched},
+                      {"neighbours_read", run.neighbours_read}};
   const EmulatedTimings& t = run.timings;
   j["timings_ms"] = {{"keys", t.keys_ms},
                      {"fixed_point", t.fixed_point_ms},
@@ -72,6 +75,9 @@ nlohmann::json ToJson(const VulkanRun& run, const VulkanDeviceInfo& device) {
           {"tombstones", run.tombstones},
           {"seeded", run.seeded},
           {"halved", run.halved},
+          {"resolved_at_level", run.resolved_at_level},
+          {"records_searched", run.records_searched},
+          {"neighbours_read", run.neighbours_read},
           {"memory", device.memory},
           {"staged", device.staged},
           {"timings_ms",
@@ -111,7 +117,10 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"count_wraps", s.count_wraps},
           {"cells_evicted", s.cells_evicted},
           {"cells_seeded", s.cells_seeded},
-          {"cells_halved", s.cells_halved}};
+          {"cells_halved", s.cells_halved},
+          {"resolved_at_level", s.resolved_at_level},
+          {"records_searched", s.records_searched},
+          {"neighbours_read", s.neighbours_read}};
 }
 
 BackendInstance MakeBackend(const BackendInfo& info, const BackendSettings& settings, VulkanDevice* device) {
@@ -126,7 +135,8 @@ BackendInstance MakeBackend(const BackendInfo& info, const BackendSettings& sett
       break;
     }
     case BackendKind::kEmulated: {
-      auto emulated = std::make_unique<EmulatedBackend>(settings.emulator, KernelWithDefect(settings.defect));
+      auto emulated = std::make_unique<EmulatedBackend>(WithDefect(settings.emulator, settings.defect),
+                                                        KernelWithDefect(settings.defect));
       const EmulatedBackend* made = emulated.get();
       instance.last_frame_stats = [made] { return ToJson(made->run(), made->options()); };
       instance.backend = std::move(emulated);

@@ -17,6 +17,7 @@
 #include "verifier/contract/given_keys.h"
 #include "verifier/contract/image_check.h"
 #include "verifier/contract/rerun_check.h"
+#include "verifier/contract/search_check.h"
 
 namespace hpsf {
 namespace {
@@ -74,8 +75,8 @@ void CheckFrameTable(const std::string& who, const RecordBatch& batch, const Has
 // of its own table. Returns how many records were compared.
 std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference,
                                    const HashedRun& run, const HashTableDump* before,
-                                   const std::vector<bool>& classified, const std::string& prefix,
-                                   LevelVerdict& ideal) {
+                                   const std::vector<bool>& classified, std::uint64_t classified_searches,
+                                   const std::string& prefix, LevelVerdict& ideal) {
   const bool fixed = IntegerSums(config.accumulation);  // fixed64 or packed-decimal: exact
   std::uint64_t compared = 0, failures = 0;
   // Each level of a record in turn (core/shared/levels.h): its own cell, then the coarser ones.
@@ -114,7 +115,7 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
     }
   }
   if (fixed && failures == 0 && std::count(classified.begin(), classified.end(), true) == 0 &&
-      !SameBits(run.image, reference.image)) {
+      classified_searches == 0 && !SameBits(run.image, reference.image)) {
     ideal.Fail(prefix + "nothing failed or aliased, yet the image differs from the reference");
   }
   // Every image, classified records included, is the resolve of its own table: bit for bit in fixed64, within
@@ -178,8 +179,8 @@ struct SequenceState {
 
 EmulatedPair::EmulatedPair(const EmulatorOptions& emulator, Defect defect)
     : options_(emulator),
-      backend_(emulator, KernelWithDefect(defect)),
-      rerun_(RerunOptions(emulator), KernelWithDefect(defect)) {}
+      backend_(WithDefect(emulator, defect), KernelWithDefect(defect)),
+      rerun_(WithDefect(RerunOptions(emulator), defect), KernelWithDefect(defect)) {}
 
 EmulatorOptions EmulatedPair::RerunOptions(const EmulatorOptions& emulator) {
   EmulatorOptions rerun = emulator;
@@ -264,8 +265,12 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
           ideal.Fail(who + ": image: " + pixel);
         }
       } else {
-        s.records_compared += CompareWithReference(batch, config, reference.result(), *run,
-                                                   s.before ? &*s.before : nullptr, classified, who + ": ", ideal);
+        const SearchComparison searches =
+            CompareSearches(batch, reference.result(), *run, s.classes, classified, who + ": ", ideal);
+        s.quality.classified_searches += searches.classified;
+        s.records_compared +=
+            CompareWithReference(batch, config, reference.result(), *run, s.before ? &*s.before : nullptr, classified,
+                                 searches.classified, who + ": ", ideal);
       }
 
       if (judged.ordered && again->trace_hash != run->trace_hash) {
@@ -376,7 +381,8 @@ nlohmann::json CrosscheckReport::ToJson() const {
     j["quality"].push_back({{"backend", q.backend},
                             {"probe_failures", q.probe_failures},
                             {"aliased_slots", q.aliased_slots},
-                            {"aliased_records", q.aliased_records}});
+                            {"aliased_records", q.aliased_records},
+                            {"classified_searches", q.classified_searches}});
   }
   return j;
 }
@@ -396,7 +402,8 @@ std::string CrosscheckReport::ToText() const {
   if (!vulkan_device.empty()) out << "vulkan device: " << vulkan_device << "\n";
   for (const QualityFigures& q : quality) {
     out << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
-        << ", records in aliased slots " << q.aliased_records << "\n";
+        << ", records in aliased slots " << q.aliased_records
+        << (q.classified_searches > 0 ? ", searches classified " + std::to_string(q.classified_searches) : "") << "\n";
   }
   return out.str();
 }

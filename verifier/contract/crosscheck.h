@@ -45,6 +45,9 @@ struct QualityFigures {
   std::uint64_t probe_failures = 0;
   std::uint64_t aliased_slots = 0;    // slots holding records of two or more full keys
   std::uint64_t aliased_records = 0;  // records placed in such slots (or holding a cell that failed before)
+  // --neighbour-search: searching records classified (a level or a corner in a classified slot, a lookup that
+  // aliased, a neighbour lost to a failure; verifier/contract/search_check.h)
+  std::uint64_t classified_searches = 0;
 };
 
 struct CrosscheckReport {

@@ -52,16 +52,7 @@ std::string Describe(std::size_t pixel, int channel, float got, double expected,
 
 void CheckFixed(const RecordBatch& batch, const HashedRun& run, std::vector<std::string>& out) {
   std::vector<std::optional<glm::dvec3>> averages(batch.records.size());
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    const std::uint32_t slot = ResolvedSlot(run, i).slot;
-    if (slot >= run.table.capacity) continue;
-    glm::dvec3 average;
-    for (int c = 0; c < 3; ++c) {
-      average[c] = IntegerSumValue(run.table.fixed_sums[slot][c], run.table.accumulation, run.table.fixed_point_bits) /
-                   double(run.table.counts[slot]);
-    }
-    averages[i] = average;
-  }
+  for (std::size_t i = 0; i < batch.records.size(); ++i) averages[i] = ResolvedAverage(run, batch.records[i], i);
   const Image resolved = ResolvePixels(batch, averages);
   for (std::size_t p = 0; p < resolved.pixels.size() && out.size() < kShown; ++p) {
     for (int c = 0; c < 3; ++c) {
@@ -81,16 +72,17 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
     for (std::uint32_t s = 0; s < spp; ++s) {
       const Record& r = batch.records[p * spp + s];
       if (CheckRecordInputs(r) != InputVerdict::kAccepted) continue;
-      const std::uint32_t slot = ResolvedSlot(run, p * spp + s).slot;
+      const shared::LevelChoice chosen = ResolvedSlot(run, p * spp + s);
+      const std::uint32_t slot = chosen.slot;
       std::optional<glm::dvec3> average;
       // A slot that carried samples into the frame, or was seeded from another level (core/level_seed.h), holds more
       // than this frame's records: level 2 bounds its sum.
       const bool carried =
           slot < run.table.capacity &&
           ((before && before->counts[slot] > 0) || (run.seeded > 0 && run.table.counts[slot] != sums.records[slot]));
-      if (carried) {
-        const std::array<float, 3>& sum = run.table.float_sums[slot];
-        average = glm::dvec3(sum[0], sum[1], sum[2]) / double(run.table.counts[slot]);
+      // A record that searched reads several slots: held to the resolve of the table's own sums, as a carried slot.
+      if (carried || Searches(run.neighbour_search, chosen, run.table.capacity)) {
+        average = ResolvedAverage(run, r, p * spp + s);
       } else if (slot < run.table.capacity) {
         const double n = double(run.table.counts[slot]), k = n - 1.0;
         average = sums.exact[slot] / n;

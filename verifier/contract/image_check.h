@@ -6,7 +6,8 @@
 // mean, plus the final rounding to float. Where nothing failed or aliased, the records of a slot are exactly those of
 // the reference's cell (level 3 checks that apart), so this is the bound against the exact reference. Over frames, a
 // float32 slot that held samples before the frame carries a sum rounded in earlier frames (and blended): the table
-// checker bounds it (level 2), and the image is held to the resolve of the table's own sum.
+// checker bounds it (level 2), and the image is held to the resolve of the table's own sum. So is a record whose
+// resolve searched its neighbours (core/neighbour_search.h): it reads the slots a lookup finds in the table read back.
 #ifndef HPSF_VERIFIER_CONTRACT_IMAGE_CHECK_H
 #define HPSF_VERIFIER_CONTRACT_IMAGE_CHECK_H
 

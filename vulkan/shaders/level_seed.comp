@@ -12,6 +12,7 @@
 #include "float_controls.glsl"
 #include "../../core/shared/full_key.h"
 #include "../../core/shared/level_seed.h"
+#include "../../core/shared/lookup.h"
 #include "../../core/shared/packed_sums.h"
 #include "../../core/shared/probe_scheme.h"
 
@@ -73,9 +74,9 @@ Neighbour Find(KeyWords words) {
   ProbeScheme scheme = MakeProbeScheme(probe_scheme, capacity, probe_limit);
   for (uint probe = 0u; probe < probe_limit; ++probe) {
     uint slot = CandidateSlot(scheme, slot0, probe);
-    uint64_t tag = LoadTag(slot, full);
-    if (tag == 0ul) break;
-    if (tag != wanted || PreviousCount(slot) == 0ul) continue;
+    uint step = LookupStep(LoadTag(slot, full), wanted, PreviousCount(slot));
+    if (step == kLookupEnd) break;
+    if (step == kLookupNext) continue;
     n.found = true;
     n.count = PreviousCount(slot);
     for (uint c = 0u; c < 3u; ++c) {

@@ -5,17 +5,26 @@
 // the image is the same bits. resolve_fixed64.comp, resolve_float32.comp and resolve_packed_decimal.comp define the
 // sums type (and packed-decimal the count word's, HPSF_COUNT_TYPE uint). The test suite
 // compiles it once more per defect (HPSF_DEFECT_AVERAGE_OFF_BY_ONE, HPSF_DEFECT_AVERAGE_IN_FLOAT,
-// HPSF_DEFECT_LEVEL_WRONG_COUNT), run through
-// --resolve-spv as a team's own resolve would be.
+// HPSF_DEFECT_LEVEL_WRONG_COUNT, and the neighbourhood search's HPSF_DEFECT_SEARCH_CLAIMS,
+// HPSF_DEFECT_SEARCH_STOPS_AT_TOMBSTONE, HPSF_DEFECT_STENCIL_TRUNCATED), run through --resolve-spv as a team's own
+// resolve would be. With --neighbour-search, a record whose chosen cell holds fewer than min_count samples also reads
+// the stencil's cells found by lookup (core/shared/neighbour_search.h), and averages them all by count.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
+#if defined(HPSF_DEFECT_SEARCH_CLAIMS)
+#extension GL_EXT_shader_atomic_int64 : require
+#endif
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
 #include "float_controls_fp64.glsl"
 #include "../../core/shared/record_layout.h"
 #include "../../core/shared/table_params.h"
 #include "../../core/shared/packed_sums.h"
+#include "../../core/shared/eviction_priority.h"
 #include "../../core/shared/levels.h"
+#include "../../core/shared/lookup.h"
+#include "../../core/shared/neighbour_search.h"
+#include "../../core/shared/probe_scheme.h"
 #ifndef HPSF_COUNT_TYPE
 #define HPSF_COUNT_TYPE uint64_t
 #endif
@@ -33,6 +42,16 @@ layout(std430, binding = 2) readonly buffer Counts { HPSF_COUNT_TYPE counts[]; }
 layout(std430, binding = 3) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 4) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 5) writeonly buffer Pixels { float pixels[]; };  // RGB per pixel
+// The tags, for the search's lookups (slot_tags.glsl): 32-bit fingerprints or 64-bit full keys.
+#if defined(HPSF_DEFECT_SEARCH_CLAIMS)
+layout(std430, binding = 6) buffer Tags { uint tags[]; };
+layout(std430, binding = 6) buffer FullTags { uint64_t full_tags[]; };
+#else
+layout(std430, binding = 6) readonly buffer Tags { uint tags[]; };
+layout(std430, binding = 6) readonly buffer FullTags { uint64_t full_tags[]; };
+#define HPSF_TAGS_READONLY
+#endif
+#include "slot_tags.glsl"
 
 struct ResolveParams {  // vulkan_filter.cpp's ResolvePush
   double unscale;  // 2^-F, fixed64
@@ -41,9 +60,20 @@ struct ResolveParams {  // vulkan_filter.cpp's ResolvePush
   uint samples_per_pixel;
   uint levels;     // the placements hold `levels` words per record, level-major (core/shared/levels.h)
   uint min_count;  // the resolve reads a record's finest level whose count reaches it, else its coarsest
-  uint reserved;
+  uint neighbour_search;  // 1: a record below min_count also reads its stencil (core/shared/neighbour_search.h)
 };
-layout(push_constant) uniform Params { ResolveParams params; };
+struct SearchParams {  // vulkan_filter.cpp's ResolvePush, after the key's parameters
+  uint probe_limit;
+  uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow
+  uint reserved0;
+  uint reserved1;
+};
+// A resolve written against the first 32 bytes runs without the search.
+layout(push_constant) uniform Params {
+  ResolveParams params;
+  KeyParams key;  // the key path's, to compute a searching record's position again
+  SearchParams search;
+};
 
 dvec3 D(vec4 v) { return dvec3(double(v.x), double(v.y), double(v.z)); }
 
@@ -56,7 +86,7 @@ uint64_t SlotCount(uint slot) {
 }
 
 // The slot record i reads: its finest placed level whose count reaches min_count (core/shared/levels.h).
-uint ResolvedSlot(uint i, ResolveParams p) {
+LevelChoice ResolvedSlot(uint i, ResolveParams p) {
   uint records = p.pixel_count * p.samples_per_pixel;
   LevelChoice choice = NoLevelChosen();
   for (uint level = 0u; level < p.levels; ++level) {
@@ -69,7 +99,79 @@ uint ResolvedSlot(uint i, ResolveParams p) {
 #endif
     choice = ChooseLevel(choice, level, slot, count, p.capacity, p.min_count);
   }
-  return choice.slot;
+  return choice;
+}
+
+// The slot holding the words' identity with samples, found by lookup (core/shared/lookup.h), or capacity.
+uint LookUp(KeyWords words, KeyParams k, SearchParams s, uint capacity) {
+  StoredIdentity identity = IdentityOfWords(words, k.key_identity, k.fingerprint_bits);
+  if (!identity.fits) return capacity;
+  uint slot0 = IndexHash(words, k.normal_in_index) & k.capacity_mask;
+  uint64_t wanted = IdentityValue(identity.words);
+  bool full = k.key_identity == kIdentityFull;
+  ProbeScheme scheme = MakeProbeScheme(s.probe_scheme, capacity, s.probe_limit);
+  for (uint probe = 0u; probe < s.probe_limit; ++probe) {
+    uint slot = CandidateSlot(scheme, slot0, probe);
+    uint64_t tag = LoadTag(slot, full);
+#if defined(HPSF_DEFECT_SEARCH_CLAIMS)  // the first empty slot claimed, as an insertion would
+    if (tag == 0ul) {
+      SwapTag(slot, 0ul, wanted, full);
+      return capacity;
+    }
+#endif
+#if defined(HPSF_DEFECT_SEARCH_STOPS_AT_TOMBSTONE)  // an eviction's tombstone taken for an empty slot
+    if (tag == uint64_t(kTombstoneTag)) return capacity;
+#endif
+    uint step = LookupStep(tag, wanted, SlotCount(slot));
+    if (step == kLookupEnd) break;
+    if (step == kLookupFound) return slot;
+  }
+  return capacity;
+}
+
+// The sums and counts of the slots a record reads, added: integers exactly, float32 sums in double in corner order
+// (core/neighbour_search.h's StencilTotal).
+#if defined(HPSF_FIXED64) || defined(HPSF_PACKED_DECIMAL)
+#define HPSF_TOTAL_TYPE uint64_t
+#else
+#define HPSF_TOTAL_TYPE double
+#endif
+struct Total {
+  HPSF_TOTAL_TYPE sums[3];
+  uint64_t count;
+};
+
+void AddSlot(inout Total t, uint slot) {
+  for (uint c = 0u; c < 3u; ++c) t.sums[c] += HPSF_TOTAL_TYPE(sums[slot * 3u + c]);
+  t.count += SlotCount(slot);
+}
+
+// What record i reads: its chosen slot and, where it searches, the stencil's slots around the chosen level.
+Total ReadSlots(uint i, LevelChoice chosen, ResolveParams p) {
+  Total t;
+  for (uint c = 0u; c < 3u; ++c) t.sums[c] = HPSF_TOTAL_TYPE(0);
+  t.count = 0ul;
+  AddSlot(t, chosen.slot);
+  if (p.neighbour_search == 0u || chosen.settled != 0u) return t;
+  KeyParams k = key;
+  SearchParams s = search;
+  Record r = LoadRecord(i);
+  KeyResult own = ComputeKey(k, r);
+  KeyPosition at = JitteredKeyPosition(k, r);
+#if defined(HPSF_DEFECT_STENCIL_TRUNCATED)  // the side from q - trunc(q): below zero, the wrong neighbour
+  vec3 q = CellCoordinates(at.jittered, at.inverse_size);
+  vec3 fraction = q - trunc(q);
+  uvec3 own_sides = uvec3(fraction.x >= 0.5 ? 1u : 0u, fraction.y >= 0.5 ? 1u : 0u, fraction.z >= 0.5 ? 1u : 0u);
+#else
+  uvec3 own_sides = StencilSidesAtOwnLevel(at);
+#endif
+  uvec3 sides = StencilSidesAtLevel(own_sides, own.words, chosen.level);
+  KeyWords cell = KeyAtLevel(k, own, chosen.level).words;
+  for (uint corner = 1u; corner < kStencilCells; ++corner) {
+    uint slot = LookUp(StencilCellWords(cell, sides, corner), k, s, p.capacity);
+    if (slot < p.capacity) AddSlot(t, slot);
+  }
+  return t;
 }
 
 void ResolvePixel(uint pixel, ResolveParams p) {
@@ -80,21 +182,18 @@ void ResolvePixel(uint pixel, ResolveParams p) {
     Record r = LoadShadingFields(i);
     precise dvec3 value = D(r.radiance_before);
     if (RecordHasVertex(r)) {
-      uint slot = ResolvedSlot(i, p);
+      LevelChoice chosen = ResolvedSlot(i, p);
       precise dvec3 incident = D(r.contribution);
-      if (slot < p.capacity) {
-#ifdef HPSF_PACKED_DECIMAL
-        double count = double(PackedCount(counts[slot]));
-#else
-        double count = double(counts[slot]);
-#endif
+      if (chosen.slot < p.capacity) {
+        Total read = ReadSlots(i, chosen, p);
+        double count = double(read.count);
         for (int c = 0; c < 3; ++c) {
 #ifdef HPSF_FIXED64
-          precise double channel = double(sums[slot * 3u + uint(c)]) * p.unscale;
+          precise double channel = double(read.sums[c]) * p.unscale;
 #elif defined(HPSF_PACKED_DECIMAL)  // sum / 1000, correctly rounded, as core/accumulation.h's IntegerSumValue
-          precise double channel = double(sums[slot * 3u + uint(c)]) / double(kPackedDecimalScale);
+          precise double channel = double(read.sums[c]) / double(kPackedDecimalScale);
 #else
-          precise double channel = double(sums[slot * 3u + uint(c)]);
+          precise double channel = read.sums[c];
 #endif
 #if defined(HPSF_DEFECT_AVERAGE_OFF_BY_ONE)  // the slot's count taken as one more than it holds
           incident[c] = channel / (count + 1.0LF);
