@@ -442,6 +442,19 @@ add_test(NAME HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator
     -DMAX_RECORDS=2 "-DARGS=--backend;emulated;--inject-defect;level-unjittered;--runs;200;--seed;1"
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
 set_tests_properties(HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator PROPERTIES LABELS "unit;levels;untrusted")
+# The neighbourhood search's broken lookups and stencil (emulated/broken_search.h): hpsf fuzz draws the search for
+# them and finds each. A lookup stopping at a tombstone needs priority eviction over frames, drawn more rarely.
+foreach(bug search-claims:300:1 stencil-truncated:300:2 search-stops-at-tombstone:2000:8)
+  string(REPLACE ":" ";" bug ${bug})
+  list(GET bug 0 defect)
+  list(GET bug 1 runs)
+  list(GET bug 2 most)
+  add_test(NAME HpsfFuzz.FindsTheBrokenSearch_${defect}_InTheEmulator
+    COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_${defect}
+      -DMAX_RECORDS=${most} "-DARGS=--backend;emulated;--inject-defect;${defect};--runs;${runs};--seed;1"
+      -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+  set_tests_properties(HpsfFuzz.FindsTheBrokenSearch_${defect}_InTheEmulator PROPERTIES LABELS "unit;levels;untrusted")
+endforeach()
 foreach(bug FULL_BUCKET_MASKED:bucket WINDOW_PAST_THE_END:bucket-window)
   string(REPLACE ":" ";" bug ${bug})
   list(GET bug 0 shader)

@@ -94,10 +94,8 @@ HPSF_FN KeyPosition JitteredKeyPosition(KeyParams p, Record r) {
   return at;
 }
 
-HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
-  if (!RecordHasVertex(r)) return EmptyKeyResult(kKeyNoVertex);
-
-  KeyPosition at = JitteredKeyPosition(p, r);
+// The key of a record with a vertex, from its position (JitteredKeyPosition's).
+HPSF_FN KeyResult KeyAtPosition(KeyParams p, Record r, KeyPosition at) {
   int level = at.level;
   Cell cell = CellOf(at.jittered, at.inverse_size);
   KeyWords words;
@@ -124,6 +122,11 @@ HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
   k.identity_high = identity.words.y;
   k.padding1 = 0u;
   return k;
+}
+
+HPSF_FN KeyResult ComputeKey(KeyParams p, Record r) {
+  if (!RecordHasVertex(r)) return EmptyKeyResult(kKeyNoVertex);
+  return KeyAtPosition(p, r, JitteredKeyPosition(p, r));
 }
 
 HPSF_SHARED_END

@@ -96,15 +96,25 @@ void BM_EmulatedKeyIdentity(benchmark::State& state) {
 }
 BENCHMARK(BM_EmulatedKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Multi-level accumulation (--levels 1, 2, 3; --min-count 4 above one level, core/shared/levels.h), side by side in
-// one run: what each coarser level adds to the accumulate and the threshold to the resolve.
+// Voxels with few vertices, side by side in one run: multi-level accumulation (--levels 1, 2, 3, core/shared/levels.h)
+// and the neighbourhood search (second argument 1: --neighbour-search, core/shared/neighbour_search.h), with
+// --min-count 4 wherever either is on: what each coarser level adds to the accumulate, the threshold and the search
+// to the resolve.
 void BM_EmulatedLevels(benchmark::State& state) {
   FilterConfig config = TableConfig();
   config.levels = std::uint32_t(state.range(0));
-  config.min_count = config.levels > 1 ? 4 : 1;
-  FilterFrames(state, config, "levels " + std::to_string(config.levels));
+  config.neighbour_search = state.range(1) != 0;
+  config.min_count = config.levels > 1 || config.neighbour_search ? 4 : 1;
+  FilterFrames(state, config, "levels " + std::to_string(config.levels) + (config.neighbour_search ? ", search" : ""));
 }
-BENCHMARK(BM_EmulatedLevels)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EmulatedLevels)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({3, 0})
+    ->Args({1, 1})
+    ->Args({3, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // What the Vulkan host adds to every frame: the read-back check of core/read_back_check.h (and the probe statistics
 // it hands on to) over the 2M-record frame's run, one thread, beside the whole backend above.

@@ -27,15 +27,22 @@ void BM_ReferenceLevels(benchmark::State& state) {
   const RecordBatch& batch = CornellBatch();
   FilterConfig config;
   config.levels = std::uint32_t(state.range(0));
-  config.min_count = config.levels > 1 ? 4 : 1;
+  config.neighbour_search = state.range(1) != 0;
+  config.min_count = config.levels > 1 || config.neighbour_search ? 4 : 1;
   for (auto _ : state) {
     FilterResult result = ReferenceFilter(batch, config);
     benchmark::DoNotOptimize(result.image.pixels.data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * batch.records.size()));
-  state.SetLabel("levels " + std::to_string(config.levels));
+  state.SetLabel("levels " + std::to_string(config.levels) + (config.neighbour_search ? ", search" : ""));
 }
-BENCHMARK(BM_ReferenceLevels)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReferenceLevels)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({3, 0})
+    ->Args({1, 1})
+    ->Args({3, 1})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace hpsf

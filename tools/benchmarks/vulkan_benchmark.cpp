@@ -91,15 +91,16 @@ void BM_VulkanKeyIdentity(benchmark::State& state) {
 }
 BENCHMARK(BM_VulkanKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Multi-level accumulation (--levels 1, 2, 3; --min-count 4 above one level), fixed64, staging auto, side by side:
-// the accumulate's and the resolve's device time.
+// Multi-level accumulation (--levels 1, 2, 3) and the neighbourhood search (second argument 1), --min-count 4 where
+// either is on, fixed64, staging auto, side by side: the accumulate's and the resolve's device time.
 void BM_VulkanLevels(benchmark::State& state) {
   VulkanFilter* filter = benchmarks::FilterOn(state, StagingPolicy::kAuto);
   if (!filter) return;
   FilterConfig config = TableConfig(Accumulation::kFixed64);
   config.levels = std::uint32_t(state.range(0));
-  config.min_count = config.levels > 1 ? 4 : 1;
-  state.SetLabel("levels " + std::to_string(config.levels));
+  config.neighbour_search = state.range(1) != 0;
+  config.min_count = config.levels > 1 || config.neighbour_search ? 4 : 1;
+  state.SetLabel("levels " + std::to_string(config.levels) + (config.neighbour_search ? ", search" : ""));
   double accumulate_ms = 0, resolve_ms = 0;
   for (auto _ : state) {
     VulkanRun run = filter->Run(CornellFrame(), config);
@@ -111,7 +112,14 @@ void BM_VulkanLevels(benchmark::State& state) {
   state.counters["resolve_ms"] = resolve_ms / double(state.iterations());
   state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
-BENCHMARK(BM_VulkanLevels)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VulkanLevels)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({3, 0})
+    ->Args({1, 1})
+    ->Args({3, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace hpsf

@@ -86,9 +86,11 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "The resolve reads a record's finest level whose count reaches this, else its coarsest "
                   "(needs --levels 2 or more, or --neighbour-search)")
       ->capture_default_str();
-  command.add_flag("--neighbour-search", c.neighbour_search,
-                   "A record whose chosen cell holds fewer than --min-count samples also reads the 2^3 cells of its "
-                   "level nearest its jittered position, found by lookup, and averages them by count");
+  command
+      .add_option("--neighbour-search", o.neighbour_search,
+                  "on or off: a record whose chosen cell holds fewer than --min-count samples also reads the 2^3 "
+                  "cells of its level nearest its jittered position, found by lookup, and averages them by count")
+      ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction; repeatable): the same bits, at the pass's cost");
@@ -100,6 +102,10 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   config.accumulation = ParseAccumulation(o.accumulation);
   if (o.lod != "on" && o.lod != "off") throw ConfigError("--lod", "expected on or off; got '" + o.lod + "'");
   config.lod = o.lod == "on";
+  if (o.neighbour_search != "on" && o.neighbour_search != "off") {
+    throw ConfigError("--neighbour-search", "expected on or off; got '" + o.neighbour_search + "'");
+  }
+  config.neighbour_search = o.neighbour_search == "on";
   if (o.fixed_point_bits != "auto") {
     int bits = 0;
     const char* end = o.fixed_point_bits.data() + o.fixed_point_bits.size();

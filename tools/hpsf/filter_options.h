@@ -19,6 +19,7 @@ struct FilterOptions {
   FilterConfig config;
   std::string normal = "sign";
   std::string lod = "on";
+  std::string neighbour_search = "off";  // --neighbour-search: on or off
   std::string accumulation = "fixed64";
   std::string fixed_point_bits = "auto";
   std::string eviction = "none";

@@ -212,11 +212,16 @@ int Run(FuzzOptions& o, bool options_only) {
   // Several levels only where hpsf's own kernels add and resolve them (the level-unjittered kernel adds them, wrongly).
   const bool levels = (defect == Defect::kNone || defect == Defect::kLevelUnjittered) &&
                       o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone,
+  // The search where hpsf's own resolve runs it, rightly or as a broken search kernel.
+  const bool search_defect = defect == Defect::kSearchClaims || defect == Defect::kSearchStopsAtTombstone ||
+                             defect == Defect::kStencilTruncated;
+  const bool search =
+      (defect == Defect::kNone || search_defect) && o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+  const AdversarialOptions generate{o.max_records, defect == Defect::kNone || search_defect,
                                     accumulation,  backend.on_device,
                                     probing,       full_keys,
                                     fingerprints,  packed_sums,
-                                    levels};
+                                    levels,        search};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

@@ -123,7 +123,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
   if (c.levels != 1 || c.min_count != 1)
     a.insert(a.end(), {"--levels", std::to_string(c.levels), "--min-count", std::to_string(c.min_count)});
-  if (c.neighbour_search) a.push_back("--neighbour-search");
+  if (c.neighbour_search) a.insert(a.end(), {"--neighbour-search", "on"});
   if (c.compaction != Compaction::kNone) a.insert(a.end(), {"--compaction", ToString(c.compaction)});
   if (c.key_identity != KeyIdentity::kFingerprint) a.insert(a.end(), {"--key-identity", ToString(c.key_identity)});
   const bool faithful = emulator.mode == simt::Mode::kFaithful;

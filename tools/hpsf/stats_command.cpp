@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/footprint.h"
 #include "core/key_batch.h"
+#include "reference/reference_filter.h"
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/filter_options.h"
 #include "tracer/path_tracer.h"
@@ -71,6 +72,21 @@ void PrintText(const TableStatistics& s, const std::string& input) {
     for (std::size_t k = 0; k < histogram.size(); ++k) {
       std::printf(" %llu-%llu: %llu", 1ull << k, (2ull << k) - 1, (unsigned long long)histogram[k]);
     }
+  }
+  std::uint64_t resolved = 0;
+  for (const std::uint64_t n : s.resolved_at_level) resolved += n;
+  if (s.resolved_at_level.size() > 1 || s.records_searched > 0) {
+    std::printf("\nthe resolve's fallbacks (the reference's exact map), of %llu records that read a cell:",
+                (unsigned long long)resolved);
+  }
+  for (std::size_t k = 0; k < s.resolved_at_level.size() && s.resolved_at_level.size() > 1; ++k) {
+    std::printf(" %zu up: %llu (%.2f%%)", k, (unsigned long long)s.resolved_at_level[k],
+                resolved ? 100.0 * double(s.resolved_at_level[k]) / double(resolved) : 0.0);
+  }
+  if (s.records_searched > 0) {
+    std::printf(" searched: %llu (%.2f%%), %.2f neighbour cells each", (unsigned long long)s.records_searched,
+                resolved ? 100.0 * double(s.records_searched) / double(resolved) : 0.0,
+                double(s.neighbours_read) / double(s.records_searched));
   }
   if (s.jitter.empty()) {
     std::printf("\njitter tests: none (the keys are not hpsf's)\n");
@@ -136,6 +152,12 @@ int Run(StatsOptions& o, bool options_only) {
   const std::vector<KeyResult> keys = ComputeKeys(batch.records, params);
   TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
   s.records_per_coarser_cell = RecordsPerCoarserCell(keys, params, config.levels);
+  if (config.levels > 1 || config.neighbour_search) {
+    const FilterResult exact = ReferenceFilter(batch, config);
+    s.resolved_at_level = exact.stats.resolved_at_level;
+    s.records_searched = exact.stats.records_searched;
+    s.neighbours_read = exact.stats.neighbours_read;
+  }
   PrintReport(s, o, config, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return s.ExceedsTheory() ? kExitWarn : kExitOk;
 }

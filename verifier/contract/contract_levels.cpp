@@ -170,6 +170,7 @@ struct SequenceState {
   QualityFigures quality;
   std::uint64_t keys_compared = 0, records_compared = 0;
   bool replayed_float_order = false;
+  bool lookup_aliased = false;  // a search's lookup read another cell, in the run or its rerun, in some frame
   std::set<std::string> promises;
   bool faulted = false;
   std::string fault_at;  // " from frame N on", in a sequence
@@ -249,7 +250,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
       CheckFrameTable(who + " rerun", batch, *again, s.rerun_before, config, tables);
 
       const std::vector<bool>& classified = s.classes.AddFrame(*run);
-      s.rerun_classes.AddFrame(*again);
+      const std::vector<bool>& rerun_classified = s.rerun_classes.AddFrame(*again);
       s.quality.probe_failures += run->probe_failures;
       s.quality.aliased_slots += s.classes.aliased_slots();
       s.quality.aliased_records += s.classes.classified_records();
@@ -268,6 +269,12 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         const SearchComparison searches =
             CompareSearches(batch, reference.result(), *run, s.classes, classified, who + ": ", ideal);
         s.quality.classified_searches += searches.classified;
+        // The rerun's own lookups, for level 4's promise: its differences from the reference are not level 3's.
+        LevelVerdict rerun_searches;
+        s.lookup_aliased =
+            s.lookup_aliased || searches.classified > 0 ||
+            CompareSearches(batch, reference.result(), *again, s.rerun_classes, rerun_classified, "", rerun_searches)
+                    .classified > 0;
         s.records_compared +=
             CompareWithReference(batch, config, reference.result(), *run, s.before ? &*s.before : nullptr, classified,
                                  searches.classified, who + ": ", ideal);
@@ -276,8 +283,8 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
       if (judged.ordered && again->trace_hash != run->trace_hash) {
         determinism.Fail(who + ": the trace hash changed between two identical runs");
       }
-      const RerunPromise promise =
-          RerunPromiseFor(judged.ordered, config.accumulation, s.classes.any() || s.rerun_classes.any());
+      const RerunPromise promise = RerunPromiseFor(judged.ordered, config.accumulation,
+                                                   s.classes.any() || s.rerun_classes.any(), s.lookup_aliased);
       s.promises.insert(ToString(promise));
       for (const std::string& difference : CompareReruns(*run, *again, promise)) {
         determinism.Fail(who + ": " + difference);

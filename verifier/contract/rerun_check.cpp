@@ -63,6 +63,9 @@ const char* ToString(RerunPromise promise) {
       return "ordered run: table, placements and image bit for bit";
     case RerunPromise::kCountsSumsAndImage:
       return "integer sums, nothing failed or aliased: each record's count and sums, and the image";
+    case RerunPromise::kCountsAndSums:
+      return "integer sums, nothing failed or aliased but a search's lookup: each record's count and sums (which "
+             "cells a lookup finds follows the order of claims)";
     case RerunPromise::kCounts:
       return "float32, nothing failed or aliased: each record's count (sums follow the order of adds)";
     case RerunPromise::kNothing:
@@ -71,10 +74,11 @@ const char* ToString(RerunPromise promise) {
   return "?";
 }
 
-RerunPromise RerunPromiseFor(bool ordered, Accumulation accumulation, bool failed_or_aliased) {
+RerunPromise RerunPromiseFor(bool ordered, Accumulation accumulation, bool failed_or_aliased, bool lookup_aliased) {
   if (ordered) return RerunPromise::kEverything;
   if (failed_or_aliased) return RerunPromise::kNothing;
-  return IntegerSums(accumulation) ? RerunPromise::kCountsSumsAndImage : RerunPromise::kCounts;
+  if (!IntegerSums(accumulation)) return RerunPromise::kCounts;
+  return lookup_aliased ? RerunPromise::kCountsAndSums : RerunPromise::kCountsSumsAndImage;
 }
 
 std::vector<std::string> CompareReruns(const HashedRun& first, const HashedRun& second, RerunPromise promise) {
@@ -86,6 +90,7 @@ std::vector<std::string> CompareReruns(const HashedRun& first, const HashedRun& 
       CompareWholeTables(first, second, out);
       break;
     case RerunPromise::kCountsSumsAndImage:
+    case RerunPromise::kCountsAndSums:
       CompareSlotsOfEachRecord(first, second, true, out);
       break;
     case RerunPromise::kCounts:
@@ -94,7 +99,8 @@ std::vector<std::string> CompareReruns(const HashedRun& first, const HashedRun& 
     case RerunPromise::kNothing:
       break;
   }
-  if (promise != RerunPromise::kCounts && !SameBits(first.image, second.image)) out.push_back("the image changed");
+  const bool image = promise == RerunPromise::kEverything || promise == RerunPromise::kCountsSumsAndImage;
+  if (image && !SameBits(first.image, second.image)) out.push_back("the image changed");
   return out;
 }
 

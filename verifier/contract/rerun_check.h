@@ -19,6 +19,10 @@ enum class RerunPromise {
   // Unordered (fast mode on all cores, a device), fixed64, nothing failed or aliased in either run: a record's
   // slot may change with the order of claims, but its count and exact sums do not, nor does the image.
   kCountsSumsAndImage,
+  // Unordered, fixed64, nothing failed or aliased, but a neighbourhood search's lookup found another cell in either
+  // run (verifier/contract/search_check.h): which slots a lookup crosses follows the order of claims, so the image is
+  // not promised; the counts and sums are.
+  kCountsAndSums,
   // Unordered, float32, nothing failed or aliased: counts as above; the sums are rounded in the order the adds
   // happened to apply, so their bits and the image's are not promised (level 2 bounds the sums).
   kCounts,
@@ -29,7 +33,9 @@ enum class RerunPromise {
 const char* ToString(RerunPromise promise);
 
 // ordered: the run's order of memory operations is fixed by a schedule (the emulator's faithful mode).
-RerunPromise RerunPromiseFor(bool ordered, Accumulation accumulation, bool failed_or_aliased);
+// lookup_aliased: a search's lookup read another cell in either run.
+RerunPromise RerunPromiseFor(bool ordered, Accumulation accumulation, bool failed_or_aliased,
+                             bool lookup_aliased = false);
 
 // The differences between two runs on the same inputs that the promise rules out, each naming a record or the
 // image; empty when the rerun keeps the promise.

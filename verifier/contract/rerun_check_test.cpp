@@ -48,6 +48,9 @@ TEST(RerunPromise, ClassifiesByOrderAccumulationAndFailures) {
   EXPECT_EQ(RerunPromiseFor(false, Accumulation::kFloat32, false), RerunPromise::kCounts);
   EXPECT_EQ(RerunPromiseFor(false, Accumulation::kFixed64, true), RerunPromise::kNothing);
   EXPECT_EQ(RerunPromiseFor(false, Accumulation::kFloat32, true), RerunPromise::kNothing);
+  EXPECT_EQ(RerunPromiseFor(false, Accumulation::kFixed64, false, true), RerunPromise::kCountsAndSums);
+  EXPECT_EQ(RerunPromiseFor(false, Accumulation::kFloat32, false, true), RerunPromise::kCounts);
+  EXPECT_EQ(RerunPromiseFor(false, Accumulation::kFixed64, true, true), RerunPromise::kNothing);
 }
 
 TEST(RerunPromise, Float32SumsInAnotherOrderKeepAnUnorderedPromise) {

@@ -467,6 +467,11 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
     a.config.levels = 2u + level_draws.Bits() % 2u;
     a.config.min_count = 1u + level_draws.Bits() % 4u;
   }
+  // The neighbourhood search (core/shared/neighbour_search.h) in a quarter of the cases, with a threshold of 2 to 4.
+  if (options.search && level_draws.Bits() % 4u == 0u) {
+    a.config.neighbour_search = true;
+    a.config.min_count = std::max(a.config.min_count, 2u + level_draws.Bits() % 3u);
+  }
   a.config.Validate();
   return a;
 }

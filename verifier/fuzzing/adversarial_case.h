@@ -66,6 +66,9 @@ struct AdversarialOptions {
   // Whether a case may add records at several levels (--levels): false where a broken kernel or a team's accumulate
   // or resolve shader runs, which need not know them.
   bool levels = true;
+  // Whether a case may search the neighbours of cells below the threshold (--neighbour-search): false where a team's
+  // accumulate or resolve shader runs.
+  bool search = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -102,10 +102,16 @@ class Shrinker {
     if (!keep_.temporal && c.config.temporal.mode != TemporalMode::kIntegrate) {
       attempt([](AdversarialCase& a) { a.config.temporal = {}; });
     }
+    if (c.config.neighbour_search) {
+      attempt([](AdversarialCase& a) {
+        a.config.neighbour_search = false;
+        if (a.config.levels == 1) a.config.min_count = 1;
+      });
+    }
     if (c.config.levels > 1) {
       attempt([](AdversarialCase& a) {
         a.config.levels = 1;
-        a.config.min_count = 1;
+        if (!a.config.neighbour_search) a.config.min_count = 1;
       });
     }
     if (c.config.fixed_point_bits) attempt([](AdversarialCase& a) { a.config.fixed_point_bits.reset(); });

@@ -255,6 +255,9 @@ nlohmann::json TableStatistics::ToJson() const {
                         {"mean_theory", mean_probes_theory}}},
                       {"records_per_cell", {{"log2_histogram", records_per_cell}, {"max", max_records_per_cell}}},
                       {"records_per_coarser_cell", records_per_coarser_cell},
+                      {"resolved_at_level", resolved_at_level},
+                      {"records_searched", records_searched},
+                      {"neighbours_read", neighbours_read},
                       {"extrapolated_alias_rate_32", extrapolated_alias_rate_32},
                       {"exceeds_theory", ExceedsTheory()}};
   for (const ProbeLimitFigure& f : probe_limits) {

@@ -61,6 +61,10 @@ struct TableStatistics {
   // With --levels L > 1: [k - 1][b], the cells k levels above the records' own (core/shared/levels.h) that
   // 2^b .. 2^(b+1) - 1 records reach at that level, k = 1 .. L - 1.
   std::vector<std::vector<std::uint64_t>> records_per_coarser_cell;
+  // The fallbacks the resolve takes, from the reference's exact map: with --levels, [k] the records that read their
+  // cell k levels up; with --neighbour-search, the records that searched and the neighbour cells they read.
+  std::vector<std::uint64_t> resolved_at_level;
+  std::uint64_t records_searched = 0, neighbours_read = 0;
   std::vector<JitterVerdict> jitter;
   double jitter_alpha = 0.0;  // each jitter test's level (Sidak, family 0.001)
 

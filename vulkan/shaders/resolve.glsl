@@ -156,8 +156,8 @@ Total ReadSlots(uint i, LevelChoice chosen, ResolveParams p) {
   KeyParams k = key;
   SearchParams s = search;
   Record r = LoadRecord(i);
-  KeyResult own = ComputeKey(k, r);
-  KeyPosition at = JitteredKeyPosition(k, r);
+  KeyPosition at = JitteredKeyPosition(k, r);  // the jitter once, for the key and the side
+  KeyResult own = KeyAtPosition(k, r, at);
 #if defined(HPSF_DEFECT_STENCIL_TRUNCATED)  // the side from q - trunc(q): below zero, the wrong neighbour
   vec3 q = CellCoordinates(at.jittered, at.inverse_size);
   vec3 fraction = q - trunc(q);
