@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "core/level_seed.h"
+#include "core/prefetch.h"
 
 namespace hpsf {
 
@@ -33,16 +34,29 @@ void CountResolvedLevels(HashedRun& run) {
 }
 
 NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen) {
-  const CellFinder in_table = [&](const shared::KeyWords& w) {
-    return FindSlotInTable(run.table, w, run.key_params.normal_in_index != 0);
-  };
-  return SearchNeighbours(run.key_params, r, shared::ComputeKey(run.key_params, r), chosen, std::uint32_t(i), in_table);
+  NeighbourReads reads;
+  reads.record = std::uint32_t(i);
+  reads.level = chosen.level;
+  reads.cells.fill(kNotRead);
+  const KeyParams& params = run.key_params;
+  const auto words = StencilNeighbourWords(params, r, shared::JitteredKeyPosition(params, r), chosen.level);
+  // The seven lookups are independent: their first candidates are asked for at once, so the misses overlap.
+  for (const shared::KeyWords& w : words) {
+    const std::uint32_t slot0 = shared::IndexHash(w, params.normal_in_index) & params.capacity_mask;
+    PrefetchLine(&run.table.tags[slot0]);
+    PrefetchLine(&run.table.counts[slot0]);
+  }
+  for (std::size_t c = 0; c < words.size(); ++c) {
+    const std::optional<std::uint32_t> found = FindSlotInTable(run.table, words[c], params.normal_in_index != 0);
+    if (found) reads.cells[c] = *found;
+  }
+  return reads;
 }
 
-std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r, std::size_t i, NeighbourReads* reads,
+std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r, std::size_t i,
+                                          const shared::LevelChoice& chosen, NeighbourReads* reads,
                                           const SlotSearch* search) {
   const HashTableDump& table = run.table;
-  const shared::LevelChoice chosen = ResolvedSlot(run, i);
   if (chosen.slot >= table.capacity) return std::nullopt;
   const bool integer = IntegerSums(table.accumulation);
   StencilTotal total;
@@ -68,7 +82,7 @@ void CountSearches(HashedRun& run, const RecordBatch& batch) {
     const shared::LevelChoice chosen = ResolvedSlot(run, i);
     if (!Searches(true, chosen, run.table.capacity)) continue;
     NeighbourReads reads;
-    ResolvedAverage(run, batch.records[i], i, &reads);
+    ResolvedAverage(run, batch.records[i], i, chosen, &reads);
     ++run.records_searched;
     for (const std::uint32_t slot : reads.cells) run.neighbours_read += slot != kNotRead;
   }

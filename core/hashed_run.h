@@ -64,11 +64,12 @@ using SlotSearch = std::function<NeighbourReads(const Record& r, std::size_t i, 
 // the table as read back (core/level_seed.h's FindSlotInTable).
 NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen);
 
-// What record i's resolve reads in the run's table and averages: its chosen slot and, where it searches
-// (core/neighbour_search.h), the slots `search` found (by default SearchInTable). Nothing where no level is placed.
-// reads, when given, receives the search's.
+// What record i's resolve reads in the run's table and averages: the slot of its chosen level (ResolvedSlot's, or a
+// broken resolve's) and, where it searches (core/neighbour_search.h), the slots `search` found (by default
+// SearchInTable). Nothing where no level is placed. reads, when given, receives the search's.
 std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r, std::size_t i,
-                                          NeighbourReads* reads = nullptr, const SlotSearch* search = nullptr);
+                                          const shared::LevelChoice& chosen, NeighbourReads* reads = nullptr,
+                                          const SlotSearch* search = nullptr);
 
 // Fills run.records_searched and run.neighbours_read from ResolvedAverage of every record.
 void CountSearches(HashedRun& run, const RecordBatch& batch);

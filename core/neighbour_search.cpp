@@ -3,10 +3,10 @@
 namespace hpsf {
 
 std::array<shared::KeyWords, shared::kStencilCells - 1> StencilNeighbourWords(const KeyParams& params, const Record& r,
-                                                                              const KeyResult& own,
+                                                                              const shared::KeyPosition& at,
                                                                               std::uint32_t level) {
-  const glm::uvec3 sides = shared::StencilSidesAtLevel(
-      shared::StencilSidesAtOwnLevel(shared::JitteredKeyPosition(params, r)), own.words, level);
+  const KeyResult own = shared::KeyAtPosition(params, r, at);
+  const glm::uvec3 sides = shared::StencilSidesAtLevel(shared::StencilSidesAtOwnLevel(at), own.words, level);
   const shared::KeyWords cell = shared::KeyAtLevel(params, own, level).words;
   std::array<shared::KeyWords, shared::kStencilCells - 1> words;
   for (std::uint32_t corner = 1; corner < shared::kStencilCells; ++corner) {
@@ -15,13 +15,13 @@ std::array<shared::KeyWords, shared::kStencilCells - 1> StencilNeighbourWords(co
   return words;
 }
 
-NeighbourReads SearchNeighbours(const KeyParams& params, const Record& r, const KeyResult& own,
-                                const shared::LevelChoice& chosen, std::uint32_t record, const CellFinder& find) {
+NeighbourReads SearchNeighbours(const KeyParams& params, const Record& r, const shared::LevelChoice& chosen,
+                                std::uint32_t record, const CellFinder& find) {
   NeighbourReads reads;
   reads.record = record;
   reads.level = chosen.level;
   reads.cells.fill(kNotRead);
-  const auto words = StencilNeighbourWords(params, r, own, chosen.level);
+  const auto words = StencilNeighbourWords(params, r, shared::JitteredKeyPosition(params, r), chosen.level);
   for (std::size_t c = 0; c < words.size(); ++c) {
     const std::optional<std::uint32_t> found = find(words[c]);
     if (found) reads.cells[c] = *found;

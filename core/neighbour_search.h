@@ -37,15 +37,16 @@ inline bool Searches(bool neighbour_search, const shared::LevelChoice& chosen, s
   return neighbour_search && chosen.slot < not_placed && chosen.settled == 0u;
 }
 
-// The key words of the stencil's corners 1..7 around the record's chosen level ([c - 1] for corner c). own: the
-// record's own key (keyed), which the caller computed with the key path; its jittered position is computed again.
+// The key words of the stencil's corners 1..7 around a record's cell `level` levels above its own ([c - 1] for corner
+// c), from its jittered position (core/shared/key.h's JitteredKeyPosition, computed once by the caller).
 std::array<shared::KeyWords, shared::kStencilCells - 1> StencilNeighbourWords(const KeyParams& params, const Record& r,
-                                                                              const KeyResult& own,
+                                                                              const shared::KeyPosition& at,
                                                                               std::uint32_t level);
 
-// The stencil's corners around the record's chosen level, each looked up with `find`.
-NeighbourReads SearchNeighbours(const KeyParams& params, const Record& r, const KeyResult& own,
-                                const shared::LevelChoice& chosen, std::uint32_t record, const CellFinder& find);
+// The stencil's corners around the record's chosen level, each looked up with `find`; its key and position are
+// computed again (the jitter once).
+NeighbourReads SearchNeighbours(const KeyParams& params, const Record& r, const shared::LevelChoice& chosen,
+                                std::uint32_t record, const CellFinder& find);
 
 // The sums and counts of the cells a resolve read, added: integers exactly, float32 sums in double in corner order.
 struct StencilTotal {

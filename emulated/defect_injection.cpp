@@ -301,13 +301,14 @@ Defect ParseDefect(const std::string& text) {
   if (text == "weak-cas-old-value") return Defect::kWeakCasOldValue;
   if (text == "full-key-low-word") return Defect::kFullKeyLowWord;
   if (text == "level-unjittered") return Defect::kLevelUnjittered;
+  if (text == "level-wrong-count") return Defect::kLevelWrongCount;
   if (text == "search-claims") return Defect::kSearchClaims;
   if (text == "search-stops-at-tombstone") return Defect::kSearchStopsAtTombstone;
   if (text == "stencil-truncated") return Defect::kStencilTruncated;
   throw ConfigError("--inject-defect",
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
                     "count-store-join-first, last-seen-claimer-only, full-bucket-masked, window-past-the-end, "
-                    "weak-cas-old-value, full-key-low-word, level-unjittered, search-claims, "
+                    "weak-cas-old-value, full-key-low-word, level-unjittered, level-wrong-count, search-claims, "
                     "search-stops-at-tombstone or stencil-truncated; got '" +
                         text + "'");
 }
@@ -346,6 +347,8 @@ std::string ToString(Defect defect) {
       return "full-key-low-word";
     case Defect::kLevelUnjittered:
       return "level-unjittered";
+    case Defect::kLevelWrongCount:
+      return "level-wrong-count";
     case Defect::kSearchClaims:
       return "search-claims";
     case Defect::kSearchStopsAtTombstone:
@@ -390,6 +393,7 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
       return FullKeyLowWord;
     case Defect::kLevelUnjittered:
       return LevelUnjittered;
+    case Defect::kLevelWrongCount:
     case Defect::kSearchClaims:
     case Defect::kSearchStopsAtTombstone:
     case Defect::kStencilTruncated:
@@ -399,10 +403,11 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
 }
 
 EmulatorOptions WithDefect(EmulatorOptions options, Defect defect) {
-  options.search_defect = defect == Defect::kSearchClaims             ? SearchDefect::kClaims
-                          : defect == Defect::kSearchStopsAtTombstone ? SearchDefect::kStopsAtTombstone
-                          : defect == Defect::kStencilTruncated       ? SearchDefect::kStencilTruncated
-                                                                      : SearchDefect::kNone;
+  options.resolve_defect = defect == Defect::kLevelWrongCount          ? ResolveDefect::kLevelWrongCount
+                           : defect == Defect::kSearchClaims           ? ResolveDefect::kClaims
+                           : defect == Defect::kSearchStopsAtTombstone ? ResolveDefect::kStopsAtTombstone
+                           : defect == Defect::kStencilTruncated       ? ResolveDefect::kStencilTruncated
+                                                                       : ResolveDefect::kNone;
   return options;
 }
 

@@ -33,7 +33,10 @@ enum class Defect {
   // Multi-level accumulation (--levels, core/shared/levels.h): the coarser cells keyed at the record's unjittered
   // position, so they no longer nest its own (jittered) cell.
   kLevelUnjittered,
-  // The resolve's neighbourhood search (--neighbour-search, emulated/broken_search.h): a lookup that claims, one that
+  // The resolve's threshold judged by the count of the record's own cell at every level
+  // (resolve_LEVEL_WRONG_COUNT.spv).
+  kLevelWrongCount,
+  // The resolve's neighbourhood search (--neighbour-search, emulated/broken_resolve.h): a lookup that claims, one that
   // stops at a tombstone, a stencil whose side comes from truncation.
   kSearchClaims,
   kSearchStopsAtTombstone,
@@ -42,8 +45,8 @@ enum class Defect {
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
 // "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end",
-// "weak-cas-old-value", "full-key-low-word", "level-unjittered", "search-claims", "search-stops-at-tombstone",
-// "stencil-truncated"; a ConfigError naming --inject-defect otherwise.
+// "weak-cas-old-value", "full-key-low-word", "level-unjittered", "level-wrong-count", "search-claims",
+// "search-stops-at-tombstone", "stencil-truncated"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 // The accumulate kernel a defect runs (hpsf's own where the defect lies in another pass).

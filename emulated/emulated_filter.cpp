@@ -470,15 +470,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
   };
   const shared::ProbeScheme scheme = ProbeSchemeOf(config);
   // A record whose chosen cell holds fewer than min_count samples searches its neighbours (core/neighbour_search.h).
-  // A broken search that claims writes the table: then the pixels are resolved on one thread, in order.
-  const bool broken_search = options.search_defect != SearchDefect::kNone;
-  const SlotSearch search = broken_search
-                                ? BrokenSearch(options.search_defect, run)
+  // A broken resolve (a search that claims writes the table) resolves the pixels on one thread, in order.
+  const bool broken_resolve = options.resolve_defect != ResolveDefect::kNone;
+  const SlotSearch search = broken_resolve
+                                ? BrokenSearch(options.resolve_defect, run)
                                 : SlotSearch([&](const Record& r, std::size_t i, const shared::LevelChoice& c) {
                                     return SearchInTable(run, r, i, c);
                                   });
   const Tally tally = ParallelReduce(
-      run.image.pixels.size(), broken_search ? run.image.pixels.size() + 1 : 2048,
+      run.image.pixels.size(), broken_resolve ? run.image.pixels.size() + 1 : 2048,
       Tally{0, std::vector<std::uint64_t>(config.probe_limit, 0), std::vector<std::uint64_t>(config.levels, 0)},
       [&](std::size_t begin, std::size_t end, Tally tally) {
         for (std::size_t pixel = begin; pixel < end; ++pixel) {
@@ -492,13 +492,14 @@ EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config,
               const std::uint32_t index = shared::ProbeIndex(scheme, run.keys[i].slot0, own);
               if (index != shared::kNoCandidate) ++tally.probe_lengths[index];
             }
-            const shared::LevelChoice chosen = ResolvedSlot(run, i);
+            const shared::LevelChoice chosen =
+                broken_resolve ? BrokenLevelChoice(options.resolve_defect, run, i) : ResolvedSlot(run, i);
             const std::uint32_t slot = chosen.slot;
             glm::dvec3 average;
             if (slot < config.capacity && Searches(config.neighbour_search, chosen, config.capacity)) {
               ++tally.resolved_at_level[chosen.level];
               NeighbourReads reads;
-              average = *ResolvedAverage(run, batch.records[i], i, &reads, &search);
+              average = *ResolvedAverage(run, batch.records[i], i, chosen, &reads, &search);
               ++tally.records_searched;
               for (const std::uint32_t found : reads.cells) tally.neighbours_read += found != kNotRead;
             } else if (slot < config.capacity) {

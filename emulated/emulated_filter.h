@@ -15,7 +15,7 @@
 #include "core/key_batch.h"
 #include "core/record.h"
 #include "emulated/accumulate_kernel.h"
-#include "emulated/broken_search.h"
+#include "emulated/broken_resolve.h"
 #include "emulated/emulator_workspace.h"
 #include "emulated/eviction_kernels.h"
 #include "emulated/simt/launcher.h"
@@ -33,9 +33,9 @@ struct EmulatorOptions {
   // Faithful mode: a schedule object to use instead of parsing `schedule`, kept by the caller across runs;
   // exhaustive search advances one ExhaustiveSchedule from run to run.
   simt::Schedule* schedule_instance = nullptr;
-  // The resolve's neighbourhood search broken on purpose (emulated/broken_search.h; --inject-defect's resolve
+  // The resolve's neighbourhood search broken on purpose (emulated/broken_resolve.h; --inject-defect's resolve
   // variants), as the accumulate kernel is by the kernel argument.
-  SearchDefect search_defect = SearchDefect::kNone;
+  ResolveDefect resolve_defect = ResolveDefect::kNone;
   void Validate() const;  // ConfigError naming the option
 };
 

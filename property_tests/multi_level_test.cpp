@@ -284,7 +284,7 @@ TEST(MultiLevel, AThresholdOfOneReadsTheOwnCellAsOneLevelDoes) {
 
 // Each broken variant fails the contract: coarser cells keyed at the unjittered position (emulator kernel and
 // shader: level 2, the slot is not among the derived key's candidates), and a resolve that judges every level by
-// the count of the record's own cell (level 3: the image is not the reference's).
+// the count of the record's own cell (shader and emulator resolve; level 3: the image is not the reference's).
 TEST(MultiLevel, EachBrokenVariantFailsTheContract) {
   const std::vector<RecordBatch> frames = {TracedBatch("cornell", 24, 4)};
   FilterConfig config;
@@ -306,6 +306,7 @@ TEST(MultiLevel, EachBrokenVariantFailsTheContract) {
       {"emulator kernel level-unjittered", {"reference", "emulated"}, Defect::kLevelUnjittered, {}, 2},
       {"shader LEVEL_UNJITTERED", {"reference", "vulkan"}, Defect::kNone, unjittered, 2},
       {"resolve LEVEL_WRONG_COUNT", {"reference", "vulkan"}, Defect::kNone, wrong_count, 3},
+      {"emulated resolve level-wrong-count", {"reference", "emulated"}, Defect::kLevelWrongCount, {}, 3},
   };
   for (const Variant& v : cases) {
     const CrosscheckReport report = Crosschecker(v.backends, v.defect, v.vulkan).CheckFrames(frames, config, {});

@@ -245,7 +245,7 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
       cell_average[i] = averages[chosen.slot];
       continue;
     }
-    const NeighbourReads reads = SearchNeighbours(params, batch.records[i], keys[i], chosen, std::uint32_t(i), find);
+    const NeighbourReads reads = SearchNeighbours(params, batch.records[i], chosen, std::uint32_t(i), find);
     StencilTotal total;
     const auto add = [&](std::uint32_t cell) {
       total.Add(result.cells[cell].fixed_sum, result.cells[cell].float_sum, result.cells[cell].count);

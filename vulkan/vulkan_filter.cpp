@@ -30,6 +30,9 @@
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
 #include "resolve_packed_decimal_spv.h"
+#include "resolve_search_fixed64_spv.h"
+#include "resolve_search_float32_spv.h"
+#include "resolve_search_packed_decimal_spv.h"
 #include "temporal_spv.h"
 #include "vulkan/spirv_reflection.h"
 #include "vulkan/vulkan_internal.h"
@@ -263,7 +266,7 @@ struct VulkanFilter::Impl {
   std::string resolve_name;
   Accumulation custom_resolve_accumulation;     // what the user's resolve shader declares its sums as
   std::optional<ComputeProgram> accumulate[3];  // by accumulation mode
-  std::optional<ComputeProgram> resolve[3];
+  std::optional<ComputeProgram> resolve[3][2];  // by accumulation mode, then without and with the search
   std::optional<ComputeProgram> eviction;
   std::optional<ComputeProgram> temporal;
   std::optional<ComputeProgram> level_seed;
@@ -292,17 +295,24 @@ struct VulkanFilter::Impl {
     }
     return *accumulate[m];
   }
-  ComputeProgram& Resolve(Accumulation mode) {
+  // The search's variant only where it searches (effect planning: a pass without it has nothing to skip). A team's
+  // resolve is one shader for both.
+  ComputeProgram& Resolve(Accumulation mode, bool search) {
     const int m = static_cast<int>(mode);
-    if (!resolve[m]) {
+    std::optional<ComputeProgram>& program = resolve[m][search ? 1 : 0];
+    if (!program) {
       std::span<const std::uint32_t> spirv = custom_resolve;
+      if (spirv.empty() && search)
+        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_search_fixed64_spv)
+                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_search_float32_spv)
+                                                 : std::span<const std::uint32_t>(resolve_search_packed_decimal_spv);
       if (spirv.empty())
         spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_fixed64_spv)
                 : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_float32_spv)
                                                  : std::span<const std::uint32_t>(resolve_packed_decimal_spv);
-      resolve[m] = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
+      program = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
-    return *resolve[m];
+    return *program;
   }
   // A pass's program, created at its first use: a team's SPIR-V where one was given, else the built-in shader.
   ComputeProgram& PassProgram(std::optional<ComputeProgram>& program, const std::vector<std::uint32_t>& custom,
@@ -831,7 +841,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   }
 
   // Resolve: a separate pass, 16 pixels per invocation.
-  ComputeProgram& resolve = p.Resolve(config.accumulation);
+  ComputeProgram& resolve = p.Resolve(config.accumulation, config.neighbour_search);
   DeviceBuffer* const resolve_buffers[] = {&p.records,  &p.sums,   &p.counts, &p.placements,
                                            &p.accepted, &p.pixels, &p.tags};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);

@@ -59,7 +59,8 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
           "Self-test of the gate: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
           "count-store-claim-first, count-store-join-first, last-seen-claimer-only, and the shipped bugs "
           "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full; "
-          "level-unjittered with --levels 2 or more; search-claims, search-stops-at-tombstone and stencil-truncated, "
+          "level-unjittered and level-wrong-count with --levels 2 or more; search-claims, search-stops-at-tombstone "
+          "and stencil-truncated, "
           "resolves with --neighbour-search)")
       ->capture_default_str();
 }

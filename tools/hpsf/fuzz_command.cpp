@@ -209,19 +209,22 @@ int Run(FuzzOptions& o, bool options_only) {
   const bool packed_sums =
       (eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv, kEvictionCountsBinding)) &&
       (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding));
-  // Several levels only where hpsf's own kernels add and resolve them (the level-unjittered kernel adds them, wrongly).
-  const bool levels = (defect == Defect::kNone || defect == Defect::kLevelUnjittered) &&
-                      o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+  // Several levels only where hpsf's own kernels add and resolve them (the level-unjittered kernel adds them, wrongly;
+  // the level-wrong-count resolve reads them, wrongly).
+  const bool levels =
+      (defect == Defect::kNone || defect == Defect::kLevelUnjittered || defect == Defect::kLevelWrongCount) &&
+      o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
   // The search where hpsf's own resolve runs it, rightly or as a broken search kernel.
   const bool search_defect = defect == Defect::kSearchClaims || defect == Defect::kSearchStopsAtTombstone ||
                              defect == Defect::kStencilTruncated;
   const bool search =
       (defect == Defect::kNone || search_defect) && o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
-  const AdversarialOptions generate{o.max_records, defect == Defect::kNone || search_defect,
-                                    accumulation,  backend.on_device,
-                                    probing,       full_keys,
-                                    fingerprints,  packed_sums,
-                                    levels,        search};
+  const AdversarialOptions generate{
+      o.max_records, defect == Defect::kNone || search_defect || defect == Defect::kLevelWrongCount,
+      accumulation,  backend.on_device,
+      probing,       full_keys,
+      fingerprints,  packed_sums,
+      levels,        search};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();
@@ -372,7 +375,8 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
        "Emulated: run a known broken kernel (D2, D3, D8, D8-unwrapped, D9, D11, D13, "
        "count-store-claim-first, count-store-join-first, last-seen-claimer-only, and the shipped bugs "
        "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full; "
-       "level-unjittered with --levels 2 or more; search-claims, search-stops-at-tombstone and stencil-truncated, "
+       "level-unjittered and level-wrong-count with --levels 2 or more; search-claims, search-stops-at-tombstone and "
+       "stencil-truncated, "
        "resolves with --neighbour-search)")
       ->capture_default_str();
   CLI::Option* time =

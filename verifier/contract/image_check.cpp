@@ -52,7 +52,8 @@ std::string Describe(std::size_t pixel, int channel, float got, double expected,
 
 void CheckFixed(const RecordBatch& batch, const HashedRun& run, std::vector<std::string>& out) {
   std::vector<std::optional<glm::dvec3>> averages(batch.records.size());
-  for (std::size_t i = 0; i < batch.records.size(); ++i) averages[i] = ResolvedAverage(run, batch.records[i], i);
+  for (std::size_t i = 0; i < batch.records.size(); ++i)
+    averages[i] = ResolvedAverage(run, batch.records[i], i, ResolvedSlot(run, i));
   const Image resolved = ResolvePixels(batch, averages);
   for (std::size_t p = 0; p < resolved.pixels.size() && out.size() < kShown; ++p) {
     for (int c = 0; c < 3; ++c) {
@@ -82,7 +83,7 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
           ((before && before->counts[slot] > 0) || (run.seeded > 0 && run.table.counts[slot] != sums.records[slot]));
       // A record that searched reads several slots: held to the resolve of the table's own sums, as a carried slot.
       if (carried || Searches(run.neighbour_search, chosen, run.table.capacity)) {
-        average = ResolvedAverage(run, r, p * spp + s);
+        average = ResolvedAverage(run, r, p * spp + s, chosen);
       } else if (slot < run.table.capacity) {
         const double n = double(run.table.counts[slot]), k = n - 1.0;
         average = sums.exact[slot] / n;

@@ -46,9 +46,9 @@ SearchComparison CompareSearches(const RecordBatch& batch, const FilterResult& r
       continue;
     }
     NeighbourReads read;
-    ResolvedAverage(run, batch.records[i], i, &read);
-    const auto wanted = StencilNeighbourWords(run.key_params, batch.records[i],
-                                              shared::ComputeKey(run.key_params, batch.records[i]), chosen.level);
+    ResolvedAverage(run, batch.records[i], i, chosen, &read);
+    const auto wanted = StencilNeighbourWords(
+        run.key_params, batch.records[i], shared::JitteredKeyPosition(run.key_params, batch.records[i]), chosen.level);
     bool failed = false;
     for (std::size_t c = 0; c < read.cells.size() && !failed; ++c) {
       const FullKey want = KeyOfWords(wanted[c]);

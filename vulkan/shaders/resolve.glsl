@@ -7,12 +7,18 @@
 // compiles it once more per defect (HPSF_DEFECT_AVERAGE_OFF_BY_ONE, HPSF_DEFECT_AVERAGE_IN_FLOAT,
 // HPSF_DEFECT_LEVEL_WRONG_COUNT, and the neighbourhood search's HPSF_DEFECT_SEARCH_CLAIMS,
 // HPSF_DEFECT_SEARCH_STOPS_AT_TOMBSTONE, HPSF_DEFECT_STENCIL_TRUNCATED), run through --resolve-spv as a team's own
-// resolve would be. With --neighbour-search, a record whose chosen cell holds fewer than min_count samples also reads
-// the stencil's cells found by lookup (core/shared/neighbour_search.h), and averages them all by count.
+// resolve would be. Compiled with HPSF_NEIGHBOUR_SEARCH (resolve_search_*.comp, run with --neighbour-search on), a
+// record whose chosen cell holds fewer than min_count samples also reads the stencil's cells found by lookup
+// (core/shared/neighbour_search.h), and averages them all by count; without it the pass has no search to skip.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #if defined(HPSF_DEFECT_SEARCH_CLAIMS)
 #extension GL_EXT_shader_atomic_int64 : require
+#endif
+// The search's broken variants search.
+#if defined(HPSF_DEFECT_SEARCH_CLAIMS) || defined(HPSF_DEFECT_SEARCH_STOPS_AT_TOMBSTONE) || \
+    defined(HPSF_DEFECT_STENCIL_TRUNCATED)
+#define HPSF_NEIGHBOUR_SEARCH
 #endif
 #include "../../core/shared/prelude.h"
 #include "float_controls.glsl"
@@ -20,11 +26,13 @@
 #include "../../core/shared/record_layout.h"
 #include "../../core/shared/table_params.h"
 #include "../../core/shared/packed_sums.h"
-#include "../../core/shared/eviction_priority.h"
 #include "../../core/shared/levels.h"
+#if defined(HPSF_NEIGHBOUR_SEARCH)
+#include "../../core/shared/eviction_priority.h"
 #include "../../core/shared/lookup.h"
 #include "../../core/shared/neighbour_search.h"
 #include "../../core/shared/probe_scheme.h"
+#endif
 #ifndef HPSF_COUNT_TYPE
 #define HPSF_COUNT_TYPE uint64_t
 #endif
@@ -43,7 +51,8 @@ layout(std430, binding = 3) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 4) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 5) writeonly buffer Pixels { float pixels[]; };  // RGB per pixel
 // The tags, for the search's lookups (slot_tags.glsl): 32-bit fingerprints or 64-bit full keys.
-#if defined(HPSF_DEFECT_SEARCH_CLAIMS)
+#if !defined(HPSF_NEIGHBOUR_SEARCH)
+#elif defined(HPSF_DEFECT_SEARCH_CLAIMS)
 layout(std430, binding = 6) buffer Tags { uint tags[]; };
 layout(std430, binding = 6) buffer FullTags { uint64_t full_tags[]; };
 #else
@@ -51,7 +60,9 @@ layout(std430, binding = 6) readonly buffer Tags { uint tags[]; };
 layout(std430, binding = 6) readonly buffer FullTags { uint64_t full_tags[]; };
 #define HPSF_TAGS_READONLY
 #endif
+#if defined(HPSF_NEIGHBOUR_SEARCH)
 #include "slot_tags.glsl"
+#endif
 
 struct ResolveParams {  // vulkan_filter.cpp's ResolvePush
   double unscale;  // 2^-F, fixed64
@@ -69,11 +80,15 @@ struct SearchParams {  // vulkan_filter.cpp's ResolvePush, after the key's param
   uint reserved1;
 };
 // A resolve written against the first 32 bytes runs without the search.
+#if defined(HPSF_NEIGHBOUR_SEARCH)
 layout(push_constant) uniform Params {
   ResolveParams params;
   KeyParams key;  // the key path's, to compute a searching record's position again
   SearchParams search;
 };
+#else
+layout(push_constant) uniform Params { ResolveParams params; };
+#endif
 
 dvec3 D(vec4 v) { return dvec3(double(v.x), double(v.y), double(v.z)); }
 
@@ -102,6 +117,19 @@ LevelChoice ResolvedSlot(uint i, ResolveParams p) {
   return choice;
 }
 
+// A slot's sums as the resolve adds them: integers exactly, float32 sums in double
+// (core/neighbour_search.h's StencilTotal).
+#if defined(HPSF_FIXED64) || defined(HPSF_PACKED_DECIMAL)
+#define HPSF_TOTAL_TYPE u64vec3
+#else
+#define HPSF_TOTAL_TYPE dvec3
+#endif
+HPSF_TOTAL_TYPE SlotSums(uint slot) {
+  uint first = slot * 3u;
+  return HPSF_TOTAL_TYPE(sums[first], sums[first + 1u], sums[first + 2u]);
+}
+
+#if defined(HPSF_NEIGHBOUR_SEARCH)
 // The slot holding the words' identity with samples, found by lookup (core/shared/lookup.h), or capacity.
 uint LookUp(KeyWords words, KeyParams k, SearchParams s, uint capacity) {
   StoredIdentity identity = IdentityOfWords(words, k.key_identity, k.fingerprint_bits);
@@ -129,30 +157,8 @@ uint LookUp(KeyWords words, KeyParams k, SearchParams s, uint capacity) {
   return capacity;
 }
 
-// The sums and counts of the slots a record reads, added: integers exactly, float32 sums in double in corner order
-// (core/neighbour_search.h's StencilTotal).
-#if defined(HPSF_FIXED64) || defined(HPSF_PACKED_DECIMAL)
-#define HPSF_TOTAL_TYPE uint64_t
-#else
-#define HPSF_TOTAL_TYPE double
-#endif
-struct Total {
-  HPSF_TOTAL_TYPE sums[3];
-  uint64_t count;
-};
-
-void AddSlot(inout Total t, uint slot) {
-  for (uint c = 0u; c < 3u; ++c) t.sums[c] += HPSF_TOTAL_TYPE(sums[slot * 3u + c]);
-  t.count += SlotCount(slot);
-}
-
-// What record i reads: its chosen slot and, where it searches, the stencil's slots around the chosen level.
-Total ReadSlots(uint i, LevelChoice chosen, ResolveParams p) {
-  Total t;
-  for (uint c = 0u; c < 3u; ++c) t.sums[c] = HPSF_TOTAL_TYPE(0);
-  t.count = 0ul;
-  AddSlot(t, chosen.slot);
-  if (p.neighbour_search == 0u || chosen.settled != 0u) return t;
+// Adds to record i's sums and count those of the stencil's slots found around its chosen level, in corner order.
+void AddNeighbours(uint i, LevelChoice chosen, ResolveParams p, inout HPSF_TOTAL_TYPE total, inout uint64_t count) {
   KeyParams k = key;
   SearchParams s = search;
   Record r = LoadRecord(i);
@@ -169,10 +175,13 @@ Total ReadSlots(uint i, LevelChoice chosen, ResolveParams p) {
   KeyWords cell = KeyAtLevel(k, own, chosen.level).words;
   for (uint corner = 1u; corner < kStencilCells; ++corner) {
     uint slot = LookUp(StencilCellWords(cell, sides, corner), k, s, p.capacity);
-    if (slot < p.capacity) AddSlot(t, slot);
+    if (slot < p.capacity) {
+      total += SlotSums(slot);
+      count += SlotCount(slot);
+    }
   }
-  return t;
 }
+#endif
 
 void ResolvePixel(uint pixel, ResolveParams p) {
   precise dvec3 sum = dvec3(0.0LF);
@@ -185,15 +194,19 @@ void ResolvePixel(uint pixel, ResolveParams p) {
       LevelChoice chosen = ResolvedSlot(i, p);
       precise dvec3 incident = D(r.contribution);
       if (chosen.slot < p.capacity) {
-        Total read = ReadSlots(i, chosen, p);
-        double count = double(read.count);
+        HPSF_TOTAL_TYPE total = SlotSums(chosen.slot);
+        uint64_t records_read = SlotCount(chosen.slot);
+#if defined(HPSF_NEIGHBOUR_SEARCH)
+        if (p.neighbour_search != 0u && chosen.settled == 0u) AddNeighbours(i, chosen, p, total, records_read);
+#endif
+        double count = double(records_read);
         for (int c = 0; c < 3; ++c) {
 #ifdef HPSF_FIXED64
-          precise double channel = double(read.sums[c]) * p.unscale;
+          precise double channel = double(total[c]) * p.unscale;
 #elif defined(HPSF_PACKED_DECIMAL)  // sum / 1000, correctly rounded, as core/accumulation.h's IntegerSumValue
-          precise double channel = double(read.sums[c]) / double(kPackedDecimalScale);
+          precise double channel = double(total[c]) / double(kPackedDecimalScale);
 #else
-          precise double channel = read.sums[c];
+          precise double channel = total[c];
 #endif
 #if defined(HPSF_DEFECT_AVERAGE_OFF_BY_ONE)  // the slot's count taken as one more than it holds
           incident[c] = channel / (count + 1.0LF);
