@@ -39,23 +39,30 @@ inline KeyResult KeyOfCell(const FilterConfig& config, glm::ivec3 cell) {
   return shared::ComputeKey(MakeKeyParams(config, 0.01f, 1), MakeVertexRecord(v));
 }
 
-// One record per entry, in this order (neighbours share a warp or a subgroup).
-inline RecordBatch BatchOfCells(const std::vector<glm::ivec3>& cells) {
+// One record per point, in this order (neighbours share a warp or a subgroup); contributions are multiples of 2^-3.
+inline RecordBatch BatchAtPoints(const std::vector<glm::vec3>& points) {
   RecordBatch batch;
-  batch.width = static_cast<std::uint32_t>(cells.size());
+  batch.width = static_cast<std::uint32_t>(points.size());
   batch.height = 1;
   batch.samples_per_pixel = 1;
   batch.fov_y_radians = 0.5;
-  for (std::uint32_t i = 0; i < cells.size(); ++i) {
+  for (std::uint32_t i = 0; i < points.size(); ++i) {
     VertexSample v;
     v.pixel = i;
-    v.position = glm::vec3(cells[i]) + glm::vec3(0.5f);
+    v.position = points[i];
     v.previous = v.position + glm::vec3(0.0f, 0.0f, -10.0f);
     v.contribution = glm::vec3(1.0f + 0.25f * float(i % 7), 0.5f, 0.125f);
     v.throughput = glm::vec3(0.5f);
     batch.records.push_back(MakeVertexRecord(v));
   }
   return batch;
+}
+
+// One record at the centre of each cell, in this order.
+inline RecordBatch BatchOfCells(const std::vector<glm::ivec3>& cells) {
+  std::vector<glm::vec3> centres;
+  for (const glm::ivec3& c : cells) centres.push_back(glm::vec3(c) + glm::vec3(0.5f));
+  return BatchAtPoints(centres);
 }
 
 // The first cell along x (from `start`) whose key satisfies `wanted`.

@@ -92,20 +92,7 @@ TEST(NeighbourSearch, EveryBackendReadsTheCellsABruteForceOracleReads) {
       {0.25f, 0.25f, 0.25f}, {-0.3f, 0.6f, 0.2f},    {-0.7f, 0.4f, 0.9f},   {-0.2f, 0.1f, 0.1f},  {-0.9f, 0.9f, 0.9f},
       {1.2f, 0.3f, 0.3f},    {1.4f, 0.2f, 0.6f},     {0.75f, -0.25f, 0.5f}, {0.6f, -0.6f, -0.6f}, {-1.6f, -1.3f, -0.1f},
       {-1.1f, -0.8f, -0.4f}, {-0.45f, -0.55f, 0.8f}, {0.1f, 1.9f, 0.45f},   {0.3f, 1.2f, 0.55f},  {-2.5f, 0.5f, 0.5f}};
-  RecordBatch batch;
-  batch.width = std::uint32_t(points.size());
-  batch.height = 1;
-  batch.samples_per_pixel = 1;
-  batch.fov_y_radians = 0.5;
-  for (std::uint32_t i = 0; i < points.size(); ++i) {
-    VertexSample v;
-    v.pixel = i;
-    v.position = points[i];
-    v.previous = v.position + glm::vec3(0.0f, 0.0f, -10.0f);
-    v.contribution = glm::vec3(1.0f + 0.25f * float(i % 7), 0.5f + 0.125f * float(i % 3), 0.125f);
-    v.throughput = glm::vec3(0.5f);
-    batch.records.push_back(MakeVertexRecord(v));
-  }
+  const RecordBatch batch = BatchAtPoints(points);
   FilterConfig config = ConstructedConfig(1u << 10, 16);
   config.neighbour_search = true;
   VulkanFilter vulkan_filter(TestDevice(StagingPolicy::kNever));
