@@ -442,7 +442,7 @@ add_test(NAME HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator
     -DMAX_RECORDS=2 "-DARGS=--backend;emulated;--inject-defect;level-unjittered;--runs;200;--seed;1"
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
 set_tests_properties(HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator PROPERTIES LABELS "unit;levels;untrusted")
-# The neighbourhood search's broken lookups and stencil (emulated/broken_search.h): hpsf fuzz draws the search for
+# The neighbourhood search's broken lookups and stencil (emulated/broken_resolve.h): hpsf fuzz draws the search for
 # them and finds each. A lookup stopping at a tombstone needs priority eviction over frames, drawn more rarely.
 foreach(bug search-claims:300:1 stencil-truncated:300:2 search-stops-at-tombstone:2000:8)
   string(REPLACE ":" ";" bug ${bug})
