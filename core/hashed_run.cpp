@@ -81,8 +81,7 @@ void CountSearches(HashedRun& run, const RecordBatch& batch) {
   for (std::size_t i = 0; i < batch.records.size(); ++i) {
     const shared::LevelChoice chosen = ResolvedSlot(run, i);
     if (!Searches(true, chosen, run.table.capacity)) continue;
-    NeighbourReads reads;
-    ResolvedAverage(run, batch.records[i], i, chosen, &reads);
+    const NeighbourReads reads = SearchInTable(run, batch.records[i], i, chosen);
     ++run.records_searched;
     for (const std::uint32_t slot : reads.cells) run.neighbours_read += slot != kNotRead;
   }

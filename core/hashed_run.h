@@ -71,7 +71,7 @@ std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r,
                                           const shared::LevelChoice& chosen, NeighbourReads* reads = nullptr,
                                           const SlotSearch* search = nullptr);
 
-// Fills run.records_searched and run.neighbours_read from ResolvedAverage of every record.
+// Fills run.records_searched and run.neighbours_read from SearchInTable of every record that searches.
 void CountSearches(HashedRun& run, const RecordBatch& batch);
 
 // Per slot: whether its placed records carry two or more different full keys (the fingerprint aliased them).

@@ -27,6 +27,9 @@
 #include "eviction_spv.h"
 #include "level_seed_spv.h"
 #include "packed_settle_spv.h"
+#include "resolve_defer_fixed64_spv.h"
+#include "resolve_defer_float32_spv.h"
+#include "resolve_defer_packed_decimal_spv.h"
 #include "resolve_fixed64_spv.h"
 #include "resolve_float32_spv.h"
 #include "resolve_packed_decimal_spv.h"
@@ -55,6 +58,9 @@ void AllCores(std::size_t n, const std::function<void(std::size_t, std::size_t)>
 constexpr std::uint32_t kAccumulateRecordsPerWorkgroup = 128 * 16;
 constexpr std::uint32_t kResolvePixelsPerWorkgroup = 64 * 16;
 constexpr std::uint32_t kResolveSumsBinding = 1;  // resolve.glsl's
+// resolve.glsl's DeferredHeader: the listed pixels' count, then the search pass's VkDispatchIndirectCommand.
+constexpr vk::DeviceSize kDeferredDispatchOffset = 4;
+constexpr std::uint32_t kDeferredHeaderBytes = 16;
 
 struct AccumulatePush {
   KeyParams key;
@@ -165,10 +171,10 @@ constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, Bindin
 constexpr BindingKind kSettleBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                            BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                            BindingKind::kStorageBuffer};
-constexpr BindingKind kResolveBindings[] = {BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer,
-                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
-                                            BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer,
-                                            BindingKind::kStorageBuffer};
+constexpr BindingKind kResolveBindings[] = {
+    BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 
 struct CopyOut {
   void* to;
@@ -264,15 +270,17 @@ struct VulkanFilter::Impl {
   std::string temporal_name;
   std::vector<std::uint32_t> custom_resolve;
   std::string resolve_name;
-  Accumulation custom_resolve_accumulation;     // what the user's resolve shader declares its sums as
-  std::optional<ComputeProgram> accumulate[3];  // by accumulation mode
-  std::optional<ComputeProgram> resolve[3][2];  // by accumulation mode, then without and with the search
+  Accumulation custom_resolve_accumulation;         // what the user's resolve shader declares its sums as
+  std::optional<ComputeProgram> accumulate[3];      // by accumulation mode
+  std::optional<ComputeProgram> resolve[3][2];      // by accumulation mode, then without and with the search
+  std::optional<ComputeProgram> search_resolve[3];  // the search's second pass (resolve.glsl), by accumulation mode
   std::optional<ComputeProgram> eviction;
   std::optional<ComputeProgram> temporal;
   std::optional<ComputeProgram> level_seed;
   DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted, victims;
   DeviceBuffer previous_sums, previous_counts;          // the double buffer of temporal.comp and level_seed.comp
   DeviceBuffer previous_tags, seeded, seeded_count;     // level_seed.comp's
+  DeviceBuffer deferred_pixels, deferred_header;        // the search's list of pixels (resolve.glsl)
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
   struct TableShape {
     std::uint32_t capacity;
@@ -295,21 +303,32 @@ struct VulkanFilter::Impl {
     }
     return *accumulate[m];
   }
-  // The search's variant only where it searches (effect planning: a pass without it has nothing to skip). A team's
-  // resolve is one shader for both.
+  // The search's variant only where it searches (effect planning: a pass without it has nothing to skip): its first
+  // pass, which lists the pixels for SearchResolve. A team's resolve is one shader for both, and one pass.
   ComputeProgram& Resolve(Accumulation mode, bool search) {
     const int m = static_cast<int>(mode);
     std::optional<ComputeProgram>& program = resolve[m][search ? 1 : 0];
     if (!program) {
       std::span<const std::uint32_t> spirv = custom_resolve;
       if (spirv.empty() && search)
-        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_search_fixed64_spv)
-                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_search_float32_spv)
-                                                 : std::span<const std::uint32_t>(resolve_search_packed_decimal_spv);
+        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_defer_fixed64_spv)
+                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_defer_float32_spv)
+                                                 : std::span<const std::uint32_t>(resolve_defer_packed_decimal_spv);
       if (spirv.empty())
         spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_fixed64_spv)
                 : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_float32_spv)
                                                  : std::span<const std::uint32_t>(resolve_packed_decimal_spv);
+      program = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
+    }
+    return *program;
+  }
+  ComputeProgram& SearchResolve(Accumulation mode) {
+    std::optional<ComputeProgram>& program = search_resolve[static_cast<int>(mode)];
+    if (!program) {
+      const std::span<const std::uint32_t> spirv =
+          mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_search_fixed64_spv)
+          : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_search_float32_spv)
+                                           : std::span<const std::uint32_t>(resolve_search_packed_decimal_spv);
       program = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
     return *program;
@@ -380,6 +399,9 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      resolve_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(resolve_spv),
                      resolve_spv,
                      Accumulation::kFixed64,
+                     {},
+                     {},
+                     {},
                      {},
                      {},
                      {},
@@ -577,6 +599,11 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   p.Ensure(p.stats, 16);
   p.Ensure(p.accepted, vk::DeviceSize(n) * 4);
   p.Ensure(p.pixels, vk::DeviceSize(batch.width) * batch.height * 3 * 4);
+  // hpsf's own search resolves in two passes, the first listing the pixels for the second (resolve.glsl); a team's
+  // resolve is one pass. The list is bound always.
+  const bool deferring = config.neighbour_search && p.custom_resolve.empty();
+  p.Ensure(p.deferred_pixels, deferring ? vk::DeviceSize(batch.width) * batch.height * 4 : 4);
+  p.Ensure(p.deferred_header, kDeferredHeaderBytes);
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, keep_table ? kLaterFrame : 0);
   // Last-seen frames are tracked whenever eviction is asked for; the pass runs where the plan says.
   const bool tracking = config.eviction.enabled();
@@ -840,11 +867,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     if (compacting) std::swap(p.occupied, p.next_occupied);
   }
 
-  // Resolve: a separate pass, 16 pixels per invocation.
+  // Resolve: a separate pass, 16 pixels per invocation; with the search, a second pass over the pixels the first
+  // listed, one per invocation, dispatched by the first.
   ComputeProgram& resolve = p.Resolve(config.accumulation, config.neighbour_search);
-  DeviceBuffer* const resolve_buffers[] = {&p.records,  &p.sums,   &p.counts, &p.placements,
-                                           &p.accepted, &p.pixels, &p.tags};
+  DeviceBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts,          &p.placements,     &p.accepted,
+                                           &p.pixels,  &p.tags, &p.deferred_pixels, &p.deferred_header};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
+  ComputeProgram* const search_resolve = deferring ? &p.SearchResolve(config.accumulation) : nullptr;
+  if (search_resolve) vulkan_internal::BindBuffers(p.device, *search_resolve, resolve_buffers);
   const std::uint32_t pixel_count = batch.width * batch.height;
   const ResolvePush resolve_push{std::ldexp(1.0, -table.fixed_point_bits),
                                  config.capacity,
@@ -858,10 +888,29 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                  SharedProbeKind(config.probing),
                                  {0, 0}};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+    if (search_resolve) {  // no pixel listed, and a dispatch of (0, 1, 1)
+      cb.fillBuffer(*p.deferred_header.buffer, 0, 8, 0);
+      cb.fillBuffer(*p.deferred_header.buffer, 8, 8, 1);
+      const vk::MemoryBarrier filled(vk::AccessFlagBits::eTransferWrite,
+                                     vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, filled,
+                         nullptr, nullptr);
+    }
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *resolve.pipeline);
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *resolve.layout, 0, *resolve.set, nullptr);
     cb.pushConstants<ResolvePush>(*resolve.layout, vk::ShaderStageFlagBits::eCompute, 0, resolve_push);
     cb.dispatch(vulkan_internal::WorkgroupsFor(pixel_count, kResolvePixelsPerWorkgroup), 1, 1);
+    if (search_resolve) {
+      const vk::MemoryBarrier listed(vk::AccessFlagBits::eShaderWrite,
+                                     vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eIndirectCommandRead);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                         vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect, {},
+                         listed, nullptr, nullptr);
+      cb.bindPipeline(vk::PipelineBindPoint::eCompute, *search_resolve->pipeline);
+      cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *search_resolve->layout, 0, *search_resolve->set, nullptr);
+      cb.pushConstants<ResolvePush>(*search_resolve->layout, vk::ShaderStageFlagBits::eCompute, 0, resolve_push);
+      cb.dispatchIndirect(*p.deferred_header.buffer, kDeferredDispatchOffset);
+    }
   });
 
   // Read-back, into arrays on huge pages in parallel chunks, from the mapped buffers or from staging buffers

@@ -91,33 +91,44 @@ void BM_VulkanKeyIdentity(benchmark::State& state) {
 }
 BENCHMARK(BM_VulkanKeyIdentity)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Multi-level accumulation (--levels 1, 2, 3) and the neighbourhood search (second argument 1), --min-count 4 where
-// either is on, fixed64, staging auto, side by side: the accumulate's and the resolve's device time.
+// Multi-level accumulation (--levels 1, 2, 3) and the neighbourhood search (second argument 1), with --min-count the
+// third argument wherever either is on and --filter-width the fourth, fixed64, staging auto, side by side: the
+// accumulate's and the resolve's device time, and the share of records that search. At a filter width of 32 pixels
+// hardly a cell holds fewer than 2 records: what the search costs where it has (almost) nothing to do.
 void BM_VulkanLevels(benchmark::State& state) {
   VulkanFilter* filter = benchmarks::FilterOn(state, StagingPolicy::kAuto);
   if (!filter) return;
   FilterConfig config = TableConfig(Accumulation::kFixed64);
   config.levels = std::uint32_t(state.range(0));
   config.neighbour_search = state.range(1) != 0;
-  config.min_count = config.levels > 1 || config.neighbour_search ? 4 : 1;
-  state.SetLabel("levels " + std::to_string(config.levels) + (config.neighbour_search ? ", search" : ""));
-  double accumulate_ms = 0, resolve_ms = 0;
+  config.min_count = config.levels > 1 || config.neighbour_search ? std::uint32_t(state.range(2)) : 1;
+  config.filter_width_px = float(state.range(3));
+  state.SetLabel("levels " + std::to_string(config.levels) + (config.neighbour_search ? ", search" : "") +
+                 ", min-count " + std::to_string(config.min_count) + ", filter width " +
+                 std::to_string(state.range(3)));
+  double accumulate_ms = 0, resolve_ms = 0, searched = 0;
   for (auto _ : state) {
     VulkanRun run = filter->Run(CornellFrame(), config);
     benchmark::DoNotOptimize(run.image.pixels.data());
     accumulate_ms += run.timings.accumulate_ms;
     resolve_ms += run.timings.resolve_ms;
+    searched = double(run.records_searched) / double(kFrameRecords);
   }
   state.counters["accumulate_ms"] = accumulate_ms / double(state.iterations());
   state.counters["resolve_ms"] = resolve_ms / double(state.iterations());
+  state.counters["searched"] = searched;
   state.SetItemsProcessed(std::int64_t(state.iterations()) * kFrameRecords);
 }
 BENCHMARK(BM_VulkanLevels)
-    ->Args({1, 0})
-    ->Args({2, 0})
-    ->Args({3, 0})
-    ->Args({1, 1})
-    ->Args({3, 1})
+    ->Args({1, 0, 1, 4})
+    ->Args({2, 0, 4, 4})
+    ->Args({3, 0, 4, 4})
+    ->Args({1, 1, 2, 4})
+    ->Args({1, 1, 4, 4})
+    ->Args({1, 1, 8, 4})
+    ->Args({3, 1, 4, 4})
+    ->Args({1, 0, 1, 32})
+    ->Args({1, 1, 2, 32})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

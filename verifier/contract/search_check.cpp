@@ -45,8 +45,7 @@ SearchComparison CompareSearches(const RecordBatch& batch, const FilterResult& r
                  std::to_string(expected.level));
       continue;
     }
-    NeighbourReads read;
-    ResolvedAverage(run, batch.records[i], i, chosen, &read);
+    const NeighbourReads read = SearchInTable(run, batch.records[i], i, chosen);
     const auto wanted = StencilNeighbourWords(
         run.key_params, batch.records[i], shared::JitteredKeyPosition(run.key_params, batch.records[i]), chosen.level);
     bool failed = false;

@@ -10,14 +10,20 @@
 // resolve would be. Compiled with HPSF_NEIGHBOUR_SEARCH (resolve_search_*.comp, run with --neighbour-search on), a
 // record whose chosen cell holds fewer than min_count samples also reads the stencil's cells found by lookup
 // (core/shared/neighbour_search.h), and averages them all by count; without it the pass has no search to skip.
+// hpsf's own resolve with the search is two passes, so that the lanes that search run side by side instead of
+// holding up a subgroup whose other lanes do not: the first (HPSF_DEFER_SEARCH, resolve_defer_*.comp) resolves every
+// pixel none of whose records searches and lists the others, with the indirect dispatch of the second
+// (HPSF_SEARCH_DEFERRED_PIXELS, resolve_search_*.comp), which resolves the listed pixels with the search, one per
+// invocation. Both run ResolvePixel, so a pixel's bits do not depend on which pass wrote it; with no record below the
+// threshold the second pass is dispatched with no workgroup.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #if defined(HPSF_DEFECT_SEARCH_CLAIMS)
 #extension GL_EXT_shader_atomic_int64 : require
 #endif
-// The search's broken variants search.
+// The search's broken variants search, and so does the second pass over the listed pixels.
 #if defined(HPSF_DEFECT_SEARCH_CLAIMS) || defined(HPSF_DEFECT_SEARCH_STOPS_AT_TOMBSTONE) || \
-    defined(HPSF_DEFECT_STENCIL_TRUNCATED)
+    defined(HPSF_DEFECT_STENCIL_TRUNCATED) || defined(HPSF_SEARCH_DEFERRED_PIXELS)
 #define HPSF_NEIGHBOUR_SEARCH
 #endif
 #include "../../core/shared/prelude.h"
@@ -62,6 +68,24 @@ layout(std430, binding = 6) readonly buffer FullTags { uint64_t full_tags[]; };
 #endif
 #if defined(HPSF_NEIGHBOUR_SEARCH)
 #include "slot_tags.glsl"
+#endif
+// The pixels the first pass left to the search, and the second pass's VkDispatchIndirectCommand at byte 4 (three
+// uints, not a uvec3: std430 would align that to 16). The host sets the count and groups_x to 0, the others to 1.
+#if defined(HPSF_DEFER_SEARCH)
+layout(std430, binding = 7) writeonly buffer DeferredPixels { uint deferred_pixels[]; };
+layout(std430, binding = 8) buffer DeferredHeader {
+#elif defined(HPSF_SEARCH_DEFERRED_PIXELS)
+layout(std430, binding = 7) readonly buffer DeferredPixels { uint deferred_pixels[]; };
+layout(std430, binding = 8) readonly buffer DeferredHeader {
+#endif
+#if defined(HPSF_DEFER_SEARCH) || defined(HPSF_SEARCH_DEFERRED_PIXELS)
+  uint deferred_count;
+  uint groups_x;
+  uint groups_y;
+  uint groups_z;
+};
+const uint kSearchPixelsPerWorkgroup = 64u;  // the second pass's local_size_x, one pixel per invocation
+const uint kMaxWorkgroups = 65535u;          // its loop strides over the rest
 #endif
 
 struct ResolveParams {  // vulkan_filter.cpp's ResolvePush
@@ -183,8 +207,22 @@ void AddNeighbours(uint i, LevelChoice chosen, ResolveParams p, inout HPSF_TOTAL
 }
 #endif
 
+#if defined(HPSF_DEFER_SEARCH)
+// Lists the pixel for the second pass; the entry that starts a workgroup's share adds the workgroup.
+void DeferPixel(uint pixel) {
+  uint entry = atomicAdd(deferred_count, 1u);
+  deferred_pixels[entry] = pixel;
+  if (entry % kSearchPixelsPerWorkgroup == 0u && entry / kSearchPixelsPerWorkgroup < kMaxWorkgroups) {
+    atomicAdd(groups_x, 1u);
+  }
+}
+#endif
+
 void ResolvePixel(uint pixel, ResolveParams p) {
   precise dvec3 sum = dvec3(0.0LF);
+#if defined(HPSF_DEFER_SEARCH)
+  bool deferred = false;  // then the pixel is the second pass's, which resolves all its records again
+#endif
   for (uint s = 0u; s < p.samples_per_pixel; ++s) {
     uint i = pixel * p.samples_per_pixel + s;
     if (accepted[i] == 0u) continue;
@@ -194,6 +232,9 @@ void ResolvePixel(uint pixel, ResolveParams p) {
       LevelChoice chosen = ResolvedSlot(i, p);
       precise dvec3 incident = D(r.contribution);
       if (chosen.slot < p.capacity) {
+#if defined(HPSF_DEFER_SEARCH)  // no early return: on a SIMD device the loop would carry each lane's exit
+        if (p.neighbour_search != 0u && chosen.settled == 0u) deferred = true;
+#endif
         HPSF_TOTAL_TYPE total = SlotSums(chosen.slot);
         uint64_t records_read = SlotCount(chosen.slot);
 #if defined(HPSF_NEIGHBOUR_SEARCH)
@@ -221,12 +262,27 @@ void ResolvePixel(uint pixel, ResolveParams p) {
     }
     sum = sum + value;
   }
+#if defined(HPSF_DEFER_SEARCH)
+  if (deferred) {
+    DeferPixel(pixel);
+    return;
+  }
+#endif
   precise dvec3 mean = sum / double(p.samples_per_pixel);
   pixels[pixel * 3u] = float(mean.x);
   pixels[pixel * 3u + 1u] = float(mean.y);
   pixels[pixel * 3u + 2u] = float(mean.z);
 }
 
+#if defined(HPSF_SEARCH_DEFERRED_PIXELS)
+void main() {
+  ResolveParams p = params;
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  for (uint entry = gl_GlobalInvocationID.x; entry < deferred_count; entry += stride) {
+    ResolvePixel(deferred_pixels[entry], p);
+  }
+}
+#else
 void main() {
   ResolveParams p = params;  // once per run: lavapipe gathers every push-constant read lane by lane
   SubgroupRuns runs = ThisSubgroupsRuns(kPixelsPerInvocation);
@@ -235,3 +291,4 @@ void main() {
     for (uint pixel = first + gl_SubgroupInvocationID; pixel < end; pixel += gl_SubgroupSize) ResolvePixel(pixel, p);
   }
 }
+#endif

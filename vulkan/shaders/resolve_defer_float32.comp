@@ -1,0 +1,7 @@
+#version 450
+// The resolve's first pass with --neighbour-search on, which lists the pixels whose records search, over float32 sums (resolve.glsl).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_spirv_intrinsics : require
+#define HPSF_SUMS_TYPE float
+#define HPSF_DEFER_SEARCH
+#include "resolve.glsl"

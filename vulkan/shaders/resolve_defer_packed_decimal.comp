@@ -1,0 +1,9 @@
+#version 450
+// The resolve's first pass with --neighbour-search on, which lists the pixels whose records search, over packed-decimal sums and count words (resolve.glsl, core/shared/packed_sums.h).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_spirv_intrinsics : require
+#define HPSF_PACKED_DECIMAL
+#define HPSF_SUMS_TYPE uint
+#define HPSF_COUNT_TYPE uint
+#define HPSF_DEFER_SEARCH
+#include "resolve.glsl"
