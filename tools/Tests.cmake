@@ -294,6 +294,14 @@ hpsf_add_cli_test(HpsfFuzz.BuiltInKernelsRunClean "unit;vulkan" 0 "fuzz: 3000 ru
   $<TARGET_FILE:hpsf> fuzz --backend vulkan --runs 3000 --seed 2)
 hpsf_add_cli_test(HpsfFuzz.EmulatorRunsClean unit 0 "fuzz: 20000 runs .*every table passed" ""
   $<TARGET_FILE:hpsf> fuzz --backend emulated --runs 20000 --seed 3)
+# Run 600 of seed 8: a cell seeded in frame 1 from a lookup that aliased (classified) seeds a cell in frame 2, which
+# the contract once judged against the reference's seed.
+hpsf_add_cli_test(HpsfFuzz.ACellSeededFromAClassifiedCellIsClassified "unit;levels" 0 "fuzz: 601 runs .*every table passed" ""
+  $<TARGET_FILE:hpsf> fuzz --backend emulated --runs 601 --seed 8)
+# Run 2759 of seed 8: with priority eviction a touch joins, past a tombstone of its window, the slot another touch of
+# its fingerprint (another slot0) claimed this frame; the table checker once called that a skipped tombstone.
+hpsf_add_cli_test(HpsfFuzz.AJoinPastATombstoneIsNoSkippedClaim "unit;levels" 0 "fuzz: 2760 runs .*every table passed" ""
+  $<TARGET_FILE:hpsf> fuzz --backend emulated --runs 2760 --seed 8)
 foreach(defect D2 D3 D8 D9 D13)
   add_test(NAME HpsfFuzz.FindsShaderDefect${defect}ShrinksAndReproducesIt
     COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_vulkan_${defect} -DMAX_RECORDS=2

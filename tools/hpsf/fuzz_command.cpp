@@ -219,12 +219,16 @@ int Run(FuzzOptions& o, bool options_only) {
                              defect == Defect::kStencilTruncated;
   const bool search =
       (defect == Defect::kNone || search_defect) && o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+  // Level seeding where hpsf's own kernels run, and no team's shader.
+  const bool level_change = defect == Defect::kNone && accumulate.empty() && eviction.empty() && compaction.empty() &&
+                            temporal.empty() && o.vulkan.resolve_spv.empty();
   const AdversarialOptions generate{
       o.max_records, defect == Defect::kNone || search_defect || defect == Defect::kLevelWrongCount,
       accumulation,  backend.on_device,
       probing,       full_keys,
       fingerprints,  packed_sums,
-      levels,        search};
+      levels,        search,
+      level_change};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

@@ -53,7 +53,11 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     const std::uint32_t slot = touches.placements()[i];
     if (slot >= capacity) continue;
     const FullKey key = key_of(i);
-    if (seeds_levels_ && !key_of_[slot] && SeedTainted(key)) after_failure_[slot] = true;  // new, seeded from taint
+    // New, seeded from taint: a taint itself for the cells seeded from it in later frames.
+    if (seeds_levels_ && !key_of_[slot] && SeedTainted(key)) {
+      after_failure_[slot] = true;
+      tainted_.insert(key);
+    }
     if (key_of_[slot] && *key_of_[slot] != key) {
       aliased_[slot] = true;
       if (seeds_levels_) tainted_.insert({key, *key_of_[slot]});

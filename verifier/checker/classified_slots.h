@@ -5,7 +5,8 @@
 // frame a cell's records fail all or none, so for a single frame these are exactly the aliased slots. With priority
 // eviction, a cell the table evicted under pressure counts as failed too: the reference, which has no pressure,
 // kept it. With level seeds, a cell new in a frame is classified when a neighbour it may be seeded from (parent or
-// child, core/level_seed.h) failed, aliased or was evicted under pressure: the reference seeds from what it kept;
+// child, core/level_seed.h) failed, aliased, was evicted under pressure or was itself classified so when new: the
+// reference seeds from what it kept;
 // and when a neighbour's lookup in the table before the frame aliased (its fingerprint's first slot in the window
 // holds another cell, which a hashed backend's seed then reads).
 #ifndef HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -358,6 +359,8 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Per slot, the touches placed there: with one level, the records.
   const LevelTouches touches(t, in.keys, in.placements, in.coarser_placements, in.normal_in_index);
   std::vector<std::vector<std::uint32_t>> placed(t.capacity);
+  std::vector<bool> claimed_cleanly(t.capacity, false);     // a new cell's slot, reached by a touch past no tombstone
+  std::map<std::uint32_t, std::uint32_t> tombstone_passed;  // touch -> the tombstone before its new cell's slot
   for (std::uint32_t i = 0; i < touches.size(); ++i) {
     const KeyResult& key = touches.keys()[i];
     const SlotTag identity = StoredIdentity(key);  // a fingerprint, or a full key (core/key_identity.h)
@@ -416,16 +419,31 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
         break;
       }
     }
+    bool past_tombstone = false;
     for (std::uint32_t probe = 0; probe < std::min(distance, t.probe_limit); ++probe) {
       const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
       const SlotTag seen = window_tag(s);
-      if (seen == kEmptyTag || seen == identity || (new_cell && tombstone_tag(seen))) {
+      if (seen == kEmptyTag || seen == identity) {
         violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
                 "tag " + std::to_string(window_tag(s)) + " before slot " + std::to_string(slot));
         break;
       }
+      if (new_cell && tombstone_tag(seen) && !past_tombstone) {
+        past_tombstone = true;
+        tombstone_passed[i] = s;
+      }
     }
+    if (new_cell && !past_tombstone) claimed_cleanly[slot] = true;
     placed[slot].push_back(i);
+  }
+  // A new cell's slot past a tombstone of its window: right only where it joined the slot, which some touch whose
+  // window reaches it without a tombstone (one with another slot0) claimed this frame; the first loop of the
+  // priority insertion finds its identity anywhere up to the first empty slot, an alias among them.
+  for (const auto& [i, s] : tombstone_passed) {
+    const std::uint32_t slot = touches.placements()[i];
+    if (claimed_cleanly[slot]) continue;
+    violate(TableInvariant::kEarlierSlotEmptyOrMatching, s, {i},
+            "tag " + std::to_string(window_tag(s)) + " before slot " + std::to_string(slot));
   }
 
   // Eviction: the state the policy leaves between the evict and the reclaim passes (the snapshot), from the table

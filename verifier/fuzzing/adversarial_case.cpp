@@ -11,6 +11,7 @@
 
 #include "core/eviction.h"
 #include "core/footprint.h"
+#include "core/level_seed.h"
 #include "core/shared/key.h"
 #include "core/shared/rng.h"
 #include "core/temporal.h"
@@ -471,6 +472,22 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   if (options.search && level_draws.Bits() % 4u == 0u) {
     a.config.neighbour_search = true;
     a.config.min_count = std::max(a.config.min_count, 2u + level_draws.Bits() % 3u);
+  }
+  // Resolution changes (core/level_seed.h) in half the sequences keyed with level of detail (the key-path family's):
+  // a later frame sees half its records from twice or half as far, so they key a cell a level coarser or finer,
+  // which starts seeded from the cells of the frame before.
+  if (options.level_change && a.config.lod && !a.later.empty() && level_draws.Bits() % 2u == 0u) {
+    const std::uint32_t shift = level_draws.Bits() % 3u;
+    a.config.level_seed = ParseLevelSeed(shift == 0u ? "seed" : "seed:" + std::to_string(shift));
+    for (RecordBatch& frame : a.later) {
+      for (Record& r : frame.records) {
+        if (level_draws.Bits() % 2u != 0u) continue;
+        const float scale = level_draws.Bits() % 2u == 0u ? 2.0f : 0.5f;
+        const glm::vec3 x(r.position);
+        r.previous = glm::vec4(x + (glm::vec3(r.previous) - x) * scale, 0.0f);
+        r.position.w *= scale;  // d_prefix, the path length before x_prev
+      }
+    }
   }
   a.config.Validate();
   return a;

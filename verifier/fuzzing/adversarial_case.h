@@ -69,6 +69,9 @@ struct AdversarialOptions {
   // Whether a case may search the neighbours of cells below the threshold (--neighbour-search): false where a team's
   // accumulate or resolve shader runs.
   bool search = true;
+  // Whether a sequence with level of detail may seed the cells new at another level (--level-change seed): false
+  // where a broken kernel or a team's shader runs, which need not keep a table level seeding can read.
+  bool level_change = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -16,6 +18,7 @@
 #include "core/footprint.h"
 #include "core/input_check.h"
 #include "core/shared/key.h"
+#include "reference/reference_filter.h"
 
 namespace hpsf {
 namespace {
@@ -218,6 +221,60 @@ TEST(AdversarialCase, SeveralLevelsAreDrawnWhereTheKernelsKnowThem) {
   AdversarialOptions none;
   none.levels = false;
   for (std::uint64_t run = 0; run < 200; ++run) EXPECT_EQ(MakeAdversarialCase(6, run, none).config.levels, 1u);
+}
+
+// Level seeding (--level-change seed) in some of the sequences keyed with level of detail, whose later frames see
+// records from twice or half as far: in most of those the reference seeds a cell from the frame before, so the
+// fuzzed backend's seeding is judged; in none where the options say the kernels do not seed.
+TEST(AdversarialCase, ResolutionChangesSeedCellsAcrossLevels) {
+  int with_seed = 0, seeding = 0, relevelled = 0;
+  std::uint64_t cells = 0;
+  for (std::uint64_t run = 0; run < 3000; ++run) {
+    const AdversarialCase c = MakeAdversarialCase(8, run);
+    if (!c.config.level_seed.enabled) continue;
+    ++with_seed;
+    EXPECT_TRUE(c.config.lod);
+    EXPECT_FALSE(c.later.empty());
+    // A record of the first frame seen again from another distance keys another level.
+    const shared::KeyParams params =
+        MakeKeyParams(c.config, FootprintScale(c.config.filter_width_px, c.batch.fov_y_radians, c.batch.height), 1);
+    bool moved = false;
+    for (const Record& first : c.batch.records) {
+      for (const RecordBatch& frame : c.later) {
+        for (const Record& again : frame.records) {
+          if (again.position.x != first.position.x || again.position.y != first.position.y ||
+              again.position.z != first.position.z || CheckRecordInputs(again) != InputVerdict::kAccepted ||
+              CheckRecordInputs(first) != InputVerdict::kAccepted) {
+            continue;
+          }
+          moved =
+              moved || shared::ComputeKey(params, again).words.level != shared::ComputeKey(params, first).words.level;
+        }
+      }
+    }
+    relevelled += moved;
+    std::optional<FilterResult> result;
+    std::uint64_t seeded = 0;
+    for (const RecordBatch& frame : c.Frames()) {
+      FilterConfig config = c.config;
+      config.frame = frame.frame;
+      result = ReferenceFilter(frame, config, result ? &*result : nullptr);
+      seeded += result->stats.cells_seeded;
+    }
+    seeding += seeded > 0;
+    cells += seeded;
+  }
+  std::printf(
+      "level seeding in %d of 3000 cases; a record keys another level in a later frame in %d; the reference "
+      "seeded %llu cells, in %d of them\n",
+      with_seed, relevelled, static_cast<unsigned long long>(cells), seeding);
+  EXPECT_GT(with_seed, 10);
+  EXPECT_GT(relevelled, with_seed * 3 / 4);
+  EXPECT_GT(seeding, with_seed / 2);
+  AdversarialOptions none;
+  none.level_change = false;
+  for (std::uint64_t run = 0; run < 3000; ++run)
+    EXPECT_FALSE(MakeAdversarialCase(8, run, none).config.level_seed.enabled);
 }
 
 // A quarter of the cases of the families whose aim is not a fingerprint's store full keys, and half of the crowded

@@ -108,6 +108,7 @@ class Shrinker {
         if (a.config.levels == 1) a.config.min_count = 1;
       });
     }
+    if (c.config.level_seed.enabled) attempt([](AdversarialCase& a) { a.config.level_seed = {}; });
     if (c.config.levels > 1) {
       attempt([](AdversarialCase& a) {
         a.config.levels = 1;
