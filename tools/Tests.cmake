@@ -463,6 +463,25 @@ foreach(bug search-claims:300:1 stencil-truncated:300:2 search-stops-at-tombston
       -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
   set_tests_properties(HpsfFuzz.FindsTheBrokenSearch_${defect}_InTheEmulator PROPERTIES LABELS "unit;levels;untrusted")
 endforeach()
+# A team's accumulate and resolve that add and resolve several levels and search (--shaders-know): the cases draw
+# them, a correct pair runs clean and each broken resolve is found (the tombstone one over frames, drawn rarely).
+hpsf_add_cli_test(HpsfFuzz.ATeamsLevelsAndSearchRunClean "vulkan;levels" 0 "fuzz: 600 runs .*every table passed" ""
+  $<TARGET_FILE:hpsf> fuzz --backend vulkan --accumulate-spv ${HPSF_SHADER_VARIANT_DIR}/accumulate_correct.spv
+    --resolve-spv ${HPSF_SHADER_VARIANT_DIR}/resolve_search_correct.spv --accum fixed64 --shaders-know levels,search
+    --runs 600 --seed 1)
+foreach(bug LEVEL_WRONG_COUNT:levels:400:8 SEARCH_CLAIMS:search:100:8 STENCIL_TRUNCATED:search:200:8
+        SEARCH_STOPS_AT_TOMBSTONE:search:2000:12)
+  string(REPLACE ":" ";" bug ${bug})
+  list(GET bug 0 shader)
+  list(GET bug 1 knows)
+  list(GET bug 2 runs)
+  list(GET bug 3 most)
+  add_test(NAME HpsfFuzz.FindsATeamsBrokenResolve_${shader}
+    COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_vulkan_resolve_${shader}
+      -DMAX_RECORDS=${most} "-DARGS=--backend;vulkan;--resolve-spv;${HPSF_SHADER_VARIANT_DIR}/resolve_${shader}.spv;--accum;fixed64;--shaders-know;${knows};--runs;${runs};--seed;1"
+      -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+  set_tests_properties(HpsfFuzz.FindsATeamsBrokenResolve_${shader} PROPERTIES LABELS "vulkan;levels;untrusted")
+endforeach()
 foreach(bug FULL_BUCKET_MASKED:bucket WINDOW_PAST_THE_END:bucket-window)
   string(REPLACE ":" ";" bug ${bug})
   list(GET bug 0 shader)

@@ -77,6 +77,7 @@ TEST_F(CommandOptions, BadValuesAreInputErrorsNamingTheirOption) {
       {{"fuzz", "--inject-defect", "D2", "--backend", "vulkan"}, "--inject-defect"},
       {{"fuzz", "--backend", "vulkan", "--accumulate-spv", "my.spv"}, "--accum"},
       {{"fuzz", "--accum", "float64"}, "--accum"},
+      {{"fuzz", "--shaders-know", "levels,cuckoo"}, "--shaders-know"},
       {{"device", "--vk-staging", "sometimes"}, "--vk-staging"},
       {{"check", "--shard", "4/3"}, "--shard"},
       {{"check", "--merge", "a", "--shard", "1/2"}, "--merge"},

@@ -84,7 +84,8 @@ const std::vector<std::string>& EdgeValues() {
       "vulkan", "reference,emulated", "emulated,,vulkan", ",", "always", "never", "auto", "mse", "psnr", "ssim",
       "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help", "integrate", "adaptive",
       "strict", "2/3", "spp=1,2; method=pt,radius", "animation", "temporal", "linear", "bucket", "bucket-window",
-      "any", "core", "shader", "occupied-list", "fingerprint", "full", "packed-decimal"};
+      "any", "core", "shader", "occupied-list", "fingerprint", "full", "packed-decimal", "levels", "search",
+      "levels,search"};
   // clang-format on
   return values;
 }

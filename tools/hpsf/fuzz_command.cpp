@@ -40,6 +40,8 @@ struct FuzzOptions {
   std::uint32_t seed = 1;
   std::uint32_t max_records = 96;
   std::string repro_dir = "hpsf-fuzz-repro";
+  // What a team's accumulate and resolve shaders implement beyond one level: levels, search.
+  std::vector<std::string> shaders_know;
   bool json = false;
 };
 
@@ -110,6 +112,7 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, std::uint64_t re
                       {"resolve_spv", o.vulkan.resolve_spv},
                       {"compaction_spv", o.vulkan.compaction_spv},
                       {"key_source", o.vulkan.shader_keys ? "shader" : "core"},
+                      {"shaders_know", o.shaders_know},
                       {"accum", o.accumulation.empty() ? "both" : o.accumulation},
                       {"probing", o.probing.empty() ? (o.vulkan.accumulate_spv.empty() ? "any" : "linear") : o.probing},
                       {"seed", o.seed},
@@ -180,6 +183,14 @@ int Run(FuzzOptions& o, bool options_only) {
     if (parsed.size) throw ConfigError("--probing", "names a scheme only; each case draws its size");
     probing = parsed.kind;
   }
+  bool shaders_know_levels = false, shaders_know_search = false;
+  for (const std::string& feature : o.shaders_know) {
+    if (feature != "levels" && feature != "search") {
+      throw ConfigError("--shaders-know", "expected levels or search; got '" + feature + "'");
+    }
+    shaders_know_levels |= feature == "levels";
+    shaders_know_search |= feature == "search";
+  }
   if (o.max_records < 2 || o.max_records > 4096) throw ConfigError("--max-records", "must lie in [2, 4096]");
   if (o.seconds && !(*o.seconds > 0)) throw ConfigError("--time", "must be a positive number of seconds");
   if (!o.seconds && !o.runs) o.seconds = 60.0;
@@ -211,14 +222,15 @@ int Run(FuzzOptions& o, bool options_only) {
       (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding));
   // Several levels only where hpsf's own kernels add and resolve them (the level-unjittered kernel adds them, wrongly;
   // the level-wrong-count resolve reads them, wrongly).
+  // Or where the team says its shaders know them (--shaders-know).
   const bool levels =
       (defect == Defect::kNone || defect == Defect::kLevelUnjittered || defect == Defect::kLevelWrongCount) &&
-      o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+      ((o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty()) || shaders_know_levels);
   // The search where hpsf's own resolve runs it, rightly or as a broken search kernel.
   const bool search_defect = defect == Defect::kSearchClaims || defect == Defect::kSearchStopsAtTombstone ||
                              defect == Defect::kStencilTruncated;
-  const bool search =
-      (defect == Defect::kNone || search_defect) && o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty();
+  const bool search = (defect == Defect::kNone || search_defect) &&
+                      ((o.vulkan.accumulate_spv.empty() && o.vulkan.resolve_spv.empty()) || shaders_know_search);
   // Level seeding where hpsf's own kernels run, and no team's shader.
   const bool level_change = defect == Defect::kNone && accumulate.empty() && eviction.empty() && compaction.empty() &&
                             temporal.empty() && o.vulkan.resolve_spv.empty();
@@ -368,6 +380,11 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
       ->default_str("core");
   c->add_option("--resolve-spv", o->vulkan.resolve_spv,
                 "Vulkan: your resolve shader (SPIR-V), run in every case; --accum must name its mode");
+  c->add_option("--shaders-know", o->shaders_know,
+                "Vulkan: what your accumulate and resolve shaders implement, so that cases draw it as for hpsf's own: "
+                "levels (--levels, --min-count) and search (--neighbour-search); comma-separated (hpsf's own kernels "
+                "draw both without it)")
+      ->delimiter(',');
   c->add_option("--accum", o->accumulation,
                 "fixed64, float32, packed-decimal or both (the default: drawn per case, a quarter float32 and a sixth "
                 "packed-decimal; a shader given with --accumulate-spv must name its mode)");
