@@ -108,6 +108,22 @@ EffectDecision DecideEviction(const FilterConfig& config, const SceneFacts& scen
   return d;
 }
 
+EffectDecision DecideNeighbourSearch(const FilterConfig& config, std::uint32_t frames) {
+  EffectDecision d{Effect::kNeighbourSearch, config.neighbour_search, config.forced.Has(Effect::kNeighbourSearch), 0,
+                   ""};
+  if (!d.asked) {
+    d.reason = "--neighbour-search off";
+    return d;
+  }
+  d.frames_run = frames;
+  d.reason = d.forced ? "forced: every pixel goes through the search pass, which searches only where a chosen cell "
+                        "holds fewer than " +
+                            std::to_string(config.min_count) + " samples"
+                      : "runs on the pixels with a record whose chosen cell holds fewer than " +
+                            std::to_string(config.min_count) + " samples, known frame by frame once the table is";
+  return d;
+}
+
 }  // namespace
 
 std::string EffectName(Effect effect) {
@@ -120,6 +136,8 @@ std::string EffectName(Effect effect) {
       return "level-seed";
     case Effect::kEviction:
       return "eviction";
+    case Effect::kNeighbourSearch:
+      return "neighbour-search";
   }
   return "?";
 }
@@ -128,7 +146,8 @@ Effect ParseEffect(const std::string& name) {
   for (Effect effect : kEffects) {
     if (EffectName(effect) == name) return effect;
   }
-  throw ConfigError("--force-effect", "is not an effect: '" + name + "' (animation, temporal, level-seed, eviction)");
+  throw ConfigError("--force-effect",
+                    "is not an effect: '" + name + "' (animation, temporal, level-seed, eviction, neighbour-search)");
 }
 
 bool ForcedEffects::Any() const { return std::find(forced.begin(), forced.end(), true) != forced.end(); }
@@ -149,13 +168,15 @@ FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index) {
                  ((index > 0 && config.level_min < config.level_max) || forced.Has(Effect::kLevelSeed));
   e.eviction =
       config.eviction.enabled() && (index >= FirstEvictingFrame(config.eviction) || forced.Has(Effect::kEviction));
+  e.search_every_pixel = config.neighbour_search && forced.Has(Effect::kNeighbourSearch);
   return e;
 }
 
 std::vector<EffectDecision> PlanSequenceEffects(const FilterConfig& config, const SceneFacts& scene,
                                                 std::uint32_t frames) {
   return {DecideAnimation(config, scene, frames), DecideTemporal(config, scene, frames),
-          DecideLevelSeed(config, scene, frames), DecideEviction(config, scene, frames)};
+          DecideLevelSeed(config, scene, frames), DecideEviction(config, scene, frames),
+          DecideNeighbourSearch(config, frames)};
 }
 
 bool RebuildsScenePerFrame(const FilterConfig& config, const SceneFacts& scene) {

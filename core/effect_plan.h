@@ -13,6 +13,12 @@
 //   eviction    the eviction pass after a frame (--eviction): called for from the frame `unseen` frames into the
 //               sequence on (1 for strict and priority, N for stale:N); before it, every live cell was seen
 //               recently enough. Each cell's last-seen frame is tracked whenever eviction is asked for.
+//   neighbour-search  the resolve's search pass (--neighbour-search on): called for, frame by frame, by the pixels
+//               with a record whose chosen cell holds fewer than --min-count samples, known only once the table is:
+//               on Vulkan the resolve's first pass lists them and dispatches the search pass over them, with no
+//               workgroup where there is none; the emulator and the reference search record by record. Forced, every
+//               pixel goes through the search pass (Vulkan's first pass lists them all), which searches below the
+//               threshold only.
 // An effect asked for but not called for by the scene (temporal forgetting on a static scene, say) still runs, since
 // skipping it would change the result the user asked for; the plan says so in its reason.
 #ifndef HPSF_CORE_EFFECT_PLAN_H
@@ -27,11 +33,12 @@ namespace hpsf {
 
 struct FilterConfig;
 
-enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction };
-inline constexpr std::array<Effect, 4> kEffects = {Effect::kAnimation, Effect::kTemporal, Effect::kLevelSeed,
-                                                   Effect::kEviction};
+enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch };
+inline constexpr std::array<Effect, 5> kEffects = {Effect::kAnimation, Effect::kTemporal, Effect::kLevelSeed,
+                                                   Effect::kEviction, Effect::kNeighbourSearch};
 
-std::string EffectName(Effect effect);  // "animation", "temporal", "level-seed", "eviction"
+// "animation", "temporal", "level-seed", "eviction", "neighbour-search"
+std::string EffectName(Effect effect);
 
 // Parses an effect's name; a ConfigError naming --force-effect otherwise.
 Effect ParseEffect(const std::string& name);
@@ -52,6 +59,7 @@ struct FrameEffects {
   bool temporal = false;
   bool level_seed = false;
   bool eviction = false;  // the eviction pass; last-seen frames are tracked whenever config.eviction is enabled
+  bool search_every_pixel = false;  // the search pass resolves every pixel, not only those below the threshold
 };
 FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index);
 

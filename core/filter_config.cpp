@@ -133,6 +133,9 @@ void FilterConfig::Validate() const {
   if (forced.Has(Effect::kEviction) && !eviction.enabled()) {
     throw ConfigError("--force-effect", "eviction needs an --eviction policy");
   }
+  if (forced.Has(Effect::kNeighbourSearch) && !neighbour_search) {
+    throw ConfigError("--force-effect", "neighbour-search needs --neighbour-search on");
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }

@@ -78,7 +78,7 @@ TEST(EffectPlan, PlansEachPassByWhatTheFrameGivesIt) {
 TEST(EffectPlan, ForcingNeedsAnEffectTheOptionsAskFor) {
   EXPECT_EQ(ParseEffect("level-seed"), Effect::kLevelSeed);
   EXPECT_THROW(ParseEffect("glossy"), ConfigError);
-  for (Effect effect : {Effect::kTemporal, Effect::kLevelSeed, Effect::kEviction}) {
+  for (Effect effect : {Effect::kTemporal, Effect::kLevelSeed, Effect::kEviction, Effect::kNeighbourSearch}) {
     FilterConfig config;
     config.forced.Add(effect);
     try {

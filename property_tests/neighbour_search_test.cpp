@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/effect_plan.h"
 #include "core/error.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/lookup.h"
@@ -219,7 +220,9 @@ TEST(NeighbourSearch, ALookupThatAliasesIsClassifiedNotBlamed) {
 
 // Effect planning: the search runs only for a record whose chosen cell is below the threshold. Over eight levels
 // with a threshold of 2 every record's coarsest level holds more, so none searches, and the image is the one
-// without the search, bit for bit, on every backend.
+// without the search, bit for bit, on every backend. Forced (--force-effect neighbour-search), every pixel goes
+// through the search pass, Vulkan's second among them: the same bits, with no record below the threshold and with
+// a fifth of them below it.
 TEST(NeighbourSearch, WithNoCellBelowTheThresholdTheSearchChangesNoBit) {
   const RecordBatch batch = TracedBatch("cornell", 24, 2);
   FilterConfig plain;
@@ -237,11 +240,21 @@ TEST(NeighbourSearch, WithNoCellBelowTheThresholdTheSearchChangesNoBit) {
   const VulkanRun vulkan = vulkan_filter.Run(batch, searching);
   EXPECT_EQ(vulkan.records_searched, 0u);
   EXPECT_TRUE(SameBits(vulkan_filter.Run(batch, plain).image, vulkan.image));
+  const auto forced_is_the_same = [&](const FilterConfig& config, const std::string& name) {
+    FilterConfig forced = config;
+    forced.forced.Add(Effect::kNeighbourSearch);
+    EXPECT_TRUE(SameBits(ReferenceFilter(batch, forced).image, ReferenceFilter(batch, config).image)) << name;
+    EXPECT_TRUE(SameBits(EmulatedFilter(batch, forced, {}).image, EmulatedFilter(batch, config, {}).image)) << name;
+    EXPECT_TRUE(SameBits(vulkan_filter.Run(batch, forced).image, vulkan_filter.Run(batch, config).image)) << name;
+  };
+  forced_is_the_same(searching, "forced, none below the threshold");
   // And with records below it, the search changes their pixels.
   searching.levels = plain.levels = 1;
   searching.min_count = 4;
   plain.min_count = 1;
   EXPECT_FALSE(SameBits(ReferenceFilter(batch, plain).image, ReferenceFilter(batch, searching).image));
+  EXPECT_GT(vulkan_filter.Run(batch, searching).records_searched, batch.records.size() / 10);
+  forced_is_the_same(searching, "forced, a fifth below the threshold");
 }
 
 // Each broken variant fails the contract: a lookup that claims the first empty slot (level 2: a tag no record

@@ -221,7 +221,7 @@ add_test(NAME HpsfRender.EffectsRunWhereTheSceneCallsForThem
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out}
     -DSCENE=${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/render_effects.cmake)
-set_tests_properties(HpsfRender.EffectsRunWhereTheSceneCallsForThem PROPERTIES LABELS unit)
+set_tests_properties(HpsfRender.EffectsRunWhereTheSceneCallsForThem PROPERTIES LABELS "unit;vulkan")
 
 # hpsf diff: the exit codes, the WARN rule and bad input.
 add_test(NAME HpsfDiff.ExitCodesWarnRuleAndBadInput

@@ -144,7 +144,8 @@ struct ResolvePush {
   KeyParams key;                   // a searching record's key and position are computed again
   std::uint32_t probe_limit;       // the lookups' window
   std::uint32_t probe_scheme;
-  std::uint32_t reserved[2];
+  std::uint32_t defer_every_pixel;  // --force-effect neighbour-search: the search pass resolves every pixel
+  std::uint32_t reserved;
 };
 static_assert(sizeof(ResolvePush) == 112, "push constants of resolve.glsl");
 
@@ -886,7 +887,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                  push.key,
                                  config.probe_limit,
                                  SharedProbeKind(config.probing),
-                                 {0, 0}};
+                                 planned.search_every_pixel ? 1u : 0u,
+                                 0};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     if (search_resolve) {  // no pixel listed, and a dispatch of (0, 1, 1)
       cb.fillBuffer(*p.deferred_header.buffer, 0, 8, 0);

@@ -2,8 +2,9 @@
 # once (scene_s zero after the first frame) and stale:3 evicts nothing, so the eviction pass is skipped (its timer
 # zero) while the asked-for ema blend runs on frames 1 and 2; the JSON report lists each effect, whether it ran and
 # why. Forcing the skipped ones gives the same pixels, with the build and the pass timed on every frame. The
-# animated box rebuilds every frame. A name that is not an effect, or forcing a pass the options do not ask for,
-# exits 3.
+# animated box rebuilds every frame. The neighbourhood search's pass on Vulkan forced over every pixel gives the
+# pixels of the pass over those below the threshold. A name that is not an effect, or forcing a pass the options do
+# not ask for, exits 3.
 set(dir ${OUT}/effects)
 file(REMOVE_RECURSE ${dir})
 set(common render cornell --size 24x24 --spp 2 --frames 3 --capacity 16384 --backend emulated --json
@@ -72,13 +73,29 @@ if(NOT differ EQUAL 0)
   message(FATAL_ERROR "forcing the skipped effects changed the pixels:\n${idiff_report}")
 endif()
 
+# The search pass on Vulkan, planned (the pixels below the threshold) and forced (every pixel): the same pixels.
+set(search render cornell --size 24x24 --spp 2 --capacity 16384 --backend vulkan --json --neighbour-search on
+    --min-count 4)
+render(searched ${search} -o ${dir}/searched.exr)
+effect("${report}" neighbour-search frames_run searched)
+render(search_forced ${search} --force-effect neighbour-search -o ${dir}/search-forced.exr)
+effect("${report}" neighbour-search forced search_forced)
+if(NOT searched EQUAL 1 OR NOT search_forced)
+  message(FATAL_ERROR "the search ran on ${searched} of 1 frame, forced: ${search_forced}")
+endif()
+execute_process(COMMAND idiff -fail 0 -warn 0 ${dir}/searched.exr ${dir}/search-forced.exr
+                RESULT_VARIABLE differ OUTPUT_VARIABLE idiff_report)
+if(NOT differ EQUAL 0)
+  message(FATAL_ERROR "forcing the search pass changed the pixels:\n${idiff_report}")
+endif()
+
 render(animated render ${SCENE} --size 24x24 --spp 1 --frames 3 --capacity 16384 --json -o ${dir}/animated.exr)
 effect("${report}" animation frames_run built)
 if(NOT built EQUAL 3)
   message(FATAL_ERROR "the animated scene was built on ${built} of 3 frames")
 endif()
 
-foreach(bad "glossy" "level-seed")
+foreach(bad "glossy" "level-seed" "neighbour-search")
   execute_process(COMMAND ${HPSF} ${common} --force-effect ${bad} -o ${dir}/bad.exr
                   RESULT_VARIABLE code OUTPUT_QUIET ERROR_VARIABLE errors)
   if(NOT code EQUAL 3 OR NOT errors MATCHES "--force-effect" OR EXISTS ${dir}/bad.exr)

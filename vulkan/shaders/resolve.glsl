@@ -99,12 +99,12 @@ struct ResolveParams {  // vulkan_filter.cpp's ResolvePush
 };
 struct SearchParams {  // vulkan_filter.cpp's ResolvePush, after the key's parameters
   uint probe_limit;
-  uint probe_scheme;  // kProbeLinear, kProbeBucket or kProbeBucketWindow
-  uint reserved0;
-  uint reserved1;
+  uint probe_scheme;        // kProbeLinear, kProbeBucket or kProbeBucketWindow
+  uint defer_every_pixel;   // 1: the first pass lists every pixel (--force-effect neighbour-search)
+  uint reserved;
 };
 // A resolve written against the first 32 bytes runs without the search.
-#if defined(HPSF_NEIGHBOUR_SEARCH)
+#if defined(HPSF_NEIGHBOUR_SEARCH) || defined(HPSF_DEFER_SEARCH)
 layout(push_constant) uniform Params {
   ResolveParams params;
   KeyParams key;  // the key path's, to compute a searching record's position again
@@ -208,6 +208,8 @@ void AddNeighbours(uint i, LevelChoice chosen, ResolveParams p, inout HPSF_TOTAL
 #endif
 
 #if defined(HPSF_DEFER_SEARCH)
+bool defer_every_pixel = false;  // from the push constants, once per invocation
+
 // Lists the pixel for the second pass; the entry that starts a workgroup's share adds the workgroup.
 void DeferPixel(uint pixel) {
   uint entry = atomicAdd(deferred_count, 1u);
@@ -221,7 +223,7 @@ void DeferPixel(uint pixel) {
 void ResolvePixel(uint pixel, ResolveParams p) {
   precise dvec3 sum = dvec3(0.0LF);
 #if defined(HPSF_DEFER_SEARCH)
-  bool deferred = false;  // then the pixel is the second pass's, which resolves all its records again
+  bool deferred = defer_every_pixel;  // then the pixel is the second pass's, which resolves all its records again
 #endif
   for (uint s = 0u; s < p.samples_per_pixel; ++s) {
     uint i = pixel * p.samples_per_pixel + s;
@@ -285,6 +287,9 @@ void main() {
 #else
 void main() {
   ResolveParams p = params;  // once per run: lavapipe gathers every push-constant read lane by lane
+#if defined(HPSF_DEFER_SEARCH)
+  defer_every_pixel = search.defer_every_pixel != 0u;
+#endif
   SubgroupRuns runs = ThisSubgroupsRuns(kPixelsPerInvocation);
   for (uint first = runs.first; first < p.pixel_count; first += runs.stride) {
     uint end = min(first + runs.size, p.pixel_count);
