@@ -33,7 +33,8 @@ void CountResolvedLevels(HashedRun& run) {
   }
 }
 
-NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen) {
+NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen,
+                             std::array<shared::KeyWords, shared::kStencilCells - 1>* corner_words) {
   NeighbourReads reads;
   reads.record = std::uint32_t(i);
   reads.level = chosen.level;
@@ -50,6 +51,7 @@ NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t 
     const std::optional<std::uint32_t> found = FindSlotInTable(run.table, words[c], params.normal_in_index != 0);
     if (found) reads.cells[c] = *found;
   }
+  if (corner_words) *corner_words = words;
   return reads;
 }
 

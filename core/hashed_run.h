@@ -3,6 +3,7 @@
 #ifndef HPSF_CORE_HASHED_RUN_H
 #define HPSF_CORE_HASHED_RUN_H
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -61,8 +62,9 @@ void CountResolvedLevels(HashedRun& run);
 using SlotSearch = std::function<NeighbourReads(const Record& r, std::size_t i, const shared::LevelChoice& chosen)>;
 
 // The search a correct resolve runs: SearchNeighbours with the record's key computed again, each corner looked up in
-// the table as read back (core/level_seed.h's FindSlotInTable).
-NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen);
+// the table as read back (core/level_seed.h's FindSlotInTable). words, when given, receives the corners' key words.
+NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t i, const shared::LevelChoice& chosen,
+                             std::array<shared::KeyWords, shared::kStencilCells - 1>* words = nullptr);
 
 // What record i's resolve reads in the run's table and averages: the slot of its chosen level (ResolvedSlot's, or a
 // broken resolve's) and, where it searches (core/neighbour_search.h), the slots `search` found (by default

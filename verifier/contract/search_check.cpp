@@ -1,5 +1,7 @@
 #include "verifier/contract/search_check.h"
 
+#include <array>
+
 namespace hpsf {
 namespace {
 
@@ -45,9 +47,8 @@ SearchComparison CompareSearches(const RecordBatch& batch, const FilterResult& r
                  std::to_string(expected.level));
       continue;
     }
-    const NeighbourReads read = SearchInTable(run, batch.records[i], i, chosen);
-    const auto wanted = StencilNeighbourWords(
-        run.key_params, batch.records[i], shared::JitteredKeyPosition(run.key_params, batch.records[i]), chosen.level);
+    std::array<shared::KeyWords, shared::kStencilCells - 1> wanted;
+    const NeighbourReads read = SearchInTable(run, batch.records[i], i, chosen, &wanted);
     bool failed = false;
     for (std::size_t c = 0; c < read.cells.size() && !failed; ++c) {
       const FullKey want = KeyOfWords(wanted[c]);
