@@ -177,6 +177,13 @@ constexpr BindingKind kResolveBindings[] = {
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 
+// A built-in shader's SPIR-V by accumulation mode.
+std::span<const std::uint32_t> ByMode(Accumulation mode, std::span<const std::uint32_t> fixed64,
+                                      std::span<const std::uint32_t> float32,
+                                      std::span<const std::uint32_t> packed_decimal) {
+  return mode == Accumulation::kFixed64 ? fixed64 : mode == Accumulation::kFloat32 ? float32 : packed_decimal;
+}
+
 struct CopyOut {
   void* to;
   const void* from;
@@ -297,9 +304,7 @@ struct VulkanFilter::Impl {
     if (!accumulate[m]) {
       std::span<const std::uint32_t> spirv = custom_accumulate;
       if (spirv.empty())
-        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(accumulate_fixed64_spv)
-                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(accumulate_float32_spv)
-                                                 : std::span<const std::uint32_t>(accumulate_packed_decimal_spv);
+        spirv = ByMode(mode, accumulate_fixed64_spv, accumulate_float32_spv, accumulate_packed_decimal_spv);
       accumulate[m] = vulkan_internal::CreateComputeProgram(device, spirv, kAccumulateBindings, sizeof(AccumulatePush));
     }
     return *accumulate[m];
@@ -312,13 +317,8 @@ struct VulkanFilter::Impl {
     if (!program) {
       std::span<const std::uint32_t> spirv = custom_resolve;
       if (spirv.empty() && search)
-        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_defer_fixed64_spv)
-                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_defer_float32_spv)
-                                                 : std::span<const std::uint32_t>(resolve_defer_packed_decimal_spv);
-      if (spirv.empty())
-        spirv = mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_fixed64_spv)
-                : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_float32_spv)
-                                                 : std::span<const std::uint32_t>(resolve_packed_decimal_spv);
+        spirv = ByMode(mode, resolve_defer_fixed64_spv, resolve_defer_float32_spv, resolve_defer_packed_decimal_spv);
+      if (spirv.empty()) spirv = ByMode(mode, resolve_fixed64_spv, resolve_float32_spv, resolve_packed_decimal_spv);
       program = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
     return *program;
@@ -327,9 +327,7 @@ struct VulkanFilter::Impl {
     std::optional<ComputeProgram>& program = search_resolve[static_cast<int>(mode)];
     if (!program) {
       const std::span<const std::uint32_t> spirv =
-          mode == Accumulation::kFixed64   ? std::span<const std::uint32_t>(resolve_search_fixed64_spv)
-          : mode == Accumulation::kFloat32 ? std::span<const std::uint32_t>(resolve_search_float32_spv)
-                                           : std::span<const std::uint32_t>(resolve_search_packed_decimal_spv);
+          ByMode(mode, resolve_search_fixed64_spv, resolve_search_float32_spv, resolve_search_packed_decimal_spv);
       program = vulkan_internal::CreateComputeProgram(device, spirv, kResolveBindings, sizeof(ResolvePush));
     }
     return *program;
