@@ -346,8 +346,9 @@ hpsf_add_cli_test(HpsfCrosscheck.UserFloat32ShaderPasses vulkan 0 "level 2 table
 # has a probability near e^-22): rounding (D11, where the automatic F hides it), frame state (last-seen
 # stored by the claimer only) and the count race with the joiners' branch first are deterministic, so each is
 # shrunk and its bundle reproduces; with the claimer's branch first lavapipe hides the race inside a workgroup, and
-# only the spread family's workgroups on different worker threads expose it, on some runs: found, and bundled as
-# found (tools/testing/fuzz_finds_defect.cmake with TIMING_DEPENDENT).
+# only the spread family's workgroups on different worker threads expose it, on some runs: found and bundled, as
+# found when a rerun passed, shrunk when every rerun failed (tools/testing/fuzz_finds_defect.cmake with
+# TIMING_DEPENDENT).
 foreach(class D11:2 LAST_SEEN_CLAIMER_ONLY:2 COUNT_STORE_JOIN_FIRST:2)
   string(REPLACE ":" ";" class ${class})
   list(GET class 0 shader)
