@@ -49,6 +49,7 @@ void CheckSameSequence(const FilterConfig& first, const FilterConfig& next) {
   require(first.levels == next.levels, "--levels");
   require(first.min_count == next.min_count, "--min-count");
   require(first.neighbour_search == next.neighbour_search, "--neighbour-search");
+  require(first.transport == next.transport, "--transport");
 }
 
 }  // namespace hpsf

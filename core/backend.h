@@ -27,6 +27,7 @@ namespace hpsf {
 
 // A frame's wall time in milliseconds, grouped alike on every backend. No output bit depends on it.
 struct FrameTimings {
+  double transport_ms = 0;        // several filtered bounces' lookups in the table before the frame (core/transport.h)
   std::optional<double> keys_ms;  // keys, input checks and the choice of F; absent where the accumulate computes keys
   double accumulate_ms = 0;       // clearing or preparing the table and the adds
   double level_seed_ms = 0;       // the seed pass of resolution changes (core/level_seed.h)

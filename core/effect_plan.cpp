@@ -169,6 +169,7 @@ FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index) {
   e.eviction =
       config.eviction.enabled() && (index >= FirstEvictingFrame(config.eviction) || forced.Has(Effect::kEviction));
   e.search_every_pixel = config.neighbour_search && forced.Has(Effect::kNeighbourSearch);
+  e.transport = config.transport && index > 0;  // the first frame's table before it is empty: every lookup misses
   return e;
 }
 

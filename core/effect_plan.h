@@ -60,6 +60,7 @@ struct FrameEffects {
   bool level_seed = false;
   bool eviction = false;  // the eviction pass; last-seen frames are tracked whenever config.eviction is enabled
   bool search_every_pixel = false;  // the search pass resolves every pixel, not only those below the threshold
+  bool transport = false;           // records take their scattered vertices' light from the table before the frame
 };
 FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index);
 

@@ -63,6 +63,9 @@ struct FilterConfig {
   // --neighbour-search: a record whose chosen cell holds fewer than min_count samples also reads the stencil of cells
   // nearest its jittered position (core/shared/neighbour_search.h)
   bool neighbour_search = false;
+  // Several filtered bounces (core/transport.h): from a sequence's second frame on, each record with a scattered
+  // vertex adds the previous frame's average at that vertex's cell, carried back by its transport weight
+  bool transport = false;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // Throws ConfigError for the first invalid option.

@@ -10,6 +10,7 @@
 
 #include "core/image.h"
 #include "core/neighbour_search.h"
+#include "core/transport.h"
 
 namespace hpsf {
 
@@ -47,6 +48,7 @@ struct FilterStats {
   // their lookups found
   std::uint64_t records_searched = 0;
   std::uint64_t neighbours_read = 0;
+  TransportStats transport;  // several filtered bounces (core/transport.h): the frame's transport, if it ran
 };
 
 struct FilterResult {
@@ -57,6 +59,9 @@ struct FilterResult {
   std::vector<std::uint32_t> coarser_placement;
   // With --neighbour-search: each record that searched, in record order, and the cells (indices into cells) it read
   std::vector<NeighbourReads> neighbour_reads;
+  // With a transport (core/transport.h): per record, the cell its scattered vertex's light came from, or
+  // kNothingTransported
+  std::vector<std::uint32_t> transport_read;
   FilterStats stats;
 };
 

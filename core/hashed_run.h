@@ -15,6 +15,7 @@
 #include "core/key_batch.h"
 #include "core/neighbour_search.h"
 #include "core/shared/levels.h"
+#include "core/transport.h"
 
 namespace hpsf {
 
@@ -31,6 +32,10 @@ struct HashedRun {
   KeyParams key_params{};              // the host's, from which the search's checks compute a record's position again
   std::uint64_t records_searched = 0;  // records whose resolve searched (core/shared/neighbour_search.h)
   std::uint64_t neighbours_read = 0;   // the neighbour slots their lookups found
+  // Several filtered bounces (core/transport.h): per record, the slot of the table before the frame its scattered
+  // vertex's light came from, or kNothingTransported (empty where the frame transported nothing), and the counts
+  std::vector<std::uint32_t> transport_read;
+  TransportStats transport;
   std::uint64_t probe_failures = 0;
   std::uint64_t wraps = 0;                   // integer adds whose sum wrapped (64 bits, or packed-decimal's 32)
   std::uint64_t count_wraps = 0;             // adds whose count wrapped (64 bits, D12, or packed-decimal's 24)

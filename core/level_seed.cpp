@@ -76,17 +76,21 @@ std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const s
   return std::nullopt;
 }
 
+CellState StateOfSlot(const HashTableDump& table, std::uint32_t slot) {
+  CellState state;
+  state.count = table.counts[slot];
+  if (IntegerSums(table.accumulation)) {
+    state.fixed_sum = table.fixed_sums[slot];
+  } else {
+    state.float_sum = table.float_sums[slot];
+  }
+  return state;
+}
+
 std::optional<CellState> FindInTable(const HashTableDump& table, const shared::KeyWords& words, bool normal_in_index) {
   const std::optional<std::uint32_t> s = FindSlotInTable(table, words, normal_in_index);
   if (!s) return std::nullopt;
-  CellState state;
-  state.count = table.counts[*s];
-  if (IntegerSums(table.accumulation)) {
-    state.fixed_sum = table.fixed_sums[*s];
-  } else {
-    state.float_sum = table.float_sums[*s];
-  }
-  return state;
+  return StateOfSlot(table, *s);
 }
 
 }  // namespace hpsf

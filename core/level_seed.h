@@ -44,7 +44,9 @@ CellState SeedOf(const shared::KeyWords& cell, const LevelSeed& seed, bool fixed
 // lookup aliased.
 std::optional<std::uint32_t> FindSlotInTable(const HashTableDump& table, const shared::KeyWords& words,
                                              bool normal_in_index);
-// That slot's state.
+// A slot's sums and count.
+CellState StateOfSlot(const HashTableDump& table, std::uint32_t slot);
+// The state of the slot FindSlotInTable finds.
 std::optional<CellState> FindInTable(const HashTableDump& table, const shared::KeyWords& words, bool normal_in_index);
 
 }  // namespace hpsf

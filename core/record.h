@@ -43,6 +43,11 @@ struct RecordBatch {
   double fov_y_radians = 0.0;  // the camera's, for the footprint scale (core/footprint.h)
   std::uint32_t frame = 0;     // the frame traced: its keyframes and random numbers, and the filter's config.frame
   std::vector<Record> records;
+  // Several filtered bounces (core/transport.h): none, or per record the vertex its path scattered to from its filter
+  // vertex, as a record keyed like any (its position, frame, previous vertex, path length, pixel, sample and bounce),
+  // whose throughput is the transport weight: the throughput from the filter vertex to it times its albedo. Its
+  // contribution and radiance_before are not read; a record whose path scattered nowhere has none (no vertex flag).
+  std::vector<Record> scattered;
 };
 
 std::string ToString(const Record& record);

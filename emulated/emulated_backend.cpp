@@ -24,7 +24,8 @@ void EmulatedBackend::ForgetTable() {
 FrameTimings EmulatedBackend::LastFrameTimings() const {
   if (!run_) return {};
   const EmulatedTimings& t = run_->timings;
-  return {.keys_ms = t.keys_ms + t.fixed_point_ms,
+  return {.transport_ms = t.transport_ms,
+          .keys_ms = t.keys_ms + t.fixed_point_ms,
           .accumulate_ms = t.clear_ms + t.accumulate_ms,
           .level_seed_ms = t.level_seed_ms,
           .compaction_ms = t.compaction_ms,

@@ -20,6 +20,7 @@
 #include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
 #include "core/temporal.h"
+#include "core/transport.h"
 #include "emulated/compaction_kernels.h"
 #include "emulated/level_seed_kernel.h"
 #include "emulated/packed_settle_kernel.h"
@@ -62,21 +63,37 @@ void EmulatorOptions::Validate() const {
   }
 }
 
-EmulatedRun EmulatedFilter(const RecordBatch& batch, const FilterConfig& config, const EmulatorOptions& options,
+EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config, const EmulatorOptions& options,
                            AccumulateKernelFn accumulate, const HashTableDump* previous,
                            EvictionKernels eviction_kernels, const FrameEffects* effects,
                            EmulatorWorkspace* workspace) {
-  CheckBatchShape(batch);
+  CheckBatchShape(given);
+  CheckScatteredShape(given);
   config.Validate();
   options.Validate();
-  const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
+  const std::uint32_t n = static_cast<std::uint32_t>(given.records.size());
   const KeyParams params =
-      MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
+      MakeKeyParams(config, FootprintScale(config.filter_width_px, given.fov_y_radians, given.height), n);
 
   EmulatorWorkspace scratch;  // a run without a workspace: fresh arrays
   EmulatorWorkspace& kept = workspace ? *workspace : scratch;
   EmulatedRun run;
   PhaseClock clock;
+  // Several filtered bounces: a host pass over the table before the frame, which no launch of the frame writes, so
+  // no schedule can change what it reads.
+  std::optional<TransportResult> transport;
+  if (previous && (effects ? effects->transport : PlanFrameEffects(config, kLaterFrame).transport)) {
+    const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
+      const std::optional<std::uint32_t> slot = FindSlotInTable(*previous, w, config.normal_in_index);
+      if (!slot) return std::nullopt;
+      return FoundCell{*slot, StateOfSlot(*previous, *slot)};
+    };
+    transport = TransportBatch(given, params, config.accumulation, previous->fixed_point_bits, lookup);
+    run.transport_read = std::move(transport->read);
+    run.transport = transport->stats;
+    run.timings.transport_ms = clock.LapMs();
+  }
+  const RecordBatch& batch = transport ? transport->batch : given;
   // Keys on all cores: each is a function of its record alone.
   // The same pass notes which records pass the input checks and gathers, for F, the contributions of those
   // that enter the table.

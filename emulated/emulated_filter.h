@@ -42,6 +42,7 @@ struct EmulatorOptions {
 // Wall time of each phase of a run in milliseconds, as VulkanTimings has its passes', for benchmarks and reports;
 // no output bit depends on them.
 struct EmulatedTimings {
+  double transport_ms = 0;    // several filtered bounces' lookups in the table before the frame; 0 without
   double keys_ms = 0;         // keys, input checks and the contributions for F, all cores
   double fixed_point_ms = 0;  // the choice of F
   double clear_ms = 0;        // allocating and zeroing the table

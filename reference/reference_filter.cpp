@@ -18,6 +18,7 @@
 #include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
 #include "core/temporal.h"
+#include "core/transport.h"
 
 namespace hpsf {
 namespace {
@@ -151,17 +152,41 @@ shared::LevelChoice ChooseCell(const FilterResult& result, const FilterConfig& c
   return choice;
 }
 
+// Several filtered bounces (core/transport.h): the scattered vertices' cells looked up in the exact map before the
+// frame.
+TransportResult TransportFromPrevious(const RecordBatch& batch, const KeyParams& params, const FilterConfig& config,
+                                      const FilterResult& previous) {
+  std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
+  for (std::size_t c = 0; c < previous.cells.size(); ++c) cell_of_key.emplace(previous.cells[c].key, std::uint32_t(c));
+  const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
+    const auto it = cell_of_key.find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
+    if (it == cell_of_key.end()) return std::nullopt;
+    const TableCell& c = previous.cells[it->second];
+    return FoundCell{it->second, {c.fixed_sum, c.float_sum, c.count}};
+  };
+  return TransportBatch(batch, params, config.accumulation, previous.stats.fixed_point_bits, lookup);
+}
+
 }  // namespace
 
-FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& config, const FilterResult* previous,
+FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& config, const FilterResult* previous,
                              const FrameEffects* effects) {
-  CheckBatchShape(batch);
+  CheckBatchShape(given);
+  CheckScatteredShape(given);
   config.Validate();
-  const float footprint = FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height);
-  const KeyParams params = MakeKeyParams(config, footprint, static_cast<std::uint32_t>(batch.records.size()));
+  const float footprint = FootprintScale(config.filter_width_px, given.fov_y_radians, given.height);
+  const KeyParams params = MakeKeyParams(config, footprint, static_cast<std::uint32_t>(given.records.size()));
+  const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
 
   FilterResult result;
   FilterStats& stats = result.stats;
+  std::optional<TransportResult> transport;
+  if (planned.transport && previous) {
+    transport = TransportFromPrevious(given, params, config, *previous);
+    result.transport_read = std::move(transport->read);
+    stats.transport = transport->stats;
+  }
+  const RecordBatch& batch = transport ? transport->batch : given;
   stats.records = batch.records.size();
   const bool packed = config.accumulation == Accumulation::kPackedDecimal;
   stats.fixed_point_bits = packed                    ? 0
@@ -204,7 +229,6 @@ FilterResult ReferenceFilter(const RecordBatch& batch, const FilterConfig& confi
       (k == 0 ? result.placement[i] : result.coarser_placement[std::size_t(k - 1) * batch.records.size() + i]) = cell;
     }
   }
-  const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
   if (planned.level_seed) SeedNewCells(config, previous, cell_of_key, result);
   if (planned.temporal) BlendCells(config, previous ? previous->cells : std::vector<TableCell>{}, result);
   if (packed) SettleCells(result);

@@ -513,6 +513,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                             const FrameEffects* effects) {
   CheckBatchShape(batch);
   config.Validate();
+  if (config.transport) {  // several filtered bounces run on the reference and the emulator so far
+    throw ConfigError("--transport", "is not built on Vulkan yet: filter with the reference or the emulator");
+  }
   Impl& p = *impl_;
   if (!p.custom_accumulate.empty() && p.custom_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +

@@ -1,0 +1,50 @@
+#include "core/transport.h"
+
+#include <string>
+
+#include "core/error.h"
+#include "core/input_check.h"
+#include "core/neighbour_search.h"
+#include "core/shared/transport.h"
+
+namespace hpsf {
+
+void CheckScatteredShape(const RecordBatch& batch) {
+  if (!batch.scattered.empty() && batch.scattered.size() != batch.records.size()) {
+    throw InputError("record batch: " + std::to_string(batch.scattered.size()) + " scattered vertices for " +
+                     std::to_string(batch.records.size()) + " records (none, or one per record)");
+  }
+}
+
+TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
+                               int fixed_point_bits, const TransportLookup& lookup) {
+  CheckScatteredShape(batch);
+  TransportResult result{batch, std::vector<std::uint32_t>(batch.records.size(), kNothingTransported), {}};
+  for (std::size_t i = 0; i < batch.scattered.size(); ++i) {
+    Record& r = result.batch.records[i];
+    const Record& s = batch.scattered[i];
+    if (!shared::RecordHasVertex(r) || !shared::RecordHasVertex(s)) continue;
+    if (CheckRecordInputs(r) != InputVerdict::kAccepted || CheckRecordInputs(s) != InputVerdict::kAccepted) continue;
+    ++result.stats.scattered;
+    const KeyResult key = shared::ComputeKey(params, s);
+    if (key.status == shared::kKeyUnkeyable) {
+      ++result.stats.unkeyable;
+      continue;
+    }
+    const std::optional<FoundCell> found = lookup(key.words);
+    if (!found || found->state.count == 0) {
+      ++result.stats.missed;
+      continue;
+    }
+    ++result.stats.found;
+    StencilTotal one;
+    one.Add(found->state.fixed_sum, found->state.float_sum, found->state.count);
+    const glm::vec3 transported = shared::TransportedContribution(glm::vec3(r.contribution), glm::vec3(s.throughput),
+                                                                  one.Average(accumulation, fixed_point_bits));
+    r.contribution = glm::vec4(transported, 0.0f);
+    result.read[i] = found->index;
+  }
+  return result;
+}
+
+}  // namespace hpsf

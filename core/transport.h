@@ -1,0 +1,56 @@
+// Several filtered bounces on the host (Meijer §4.3, nHPSF; core/shared/transport.h holds the step): before a frame's
+// accumulate, each record whose path scattered to a further vertex takes the light the previous frame's table holds
+// at that vertex's cell. The frame then adds these transported records to its table as it adds any record, so a
+// table of K frames holds up to K + 1 bounces. Only the table before the frame is read, never the one being
+// accumulated (D10): on the first frame of a sequence there is none and nothing is transported.
+#ifndef HPSF_CORE_TRANSPORT_H
+#define HPSF_CORE_TRANSPORT_H
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/accumulation.h"
+#include "core/key_batch.h"
+#include "core/record.h"
+#include "core/temporal.h"
+
+namespace hpsf {
+
+// A cell (or slot) a lookup found with samples: its index and what it held.
+struct FoundCell {
+  std::uint32_t index = 0;
+  CellState state;
+};
+// Finds the cell of these key words in the table before the frame.
+using TransportLookup = std::function<std::optional<FoundCell>(const shared::KeyWords&)>;
+
+inline constexpr std::uint32_t kNothingTransported = 0xFFFFFFFFu;
+
+struct TransportStats {
+  std::uint64_t scattered = 0;  // accepted records with a vertex whose scattered vertex is accepted too
+  std::uint64_t unkeyable = 0;  // of those, scattered vertices without a key: nothing transported
+  std::uint64_t found = 0;      // lookups that found a cell with samples: light transported
+  std::uint64_t missed = 0;     // lookups that found none (the cell was never reached, or was evicted)
+};
+
+struct TransportResult {
+  RecordBatch batch;                // the frame's records, contributions transported
+  std::vector<std::uint32_t> read;  // per record: the cell or slot its transport read, or kNothingTransported
+  TransportStats stats;
+};
+
+// A batch's scattered vertices are none, or one per record (without a vertex where its path scattered nowhere); an
+// InputError naming the counts otherwise.
+void CheckScatteredShape(const RecordBatch& batch);
+
+// The records with their contributions transported from the cells `lookup` finds. A scattered vertex is keyed like a
+// record (its key path and jitter, from its own pixel, sample and bounce) at its own level; the average is the
+// resolve's of one cell (sums / count in double).
+TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
+                               int fixed_point_bits, const TransportLookup& lookup);
+
+}  // namespace hpsf
+
+#endif  // HPSF_CORE_TRANSPORT_H

@@ -1,0 +1,259 @@
+// Several filtered bounces (Meijer §4.3, nHPSF; core/transport.h): a record whose path scattered to a further vertex
+// adds the previous frame's average at that vertex's cell, so a table of K frames holds up to K + 1 bounces. Held
+// to the analytic furnace: every record emits e beyond its filter vertex and carries back a of its scattered
+// vertex's cell, so each cell's average follows a series whose limit is e / (1 - a). Label `bounces`.
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "emulated/emulated_backend.h"
+#include "property_tests/grid_batch.h"
+#include "property_tests/vulkan_test_devices.h"
+#include "reference/reference_backend.h"
+#include "reference/reference_filter.h"
+#include "vulkan/vulkan_filter.h"
+
+namespace hpsf::testing {
+namespace {
+
+const glm::vec3 kEmission(1.0f, 0.5f, 0.25f);  // e: what every path finds beyond its filter vertex
+const glm::vec3 kAlbedo(0.5f, 0.75f, 0.25f);   // a: the transport weight to the scattered vertex
+constexpr std::uint32_t kCells = 8;            // a 2 x 2 x 2 block of unit cells
+constexpr std::uint32_t kPerCell = 8;
+
+glm::vec3 CellCorner(std::uint32_t cell) {
+  return glm::vec3(float(cell & 1u), float((cell >> 1) & 1u), float(cell >> 2));
+}
+
+// The cell record j of cell c scatters into: c + 1 + j mod (kCells - 1), so every cell is reached from every other.
+std::uint32_t ScatteredCell(std::uint32_t c, std::uint32_t j) { return (c + 1 + j % (kCells - 1)) % kCells; }
+
+// What cell c's records find beyond their filter vertex: e in the furnace, e (c + 1) / 8 where the light varies.
+glm::vec3 EmissionOf(std::uint32_t c, bool varying) { return varying ? kEmission * float(c + 1) / 8.0f : kEmission; }
+
+// The synthetic furnace: kPerCell records in each of kCells cells, each record's path scattering into another cell.
+// `varying`: each cell's records find another emission, so cells differ and a record must read the right one.
+RecordBatch FurnaceBatch(std::uint32_t frame, bool varying = false) {
+  RecordBatch batch;
+  batch.width = kCells * kPerCell;
+  batch.height = 1;
+  batch.samples_per_pixel = 1;
+  batch.fov_y_radians = 1.0;
+  batch.frame = frame;
+  for (std::uint32_t c = 0; c < kCells; ++c) {
+    for (std::uint32_t j = 0; j < kPerCell; ++j) {
+      VertexSample v;
+      v.pixel = c * kPerCell + j;
+      v.position = CellCorner(c) + glm::vec3(0.0625f + 0.125f * float(j), 0.5f, 0.25f);
+      v.previous = v.position + glm::vec3(0.0f, 0.0f, -4.0f);
+      v.contribution = EmissionOf(c, varying);
+      v.throughput = glm::vec3(1.0f);
+      batch.records.push_back(MakeVertexRecord(v));
+      VertexSample s;
+      s.pixel = v.pixel;
+      s.bounce = 1;
+      s.position = CellCorner(ScatteredCell(c, j)) + glm::vec3(0.5f, 0.125f + 0.0625f * float(j), 0.75f);
+      s.previous = v.position;
+      s.throughput = kAlbedo;
+      batch.scattered.push_back(MakeVertexRecord(s));
+    }
+  }
+  return batch;
+}
+
+FilterConfig FurnaceConfig(Accumulation accumulation, const std::string& temporal, std::uint32_t frames) {
+  FilterConfig config = GridConfig(1u << 10, 16);
+  config.accumulation = accumulation;
+  config.temporal = ParseTemporal(temporal);
+  config.frames = frames;
+  config.transport = true;
+  return config;
+}
+
+// Every cell's average after each frame, computed apart from hpsf: frame k's records each carry e + a c(k-1) (c(-1)
+// = 0), and the cell blends them with its history as --temporal says (docs/design/algorithm.md, "Temporal
+// blending"): integrate keeps every frame's sums; ema:ALPHA weighs the history by min(ALPHA, N_old / (N_old + N_new))
+// and keeps the count ceil(N_new / (1 - alpha)), capped at N_old + N_new.
+std::vector<glm::dvec3> ExpectedAverages(const Temporal& temporal, std::uint32_t frames) {
+  std::vector<glm::dvec3> averages;
+  glm::dvec3 average(0.0);
+  double count = 0.0;
+  const double added = kPerCell;
+  for (std::uint32_t k = 0; k < frames; ++k) {
+    const glm::dvec3 frame_value = glm::dvec3(kEmission) + glm::dvec3(kAlbedo) * average;
+    double alpha = count / (count + added);
+    if (temporal.mode == TemporalMode::kEma) alpha = std::min(temporal.alpha, alpha);
+    average = alpha * average + (1.0 - alpha) * frame_value;
+    count = k == 0 ? added : std::min(std::ceil(added / (1.0 - alpha)), count + added);
+    averages.push_back(average);
+  }
+  return averages;
+}
+
+// The series a table of the newest frame alone holds: e (1 + a + ... + a^k).
+glm::dvec3 FurnaceSeries(std::uint32_t k) {
+  glm::dvec3 sum(0.0), power(1.0);
+  for (std::uint32_t j = 0; j <= k; ++j, power *= glm::dvec3(kAlbedo)) sum += glm::dvec3(kEmission) * power;
+  return sum;
+}
+
+// A cell's average from a table cell's sums.
+glm::dvec3 CellAverage(const TableCell& cell, Accumulation accumulation, int fixed_point_bits) {
+  StencilTotal total;
+  total.Add(cell.fixed_sum, cell.float_sum, cell.count);
+  return total.Average(accumulation, fixed_point_bits);
+}
+
+// Within relative tolerance `tolerance`: fixed64 rounds each frame's transported contribution to float once (2^-24)
+// and sums exactly, and 2^-20 holds 24 frames of that with room. A float32 sum of n adds is within n 2^-24 of the
+// exact one (recursive summation of positive terms), the blend's difference and the transport's rounding add two
+// more, and the transport carries a of the previous frame's error along: (n + 2) 2^-24 / (1 - a) bounds the sum of
+// that series, a = 3/4 the largest albedo. Either is far below the a^k of one bounce more or less.
+void ExpectNear(const glm::dvec3& got, const glm::dvec3& want, double tolerance, const std::string& where) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], want[c] * tolerance) << where << ", channel " << c;
+}
+
+// In a table that forgets its history (ema:2^-30), each cell holds the newest frame alone, e (1 + a + ... + a^k) after
+// frame k: one bounce more per frame, towards e / (1 - a). Integrating instead keeps the early frames' fewer bounces
+// in its sums: the cell follows the integrating series, still converging to e / (1 - a) but as a mean of all frames.
+// The reference and the emulator, fast and faithful, in fixed64 and float32.
+TEST(Transport, TheFurnaceGainsOneBouncePerFrame) {
+  constexpr std::uint32_t kFrames = 24;
+  for (const std::string temporal : {"ema:0.000000000931322574615478515625", "integrate"}) {
+    for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+      const FilterConfig config = FurnaceConfig(accumulation, temporal, kFrames);
+      const std::vector<glm::dvec3> expected = ExpectedAverages(config.temporal, kFrames);
+      EmulatorOptions faithful;
+      faithful.mode = simt::Mode::kFaithful;
+      faithful.warp_size = 8;
+      faithful.schedule = "random:3";
+      ReferenceBackend reference;
+      EmulatedBackend fast{EmulatorOptions{}};
+      EmulatedBackend slow{faithful};
+      for (std::uint32_t k = 0; k < kFrames; ++k) {
+        const RecordBatch batch = FurnaceBatch(k);
+        FilterConfig frame_config = config;
+        frame_config.frame = k;
+        const std::string where = temporal + ", " + ToString(accumulation) + ", frame " + std::to_string(k);
+        reference.FilterFrame(batch, frame_config);
+        const FilterResult& exact = *reference.LastExactResult();
+        ASSERT_EQ(exact.cells.size(), kCells) << where;
+        for (const TableCell& cell : exact.cells) {
+          const double tolerance = accumulation == Accumulation::kFixed64
+                                       ? std::ldexp(1.0, -20)
+                                       : double(cell.count + 2) * std::ldexp(1.0, -24) * 4.0;
+          ExpectNear(CellAverage(cell, accumulation, exact.stats.fixed_point_bits), expected[k], tolerance, where);
+        }
+        if (temporal != "integrate") {
+          ExpectNear(expected[k], FurnaceSeries(k), std::ldexp(1.0, -20), where + ", the series");
+        }
+        EXPECT_EQ(exact.stats.transport.found, k == 0 ? 0u : kCells * kPerCell) << where;
+        for (EmulatedBackend* emulated : {&fast, &slow}) {
+          emulated->FilterFrame(batch, frame_config);
+          const EmulatedRun& run = emulated->run();
+          EXPECT_EQ(run.transport.found, exact.stats.transport.found) << where;
+          if (accumulation != Accumulation::kFixed64) continue;
+          // fixed64: the same bits as the reference, slot by cell and pixel by pixel.
+          for (std::size_t i = 0; i < batch.records.size(); ++i) {
+            const std::uint32_t slot = run.placements[i];
+            ASSERT_LT(slot, config.capacity) << where;
+            const TableCell& cell = exact.cells[exact.placement[i]];
+            EXPECT_EQ(run.table.fixed_sums[slot], cell.fixed_sum) << where << ", record " << i;
+            EXPECT_EQ(run.table.counts[slot], cell.count) << where << ", record " << i;
+          }
+          EXPECT_EQ(run.image.pixels, exact.image.pixels) << where;
+        }
+      }
+      const glm::dvec3 limit = glm::dvec3(kEmission) / (glm::dvec3(1.0) - glm::dvec3(kAlbedo));
+      std::printf("%s, %s: after %u frames a cell holds %.6f %.6f %.6f of the limit %.6f %.6f %.6f\n", temporal.c_str(),
+                  ToString(accumulation).c_str(), kFrames, expected.back().x, expected.back().y, expected.back().z,
+                  limit.x, limit.y, limit.z);
+    }
+  }
+}
+
+// Where the light varies from cell to cell, each cell integrates e_c + a times the average of the cells its records
+// scatter into, frame by frame (computed apart from hpsf, cell by cell): a record that read another cell than its
+// scattered vertex's, or its own, would miss it.
+TEST(Transport, EachRecordReadsItsScatteredVertexsCell) {
+  constexpr std::uint32_t kFrames = 8;
+  const FilterConfig config = FurnaceConfig(Accumulation::kFixed64, "integrate", kFrames);
+  std::vector<glm::dvec3> sums(kCells, glm::dvec3(0.0)), averages(kCells, glm::dvec3(0.0));
+  ReferenceBackend reference;
+  EmulatedBackend emulated{EmulatorOptions{}};
+  for (std::uint32_t k = 0; k < kFrames; ++k) {
+    const std::vector<glm::dvec3> before = averages;
+    for (std::uint32_t c = 0; c < kCells; ++c) {
+      for (std::uint32_t j = 0; j < kPerCell; ++j) {
+        sums[c] += glm::dvec3(EmissionOf(c, true)) + glm::dvec3(kAlbedo) * before[ScatteredCell(c, j)];
+      }
+      averages[c] = sums[c] / double(kPerCell * (k + 1));
+    }
+    const RecordBatch batch = FurnaceBatch(k, true);
+    FilterConfig frame_config = config;
+    frame_config.frame = k;
+    reference.FilterFrame(batch, frame_config);
+    emulated.FilterFrame(batch, frame_config);
+    const FilterResult& exact = *reference.LastExactResult();
+    for (std::uint32_t c = 0; c < kCells; ++c) {
+      const std::string where = "frame " + std::to_string(k) + ", cell " + std::to_string(c);
+      const TableCell& cell = exact.cells[exact.placement[c * kPerCell]];
+      ExpectNear(CellAverage(cell, Accumulation::kFixed64, exact.stats.fixed_point_bits), averages[c],
+                 std::ldexp(1.0, -20), where);
+    }
+    EXPECT_EQ(emulated.run().image.pixels, exact.image.pixels) << "frame " << k;
+  }
+}
+
+// The first frame has no table before it: nothing is transported, and the frame equals one filtered without the
+// transport, bit for bit. A batch with scattered vertices but not one per record is bad input.
+TEST(Transport, TheFirstFrameTransportsNothing) {
+  const RecordBatch batch = FurnaceBatch(0);
+  FilterConfig with = FurnaceConfig(Accumulation::kFixed64, "integrate", 1);
+  FilterConfig without = with;
+  without.transport = false;
+  const FilterResult a = ReferenceFilter(batch, with);
+  const FilterResult b = ReferenceFilter(batch, without);
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+  EXPECT_EQ(a.stats.transport.found, 0u);
+  RecordBatch uneven = batch;
+  uneven.scattered.pop_back();
+  EXPECT_THROW(ReferenceFilter(uneven, with), InputError);
+}
+
+// A scattered vertex whose cell the table before the frame never held transports nothing (a miss, counted), and one
+// that is rejected as input (a negative weight) is not looked up.
+TEST(Transport, AMissTransportsNothing) {
+  const FilterConfig config = FurnaceConfig(Accumulation::kFixed64, "integrate", 2);
+  ReferenceBackend reference;
+  reference.FilterFrame(FurnaceBatch(0), config);
+  RecordBatch next = FurnaceBatch(1);
+  next.scattered[0].position.x += 100.0f;  // a cell no frame reached
+  next.scattered[1].throughput.y = -1.0f;
+  FilterConfig frame_config = config;
+  frame_config.frame = 1;
+  reference.FilterFrame(next, frame_config);
+  const TransportStats& stats = reference.LastExactResult()->stats.transport;
+  EXPECT_EQ(stats.scattered, kCells * kPerCell - 1);
+  EXPECT_EQ(stats.missed, 1u);
+  EXPECT_EQ(stats.found, kCells * kPerCell - 2);
+  EXPECT_EQ(reference.LastExactResult()->transport_read[0], kNothingTransported);
+}
+
+// Vulkan's transport pass is not built: asking for it there is a ConfigError naming --transport, never a frame
+// filtered without it.
+TEST(Transport, VulkanRefusesItByName) {
+  try {
+    TestFilter(StagingPolicy::kNever).Run(FurnaceBatch(0), FurnaceConfig(Accumulation::kFixed64, "integrate", 1));
+    FAIL() << "Vulkan filtered a frame with --transport";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--transport"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hpsf::testing
