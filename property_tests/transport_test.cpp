@@ -244,6 +244,25 @@ TEST(Transport, AMissTransportsNothing) {
   EXPECT_EQ(reference.LastExactResult()->transport_read[0], kNothingTransported);
 }
 
+// fixed64's F is chosen by the first frame, which transports nothing, so that two frames like it stay below 2^63: the
+// whole batch's sum, twice (core/fixed_point_scale.h). A furnace whose light grows past it (weights of 64: the second
+// frame's contributions are 65 times the first's, each still converting) wraps its cells' sums on the second frame,
+// and every backend counts the wraps instead of filtering on silently.
+TEST(Transport, LightThatOutgrowsTheFirstFramesFIsCounted) {
+  FilterConfig config = FurnaceConfig(Accumulation::kFixed64, "integrate", 2);
+  ReferenceBackend reference;
+  EmulatedBackend emulated{EmulatorOptions{}};
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    RecordBatch batch = FurnaceBatch(k);
+    for (Record& s : batch.scattered) s.throughput = glm::vec4(64.0f, 64.0f, 64.0f, 0.0f);
+    config.frame = k;
+    reference.FilterFrame(batch, config);
+    emulated.FilterFrame(batch, config);
+  }
+  EXPECT_GT(reference.LastExactResult()->stats.fixed_point_wraps, 0u);
+  EXPECT_EQ(emulated.run().wraps, reference.LastExactResult()->stats.fixed_point_wraps);
+}
+
 // Vulkan's transport pass is not built: asking for it there is a ConfigError naming --transport, never a frame
 // filtered without it.
 TEST(Transport, VulkanRefusesItByName) {
