@@ -180,8 +180,7 @@ std::string FilterConfig::ToString() const {
          (compaction != Compaction::kNone ? " compaction: " + hpsf::ToString(compaction) : std::string()) +
          (levels != 1 ? " levels: " + std::to_string(levels) : std::string()) +
          (min_count != 1 ? " min_count: " + std::to_string(min_count) : std::string()) +
-         (neighbour_search ? " neighbour_search: on" : std::string()) +
-         (transport ? " transport: on" : std::string()) +
+         (neighbour_search ? " neighbour_search: on" : std::string()) + (transport ? " transport: on" : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 
