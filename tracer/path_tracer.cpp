@@ -107,7 +107,8 @@ class Tracer {
     tan_half_fov_ = std::tan(c.fov_y_degrees * std::numbers::pi / 360.0);
   }
 
-  Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats) const;
+  // With options.scattered, *scattered is the vertex the path scattered to from its filter vertex.
+  Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, Record* scattered) const;
 
  private:
   // The random numbers of one path vertex: the counter's prefix is hashed once, each dimension then finishes it.
@@ -195,7 +196,7 @@ class Tracer {
   double tan_half_fov_;
 };
 
-Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats) const {
+Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, Record* scattered) const {
   const double px = pixel % options_.width, py = pixel / options_.width;
   const double aspect = double(options_.width) / double(options_.height);
   const VertexRandom camera_random = RandomAt(pixel, sample, 0);
@@ -210,12 +211,13 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   // vertex's albedo and `gathered` sums the contribution. Nothing is ever divided by an albedo.
   glm::dvec3 weight(1.0), gathered(0.0);
   glm::dvec3 radiance_before(0.0), record_throughput(0.0);
-  VertexSample vertex;
-  bool has_vertex = false;
+  VertexSample vertex, next;  // the filter vertex, and with options_.scattered the vertex after it
+  bool has_vertex = false, has_next = false;
   glm::dvec3 previous = origin;
   std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
-  const std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
+  std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
+  if (options_.scattered) max_vertices = std::min(max_vertices, options_.filter_bounce + 2u);
 
   for (std::uint32_t bounce = 0; bounce < max_vertices; ++bounce) {
     const auto hit = Cast(origin, direction);
@@ -253,6 +255,15 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     } else {
       weight *= albedo;
       gathered += weight * direct;
+      if (has_vertex && options_.scattered && !has_next) {  // the transport weight: filter vertex to here, albedo
+        has_next = true;
+        next.position = glm::vec3(p.position);
+        next.normal = glm::vec3(p.normal);
+        next.previous = glm::vec3(previous);
+        next.d_prefix = static_cast<float>(d_prefix);
+        next.bounce = bounce;
+        next.throughput = glm::vec3(weight);
+      }
     }
     d_prefix += segment;
     previous = p.position;
@@ -276,6 +287,11 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     ++stats.bounce_rays;
   }
 
+  if (scattered) {
+    next.pixel = pixel;
+    next.sample = sample;
+    *scattered = has_next ? MakeVertexRecord(next) : MakeRecordWithoutVertex(pixel, sample, glm::vec3(0.0f));
+  }
   if (!has_vertex) return MakeRecordWithoutVertex(pixel, sample, glm::vec3(gathered));
   vertex.pixel = pixel;
   vertex.sample = sample;
@@ -336,6 +352,7 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
   batch.fov_y_radians = scene.camera.fov_y_degrees * std::numbers::pi / 180.0;
   batch.frame = options.frame;
   batch.records.resize(std::size_t(options.width) * options.height * options.samples_per_pixel);
+  if (options.scattered) batch.scattered.resize(batch.records.size());
 
   const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
   std::atomic<std::uint32_t> tiles_done{0};
@@ -351,7 +368,9 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
             for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
               const std::uint32_t pixel = y * options.width + x;
               for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
-                batch.records[std::size_t(pixel) * options.samples_per_pixel + s] = tracer.TraceSample(pixel, s, local);
+                const std::size_t i = std::size_t(pixel) * options.samples_per_pixel + s;
+                batch.records[i] =
+                    tracer.TraceSample(pixel, s, local, options.scattered ? &batch.scattered[i] : nullptr);
               }
             }
           }

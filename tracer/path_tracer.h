@@ -29,7 +29,12 @@ struct TraceOptions {
   // Russian roulette.
   int max_depth = 8;
   std::uint32_t filter_bounce = 0;  // which diffuse vertex becomes the filter vertex; 0 is the primary hit
-  int threads = 0;                  // 0: all cores
+  // Several filtered bounces (core/transport.h): each path also records the vertex it scatters to from its filter
+  // vertex (RecordBatch::scattered) and ends there, so the record holds the light of one vertex further (that
+  // vertex's emission, no next-event estimate from it, as --max-depth truncates) and the transport takes what lies
+  // beyond from the table.
+  bool scattered = false;
+  int threads = 0;  // 0: all cores
 
   void Validate() const;  // ConfigError naming the option
 };

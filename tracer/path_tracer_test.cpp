@@ -201,3 +201,56 @@ TEST(PathTracer, LaterFilterBounceSplitsTheSamePaths) {
 
 }  // namespace
 }  // namespace hpsf
+
+namespace hpsf {
+namespace {
+
+// Several filtered bounces (core/transport.h): with `scattered`, each path ends at the vertex it scatters to from its
+// filter vertex and records it. The records are those of paths of filter bounce + 2 vertices, bit for bit (the same
+// random numbers); each scattered vertex continues its own record's path (its pixel and sample, the next bounce, the
+// filter vertex as its previous vertex, the path length to it) and carries the albedo it reached, the cosine-sampled
+// bounce's weight being 1: 0.5 in the furnace. Paths that end before scattering have none.
+TEST(PathTracer, ScatteredVerticesContinueTheirRecordsPaths) {
+  for (const std::uint32_t filter_bounce : {0u, 1u}) {
+    TraceOptions scattered = SmallOptions(24, 2), truncated = scattered;
+    scattered.scattered = true;
+    scattered.filter_bounce = truncated.filter_bounce = filter_bounce;
+    truncated.max_depth = int(filter_bounce) + 2;
+    const Scene furnace = LoadScene("furnace");
+    const RecordBatch a = TraceRecords(furnace, scattered).batch, b = TraceRecords(furnace, truncated).batch;
+    ASSERT_EQ(a.records.size(), b.records.size());
+    EXPECT_EQ(std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(Record)), 0);
+    EXPECT_TRUE(b.scattered.empty());
+    ASSERT_EQ(a.scattered.size(), a.records.size());
+    for (std::size_t i = 0; i < a.records.size(); ++i) {
+      const Record& r = a.records[i];
+      const Record& s = a.scattered[i];
+      ASSERT_TRUE(shared::RecordHasVertex(r) && shared::RecordHasVertex(s)) << i;  // the furnace is closed
+      EXPECT_EQ(shared::RecordPixel(s), shared::RecordPixel(r));
+      EXPECT_EQ(shared::RecordSample(s), shared::RecordSample(r));
+      EXPECT_EQ(shared::RecordBounce(s), filter_bounce + 1);
+      EXPECT_EQ(glm::vec3(s.previous), glm::vec3(r.position));
+      EXPECT_GT(s.position.w, r.position.w);  // the path length grew by the segment to the filter vertex
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.throughput[c], 0.5f, 1e-6f) << i;
+    }
+  }
+  // An open scene: a path that leaves for the sky scatters nowhere, and its scattered vertex has no vertex flag.
+  const Scene open = ParseScene(R"({"hpsf_scene": 1, "sky": [1, 1, 1],
+      "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "fov_y_degrees": 20},
+      "materials": [{"name": "grey", "albedo": [0.5, 0.5, 0.5]}],
+      "shapes": [{"material": "grey", "quad": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]}]})",
+                                "open", ".");
+  TraceOptions o = SmallOptions(8, 2);
+  o.scattered = true;
+  const RecordBatch batch = TraceRecords(open, o).batch;
+  int hits = 0;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    if (!shared::RecordHasVertex(batch.records[i])) continue;
+    ++hits;  // a lone quad: every bounce from it leaves for the sky
+    EXPECT_FALSE(shared::RecordHasVertex(batch.scattered[i])) << i;
+  }
+  EXPECT_GT(hits, 0);
+}
+
+}  // namespace
+}  // namespace hpsf

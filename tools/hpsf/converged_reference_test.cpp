@@ -75,7 +75,7 @@ TEST(ConvergedReference, TheDigestFollowsTheContent) {
 // maximum depth would hand back an image traced to another depth). A field added to the request must be added
 // here: the sizes below stop the build of this test until it is.
 TEST(ConvergedReference, EveryFieldThatChangesTheImageChangesTheCacheKey) {
-  static_assert(sizeof(TraceOptions) == 8 * sizeof(std::uint32_t), "a new TraceOptions field: add it below");
+  static_assert(sizeof(TraceOptions) == 9 * sizeof(std::uint32_t), "a new TraceOptions field: add it below");
   static_assert(sizeof(ReferenceRequest) == sizeof(TraceOptions) + 2 * sizeof(std::uint32_t),
                 "a new ReferenceRequest field: add it below");
   const Scene scene = LoadScene("cornell");
@@ -96,6 +96,7 @@ TEST(ConvergedReference, EveryFieldThatChangesTheImageChangesTheCacheKey) {
       {"max depth", [](ReferenceRequest& r) { r.trace.max_depth = 2; }},
       {"filter bounce", [](ReferenceRequest& r) { r.trace.filter_bounce = 1; }},
       {"threads", [](ReferenceRequest& r) { r.trace.threads = 1; }},
+      {"scattered", [](ReferenceRequest& r) { r.trace.scattered = true; }},
       {"spp", [](ReferenceRequest& r) { r.samples_per_pixel = 16; }},
       {"pass spp", [](ReferenceRequest& r) { r.pass_samples = 4; }},
   };
