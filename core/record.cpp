@@ -48,4 +48,15 @@ std::string ToString(const Record& r) {
          " radiance_before: " + FormatVec3(glm::vec3(r.radiance_before)) + " ]";
 }
 
+TableRecords::TableRecords(const RecordBatch& batch) {
+  if (batch.deeper.empty()) {
+    all_ = batch.records;
+    return;
+  }
+  joined_.reserve(batch.records.size() + batch.deeper.size());
+  joined_.insert(joined_.end(), batch.records.begin(), batch.records.end());
+  joined_.insert(joined_.end(), batch.deeper.begin(), batch.deeper.end());
+  all_ = joined_;
+}
+
 }  // namespace hpsf

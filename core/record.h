@@ -4,6 +4,7 @@
 #define HPSF_CORE_RECORD_H
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -43,11 +44,27 @@ struct RecordBatch {
   double fov_y_radians = 0.0;  // the camera's, for the footprint scale (core/footprint.h)
   std::uint32_t frame = 0;     // the frame traced: its keyframes and random numbers, and the filter's config.frame
   std::vector<Record> records;
-  // Several filtered bounces (core/transport.h): none, or per record the vertex its path scattered to from its filter
-  // vertex, as a record keyed like any (its position, frame, previous vertex, path length, pixel, sample and bounce),
-  // whose throughput is the transport weight: the throughput from the filter vertex to it times its albedo. Its
-  // contribution and radiance_before are not read; a record whose path scattered nowhere has none (no vertex flag).
+  // Several filtered bounces (core/transport.h). `deeper`: records of vertices further along the paths, added to the
+  // table like any record but resolved into no pixel (their radiance_before and throughput are not read).
+  // `scattered`: none, or one per record of `records` then `deeper`, the vertex its path scattered to from its
+  // filter vertex, as a record keyed like any (its position, frame, previous vertex, path length, pixel, sample and
+  // bounce) whose throughput is the transport weight: the throughput from the filter vertex to it times its albedo.
+  // Its contribution and radiance_before are not read; where a path scattered nowhere it has no vertex flag.
+  std::vector<Record> deeper;
   std::vector<Record> scattered;
+};
+
+// The records a frame adds to its table, in order: `records` then `deeper`. A view of `records` where there are no
+// deeper records, else a copy of both.
+class TableRecords {
+ public:
+  explicit TableRecords(const RecordBatch& batch);
+  std::span<const Record> all() const { return all_; }
+  std::size_t size() const { return all_.size(); }
+
+ private:
+  std::vector<Record> joined_;
+  std::span<const Record> all_;
 };
 
 std::string ToString(const Record& record);

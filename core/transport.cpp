@@ -10,18 +10,20 @@
 namespace hpsf {
 
 void CheckScatteredShape(const RecordBatch& batch) {
-  if (!batch.scattered.empty() && batch.scattered.size() != batch.records.size()) {
+  const std::size_t records = batch.records.size() + batch.deeper.size();
+  if (!batch.scattered.empty() && batch.scattered.size() != records) {
     throw InputError("record batch: " + std::to_string(batch.scattered.size()) + " scattered vertices for " +
-                     std::to_string(batch.records.size()) + " records (none, or one per record)");
+                     std::to_string(records) + " records with the deeper ones (none, or one per record)");
   }
 }
 
 TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
                                int fixed_point_bits, const TransportLookup& lookup) {
   CheckScatteredShape(batch);
-  TransportResult result{batch, std::vector<std::uint32_t>(batch.records.size(), kNothingTransported), {}};
+  const std::size_t n = batch.records.size();
+  TransportResult result{batch, std::vector<std::uint32_t>(n + batch.deeper.size(), kNothingTransported), {}};
   for (std::size_t i = 0; i < batch.scattered.size(); ++i) {
-    Record& r = result.batch.records[i];
+    Record& r = i < n ? result.batch.records[i] : result.batch.deeper[i - n];
     const Record& s = batch.scattered[i];
     if (!shared::RecordHasVertex(r) || !shared::RecordHasVertex(s)) continue;
     if (CheckRecordInputs(r) != InputVerdict::kAccepted || CheckRecordInputs(s) != InputVerdict::kAccepted) continue;

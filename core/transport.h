@@ -36,18 +36,19 @@ struct TransportStats {
 };
 
 struct TransportResult {
-  RecordBatch batch;                // the frame's records, contributions transported
-  std::vector<std::uint32_t> read;  // per record: the cell or slot its transport read, or kNothingTransported
+  RecordBatch batch;  // the frame's records, contributions transported
+  // per record of records then deeper: the cell or slot its transport read, or kNothingTransported
+  std::vector<std::uint32_t> read;
   TransportStats stats;
 };
 
-// A batch's scattered vertices are none, or one per record (without a vertex where its path scattered nowhere); an
-// InputError naming the counts otherwise.
+// A batch's scattered vertices are none, or one per record of records then deeper (without a vertex where its path
+// scattered nowhere); an InputError naming the counts otherwise.
 void CheckScatteredShape(const RecordBatch& batch);
 
-// The records with their contributions transported from the cells `lookup` finds. A scattered vertex is keyed like a
-// record (its key path and jitter, from its own pixel, sample and bounce) at its own level; the average is the
-// resolve's of one cell (sums / count in double).
+// The records and the deeper ones with their contributions transported from the cells `lookup` finds. A scattered
+// vertex is keyed like a record (its key path and jitter, from its own pixel, sample and bounce) at its own level; the
+// average is the resolve's of one cell (sums / count in double).
 TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
                                int fixed_point_bits, const TransportLookup& lookup);
 

@@ -71,9 +71,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   CheckScatteredShape(given);
   config.Validate();
   options.Validate();
-  const std::uint32_t n = static_cast<std::uint32_t>(given.records.size());
   const KeyParams params =
-      MakeKeyParams(config, FootprintScale(config.filter_width_px, given.fov_y_radians, given.height), n);
+      MakeKeyParams(config, FootprintScale(config.filter_width_px, given.fov_y_radians, given.height),
+                    static_cast<std::uint32_t>(given.records.size() + given.deeper.size()));
 
   EmulatorWorkspace scratch;  // a run without a workspace: fresh arrays
   EmulatorWorkspace& kept = workspace ? *workspace : scratch;
@@ -94,6 +94,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     run.timings.transport_ms = clock.LapMs();
   }
   const RecordBatch& batch = transport ? transport->batch : given;
+  const TableRecords table_records(batch);  // the records then the deeper ones; only the records are resolved
+  const std::span<const Record> all = table_records.all();
+  const std::uint32_t n = static_cast<std::uint32_t>(all.size());
   // Keys on all cores: each is a function of its record alone.
   // The same pass notes which records pass the input checks and gathers, for F, the contributions of those
   // that enter the table.
@@ -102,7 +105,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   std::vector<glm::vec3> entering = ReuseForOverwrite(kept.entering, n);
   ParallelFor(n, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const Record& r = batch.records[i];
+      const Record& r = all[i];
       run.keys[i] = shared::ComputeKey(params, r);
       accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
       entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
@@ -132,7 +135,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   run.timings.fixed_point_ms = clock.LapMs();
   simt::DeviceMemory memory;
   AccumulateArgs args;
-  args.records = batch.records;
+  args.records = all;
   args.keys = run.keys;
   args.key_params = params;
   args.levels = config.levels;

@@ -187,28 +187,30 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     stats.transport = transport->stats;
   }
   const RecordBatch& batch = transport ? transport->batch : given;
-  stats.records = batch.records.size();
+  const TableRecords table(batch);  // the records then the deeper ones; only the records are resolved into pixels
+  const std::span<const Record> all = table.all();
+  stats.records = all.size();
   const bool packed = config.accumulation == Accumulation::kPackedDecimal;
   stats.fixed_point_bits = packed                    ? 0
                            : previous                ? previous->stats.fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
-                                                     : ChooseFixedPointBits(batch.records, config.frames);
+                                                     : ChooseFixedPointBits(all, config.frames);
   const float scale = SumScale(config.accumulation, stats.fixed_point_bits);
   const bool fixed = IntegerSums(config.accumulation);
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(stats.fixed_point_bits);
-  if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(batch.records, stats.fixed_point_bits);
-  if (packed) RequirePackedDecimalConverts(batch.records);
+  if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(all, stats.fixed_point_bits);
+  if (packed) RequirePackedDecimalConverts(all);
 
   std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
   if (previous) {
     result.cells = previous->cells;
     for (std::size_t c = 0; c < result.cells.size(); ++c) cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
   }
-  result.placement.assign(batch.records.size(), kNoCell);
-  result.coarser_placement.assign(std::size_t(config.levels - 1) * batch.records.size(), kNoCell);
-  std::vector<KeyResult> keys(batch.records.size());
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    const Record& r = batch.records[i];
+  result.placement.assign(all.size(), kNoCell);
+  result.coarser_placement.assign(std::size_t(config.levels - 1) * all.size(), kNoCell);
+  std::vector<KeyResult> keys(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Record& r = all[i];
     const InputVerdict verdict = CheckRecordInputs(r);
     if (verdict == InputVerdict::kNonFinite) ++stats.rejected_non_finite;
     if (verdict == InputVerdict::kNegative) ++stats.rejected_negative;
@@ -226,7 +228,7 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     for (std::uint32_t k = 0; k < config.levels; ++k) {
       const std::uint32_t cell =
           AddToCell(shared::KeyAtLevel(params, keys[i], k), r, config, scale, cell_of_key, result);
-      (k == 0 ? result.placement[i] : result.coarser_placement[std::size_t(k - 1) * batch.records.size() + i]) = cell;
+      (k == 0 ? result.placement[i] : result.coarser_placement[std::size_t(k - 1) * all.size() + i]) = cell;
     }
   }
   if (planned.level_seed) SeedNewCells(config, previous, cell_of_key, result);

@@ -1,6 +1,7 @@
 #include "tracer/path_tracer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -91,6 +92,14 @@ struct PreparedScene::Built {
 
 namespace {
 
+// Where a path's records beyond its pixel record go (options.scattered): the vertex the pixel record's path scattered
+// to, and for each further filtered vertex its record and the vertex it scattered to (filtered_vertices - 1 each).
+struct PathOutputs {
+  Record* scattered = nullptr;
+  Record* deeper = nullptr;
+  Record* deeper_scattered = nullptr;
+};
+
 class Tracer {
  public:
   Tracer(const PreparedScene::Built& built, const TraceOptions& options)
@@ -107,8 +116,8 @@ class Tracer {
     tan_half_fov_ = std::tan(c.fov_y_degrees * std::numbers::pi / 360.0);
   }
 
-  // With options.scattered, *scattered is the vertex the path scattered to from its filter vertex.
-  Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, Record* scattered) const;
+  // The pixel record; with options.scattered also `out`'s.
+  Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, const PathOutputs& out) const;
 
  private:
   // The random numbers of one path vertex: the counter's prefix is hashed once, each dimension then finishes it.
@@ -196,7 +205,7 @@ class Tracer {
   double tan_half_fov_;
 };
 
-Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, Record* scattered) const {
+Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, const PathOutputs& out) const {
   const double px = pixel % options_.width, py = pixel / options_.width;
   const double aspect = double(options_.width) / double(options_.height);
   const VertexRandom camera_random = RandomAt(pixel, sample, 0);
@@ -208,16 +217,21 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
 
   // Before the filter vertex, `weight` is the camera-to-vertex throughput including albedos and `gathered` is
   // radiance_before (emission found at the filter vertex included); after it, `weight` restarts at 1 without the filter
-  // vertex's albedo and `gathered` sums the contribution. Nothing is ever divided by an albedo.
+  // vertex's albedo and `gathered` sums the contribution. Nothing is ever divided by an albedo. With several filtered
+  // vertices (options_.scattered), each restarts them again: a filtered vertex's record holds the light of one vertex
+  // further, and the vertex after it is the one it scattered to.
+  const std::uint32_t filtered = options_.scattered ? options_.filtered_vertices : 1u;
+  const std::uint32_t first = options_.filter_bounce;
   glm::dvec3 weight(1.0), gathered(0.0);
   glm::dvec3 radiance_before(0.0), record_throughput(0.0);
-  VertexSample vertex, next;  // the filter vertex, and with options_.scattered the vertex after it
-  bool has_vertex = false, has_next = false;
+  std::array<VertexSample, kMaxFilteredVertices> chain, scattered_to;  // [j]: filtered vertex j, and its next vertex
+  std::array<bool, kMaxFilteredVertices> has_scattered{};
+  std::uint32_t reached = 0;  // filtered vertices the path reached
   glm::dvec3 previous = origin;
   std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
   std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
-  if (options_.scattered) max_vertices = std::min(max_vertices, options_.filter_bounce + 2u);
+  if (options_.scattered) max_vertices = std::min(max_vertices, first + filtered + 1u);
 
   for (std::uint32_t bounce = 0; bounce < max_vertices; ++bounce) {
     const auto hit = Cast(origin, direction);
@@ -240,29 +254,39 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     // is not taken at all (taking it under its MIS weight adds a fraction of the next term).
     const bool last_vertex = bounce + 1 >= max_vertices;
     const glm::dvec3 direct = last_vertex ? glm::dvec3(0.0) : DirectLight(p, random, stats);
+    const auto here = [&](glm::dvec3 throughput) {
+      VertexSample v;
+      v.pixel = pixel;
+      v.sample = sample;
+      v.bounce = bounce;
+      v.position = glm::vec3(p.position);
+      v.normal = glm::vec3(p.normal);
+      v.previous = glm::vec3(previous);
+      v.d_prefix = static_cast<float>(d_prefix);
+      v.throughput = glm::vec3(throughput);
+      return v;
+    };
 
-    if (bounce == options_.filter_bounce) {
-      has_vertex = true;
-      radiance_before = gathered;
-      record_throughput = weight * albedo;
-      vertex.position = glm::vec3(p.position);
-      vertex.normal = glm::vec3(p.normal);
-      vertex.previous = glm::vec3(previous);
-      vertex.d_prefix = static_cast<float>(d_prefix);
-      vertex.bounce = bounce;
+    if (bounce >= first && bounce - first < filtered) {
+      const std::uint32_t j = bounce - first;
+      if (j == 0) {
+        radiance_before = gathered;
+        record_throughput = weight * albedo;
+      } else {  // the previous filtered vertex's record is complete, and this is the vertex it scattered to
+        chain[j - 1].contribution = glm::vec3(gathered);
+        scattered_to[j - 1] = here(weight * albedo);
+        has_scattered[j - 1] = true;
+      }
+      chain[j] = here(j == 0 ? record_throughput : weight * albedo);
+      reached = j + 1;
       weight = glm::dvec3(1.0);
       gathered = direct;
     } else {
       weight *= albedo;
       gathered += weight * direct;
-      if (has_vertex && options_.scattered && !has_next) {  // the transport weight: filter vertex to here, albedo
-        has_next = true;
-        next.position = glm::vec3(p.position);
-        next.normal = glm::vec3(p.normal);
-        next.previous = glm::vec3(previous);
-        next.d_prefix = static_cast<float>(d_prefix);
-        next.bounce = bounce;
-        next.throughput = glm::vec3(weight);
+      if (options_.scattered && reached == filtered && !has_scattered[filtered - 1]) {  // the last one's next vertex
+        scattered_to[filtered - 1] = here(weight);
+        has_scattered[filtered - 1] = true;
       }
     }
     d_prefix += segment;
@@ -270,7 +294,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     last = p;
 
     if (options_.max_depth < 0 && bounce + 1 >= kRouletteStart) {
-      const double survive = std::min(0.95, MaxComponent(has_vertex ? weight * record_throughput : weight));
+      const double survive = std::min(0.95, MaxComponent(reached > 0 ? weight * record_throughput : weight));
       if (survive <= 0.0 || random(kRoulette) >= survive) break;
       weight /= survive;
     }
@@ -286,19 +310,19 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     origin = Offset(p);
     ++stats.bounce_rays;
   }
+  if (reached > 0) chain[reached - 1].contribution = glm::vec3(gathered);
 
-  if (scattered) {
-    next.pixel = pixel;
-    next.sample = sample;
-    *scattered = has_next ? MakeVertexRecord(next) : MakeRecordWithoutVertex(pixel, sample, glm::vec3(0.0f));
+  if (out.scattered) {
+    const Record none = MakeRecordWithoutVertex(pixel, sample, glm::vec3(0.0f));
+    for (std::uint32_t j = 0; j < filtered; ++j) {
+      (j == 0 ? out.scattered[0] : out.deeper_scattered[j - 1]) =
+          has_scattered[j] ? MakeVertexRecord(scattered_to[j]) : none;
+      if (j > 0) out.deeper[j - 1] = j < reached ? MakeVertexRecord(chain[j]) : none;
+    }
   }
-  if (!has_vertex) return MakeRecordWithoutVertex(pixel, sample, glm::vec3(gathered));
-  vertex.pixel = pixel;
-  vertex.sample = sample;
-  vertex.contribution = glm::vec3(gathered);
-  vertex.throughput = glm::vec3(record_throughput);
-  vertex.radiance_before = glm::vec3(radiance_before);
-  return MakeVertexRecord(vertex);
+  if (reached == 0) return MakeRecordWithoutVertex(pixel, sample, glm::vec3(gathered));
+  chain[0].radiance_before = glm::vec3(radiance_before);
+  return MakeVertexRecord(chain[0]);
 }
 
 }  // namespace
@@ -317,6 +341,13 @@ void TraceOptions::Validate() const {
   if (max_depth < -1 || max_depth > 1024)
     throw ConfigError("--max-depth", "must be -1 (unbounded) or lie in [0, 1024]");
   if (threads < 0) throw ConfigError("--threads", "must be >= 0 (0: all cores)");
+  if (filtered_vertices < 1 || filtered_vertices > kMaxFilteredVertices) {
+    throw ConfigError("--filtered-vertices", "must lie in [1, " + std::to_string(kMaxFilteredVertices) + "]; got " +
+                                                 std::to_string(filtered_vertices));
+  }
+  if (filtered_vertices > 1 && !scattered) {
+    throw ConfigError("--filtered-vertices", "more than one filtered vertex needs the transport's scattered vertices");
+  }
 }
 
 PreparedScene::PreparedScene(const Scene& scene, std::uint32_t frame)
@@ -352,7 +383,11 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
   batch.fov_y_radians = scene.camera.fov_y_degrees * std::numbers::pi / 180.0;
   batch.frame = options.frame;
   batch.records.resize(std::size_t(options.width) * options.height * options.samples_per_pixel);
-  if (options.scattered) batch.scattered.resize(batch.records.size());
+  const std::size_t n = batch.records.size(), more = options.scattered ? options.filtered_vertices - 1u : 0u;
+  if (options.scattered) {  // the records' scattered vertices, then the deeper records' (record i's at n + i more)
+    batch.deeper.resize(n * more);
+    batch.scattered.resize(n + n * more);
+  }
 
   const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
   std::atomic<std::uint32_t> tiles_done{0};
@@ -369,8 +404,11 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
               const std::uint32_t pixel = y * options.width + x;
               for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
                 const std::size_t i = std::size_t(pixel) * options.samples_per_pixel + s;
-                batch.records[i] =
-                    tracer.TraceSample(pixel, s, local, options.scattered ? &batch.scattered[i] : nullptr);
+                const PathOutputs out = options.scattered
+                                            ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
+                                                          batch.scattered.data() + n + i * more}
+                                            : PathOutputs{};
+                batch.records[i] = tracer.TraceSample(pixel, s, local, out);
               }
             }
           }

@@ -18,6 +18,7 @@ namespace hpsf {
 // Bumped by every change that alters the records the tracer makes from the same scene and options: converged
 // reference images (`hpsf reference`) are cached under it, so a new tracer never reads an old tracer's image.
 inline constexpr int kTracerVersion = 1;
+inline constexpr std::uint32_t kMaxFilteredVertices = 8;  // TraceOptions::filtered_vertices
 
 struct TraceOptions {
   std::uint32_t width = 256;
@@ -34,6 +35,9 @@ struct TraceOptions {
   // vertex's emission, no next-event estimate from it, as --max-depth truncates) and the transport takes what lies
   // beyond from the table.
   bool scattered = false;
+  // With scattered: the vertices of each path filtered, the first at filter_bounce; the others are the batch's deeper
+  // records (RecordBatch::deeper), each also with the vertex it scattered to. The path ends at the last one's.
+  std::uint32_t filtered_vertices = 1;
   int threads = 0;  // 0: all cores
 
   void Validate() const;  // ConfigError naming the option

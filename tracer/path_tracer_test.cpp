@@ -254,3 +254,59 @@ TEST(PathTracer, ScatteredVerticesContinueTheirRecordsPaths) {
 
 }  // namespace
 }  // namespace hpsf
+
+namespace hpsf {
+namespace {
+
+// With several filtered vertices, record i's path continues in its deeper records: deeper record j (the path's filtered
+// vertex j + 1) lies where the previous filtered vertex scattered to, and each filtered vertex's record holds the light
+// of one vertex further. Chained back with the transport weights, c_0 + w_1 (c_1 + w_2 (c_2 + ...)), they give the
+// value of the same path traced whole to the last one's scattered vertex (--max-depth filter bounce + N + 1), up to
+// float rounding.
+TEST(PathTracer, DeeperRecordsSplitTheSamePathsVertexByVertex) {
+  const Scene scene = LoadScene("cornell");
+  for (const std::uint32_t filtered : {2u, 3u}) {
+    TraceOptions split = SmallOptions(16, 2), whole = split;
+    split.scattered = true;
+    split.filtered_vertices = filtered;
+    whole.max_depth = int(filtered) + 1;
+    const RecordBatch a = TraceRecords(scene, split).batch, b = TraceRecords(scene, whole).batch;
+    const std::size_t n = a.records.size(), more = filtered - 1;
+    ASSERT_EQ(a.deeper.size(), n * more);
+    ASSERT_EQ(a.scattered.size(), n + n * more);
+    int chained = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Record& r = a.records[i];
+      if (!shared::RecordHasVertex(r)) continue;
+      // Record j of the chain (0: the pixel record), and the vertex it scattered to.
+      const auto chain = [&](std::size_t j) -> const Record& { return j == 0 ? r : a.deeper[i * more + j - 1]; };
+      const auto next = [&](std::size_t j) -> const Record& {
+        return j == 0 ? a.scattered[i] : a.scattered[n + i * more + j - 1];
+      };
+      glm::dvec3 tail(0.0);
+      for (std::size_t j = filtered; j-- > 0;) {
+        const Record& v = chain(j);
+        if (!shared::RecordHasVertex(v)) {
+          EXPECT_FALSE(shared::RecordHasVertex(next(j - 1))) << i << ": a deeper record past the path's end";
+          tail = glm::dvec3(0.0);
+          continue;
+        }
+        EXPECT_EQ(shared::RecordBounce(v), j);
+        if (j > 0) {
+          EXPECT_EQ(glm::vec3(next(j - 1).position), glm::vec3(v.position)) << i;
+          EXPECT_EQ(glm::vec3(v.previous), glm::vec3(chain(j - 1).position)) << i;
+        }
+        const glm::dvec3 weight = shared::RecordHasVertex(next(j)) ? glm::dvec3(next(j).throughput) : glm::dvec3(0.0);
+        tail = glm::dvec3(v.contribution) + weight * tail;
+      }
+      const glm::dvec3 value = glm::dvec3(r.radiance_before) + glm::dvec3(r.throughput) * tail;
+      const glm::dvec3 expected = RecordValue(b.records[i]);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], expected[c], 1e-5 * (1.0 + expected[c])) << i;
+      ++chained;
+    }
+    EXPECT_GT(chained, int(n) / 2);
+  }
+}
+
+}  // namespace
+}  // namespace hpsf

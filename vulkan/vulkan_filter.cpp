@@ -516,6 +516,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   if (config.transport) {  // several filtered bounces run on the reference and the emulator so far
     throw ConfigError("--transport", "is not built on Vulkan yet: filter with the reference or the emulator");
   }
+  if (!batch.deeper.empty()) {
+    throw InputError("record batch: " + std::to_string(batch.deeper.size()) +
+                     " deeper records: Vulkan does not filter deeper vertices yet");
+  }
   Impl& p = *impl_;
   if (!p.custom_accumulate.empty() && p.custom_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +

@@ -37,7 +37,10 @@ std::string ReferenceRequest::Description(std::uint64_t scene_digest) const {
          std::to_string(trace.width) + "x" + std::to_string(trace.height) + " at " + std::to_string(samples_per_pixel) +
          " spp in passes of " + std::to_string(pass_samples) + "; seed " + std::to_string(trace.seed) + ", frame " +
          std::to_string(trace.frame) + ", max depth " + std::to_string(trace.max_depth) + ", filter bounce " +
-         std::to_string(trace.filter_bounce) + (trace.scattered ? ", paths ending at the scattered vertex" : "");
+         std::to_string(trace.filter_bounce) +
+         (trace.scattered ? ", paths ending at the scattered vertex after " + std::to_string(trace.filtered_vertices) +
+                                " filtered vertices"
+                          : "");
 }
 
 ConvergedImage RenderConverged(const Scene& scene, const ReferenceRequest& request,
