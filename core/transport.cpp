@@ -21,7 +21,12 @@ TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params
                                int fixed_point_bits, const TransportLookup& lookup) {
   CheckScatteredShape(batch);
   const std::size_t n = batch.records.size();
-  TransportResult result{batch, std::vector<std::uint32_t>(n + batch.deeper.size(), kNothingTransported), {}};
+  // The records and the deeper ones copied to be transported; the scattered vertices are not needed past this step.
+  RecordBatch transported{
+      batch.width, batch.height, batch.samples_per_pixel, batch.fov_y_radians, batch.frame, batch.records, batch.deeper,
+      {}};
+  TransportResult result{
+      std::move(transported), std::vector<std::uint32_t>(n + batch.deeper.size(), kNothingTransported), {}};
   for (std::size_t i = 0; i < batch.scattered.size(); ++i) {
     Record& r = i < n ? result.batch.records[i] : result.batch.deeper[i - n];
     const Record& s = batch.scattered[i];

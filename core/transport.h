@@ -36,7 +36,7 @@ struct TransportStats {
 };
 
 struct TransportResult {
-  RecordBatch batch;  // the frame's records, contributions transported
+  RecordBatch batch;  // the frame's records and deeper ones, contributions transported; no scattered vertices
   // per record of records then deeper: the cell or slot its transport read, or kNothingTransported
   std::vector<std::uint32_t> read;
   TransportStats stats;

@@ -153,11 +153,10 @@ shared::LevelChoice ChooseCell(const FilterResult& result, const FilterConfig& c
 }
 
 // Several filtered bounces (core/transport.h): the scattered vertices' cells looked up in the exact map before the
-// frame.
+// frame (cell_of_key, before any of the frame's adds).
 TransportResult TransportFromPrevious(const RecordBatch& batch, const KeyParams& params, const FilterConfig& config,
-                                      const FilterResult& previous) {
-  std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
-  for (std::size_t c = 0; c < previous.cells.size(); ++c) cell_of_key.emplace(previous.cells[c].key, std::uint32_t(c));
+                                      const FilterResult& previous,
+                                      const std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key) {
   const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
     const auto it = cell_of_key.find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
     if (it == cell_of_key.end()) return std::nullopt;
@@ -180,9 +179,14 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
 
   FilterResult result;
   FilterStats& stats = result.stats;
+  std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;  // the table's cells, the previous frame's first
+  if (previous) {
+    result.cells = previous->cells;
+    for (std::size_t c = 0; c < result.cells.size(); ++c) cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
+  }
   std::optional<TransportResult> transport;
   if (planned.transport && previous) {
-    transport = TransportFromPrevious(given, params, config, *previous);
+    transport = TransportFromPrevious(given, params, config, *previous, cell_of_key);
     result.transport_read = std::move(transport->read);
     stats.transport = transport->stats;
   }
@@ -201,11 +205,6 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
   if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(all, stats.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(all);
 
-  std::map<std::array<std::uint32_t, 6>, std::uint32_t> cell_of_key;
-  if (previous) {
-    result.cells = previous->cells;
-    for (std::size_t c = 0; c < result.cells.size(); ++c) cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
-  }
   result.placement.assign(all.size(), kNoCell);
   result.coarser_placement.assign(std::size_t(config.levels - 1) * all.size(), kNoCell);
   std::vector<KeyResult> keys(all.size());
