@@ -18,7 +18,7 @@ void CheckScatteredShape(const RecordBatch& batch) {
 }
 
 TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
-                               int fixed_point_bits, const TransportLookup& lookup) {
+                               int fixed_point_bits, const TransportLookup& lookup, ScatteredKeyFn key_of) {
   CheckScatteredShape(batch);
   const std::size_t n = batch.records.size();
   // The records and the deeper ones copied to be transported; the scattered vertices are not needed past this step.
@@ -33,7 +33,7 @@ TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params
     if (!shared::RecordHasVertex(r) || !shared::RecordHasVertex(s)) continue;
     if (CheckRecordInputs(r) != InputVerdict::kAccepted || CheckRecordInputs(s) != InputVerdict::kAccepted) continue;
     ++result.stats.scattered;
-    const KeyResult key = shared::ComputeKey(params, s);
+    const KeyResult key = key_of ? key_of(params, s, r) : shared::ComputeKey(params, s);
     if (key.status == shared::kKeyUnkeyable) {
       ++result.stats.unkeyable;
       continue;

@@ -42,6 +42,10 @@ struct TransportResult {
   TransportStats stats;
 };
 
+// How a scattered vertex is keyed: shared::ComputeKey of it. Tests pass broken variants (emulated/broken_transport.h),
+// which see the record it scattered from too.
+using ScatteredKeyFn = KeyResult (*)(const KeyParams& params, const Record& scattered, const Record& record);
+
 // A batch's scattered vertices are none, or one per record of records then deeper (without a vertex where its path
 // scattered nowhere); an InputError naming the counts otherwise.
 void CheckScatteredShape(const RecordBatch& batch);
@@ -50,7 +54,7 @@ void CheckScatteredShape(const RecordBatch& batch);
 // vertex is keyed like a record (its key path and jitter, from its own pixel, sample and bounce) at its own level; the
 // average is the resolve's of one cell (sums / count in double).
 TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
-                               int fixed_point_bits, const TransportLookup& lookup);
+                               int fixed_point_bits, const TransportLookup& lookup, ScatteredKeyFn key = nullptr);
 
 }  // namespace hpsf
 

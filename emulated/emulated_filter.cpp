@@ -83,12 +83,25 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   // no schedule can change what it reads.
   std::optional<TransportResult> transport;
   if (previous && (effects ? effects->transport : PlanFrameEffects(config, kLaterFrame).transport)) {
+    const TransportDefect defect = options.transport_defect;
+    // reads-current-table: the table this frame accumulates, as the frame without its transport leaves it.
+    std::optional<EmulatedRun> current;
+    if (defect == TransportDefect::kReadsCurrentTable) {
+      FilterConfig untransported = config;
+      untransported.transport = false;
+      EmulatorOptions correct = options;
+      correct.transport_defect = TransportDefect::kNone;
+      current = EmulatedFilter(given, untransported, correct, accumulate, previous, eviction_kernels);
+    }
+    const HashTableDump& read = current ? current->table : *previous;
     const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
-      const std::optional<std::uint32_t> slot = FindSlotInTable(*previous, w, config.normal_in_index);
+      const std::optional<std::uint32_t> slot = FindSlotInTable(read, w, config.normal_in_index);
       if (!slot) return std::nullopt;
-      return FoundCell{*slot, StateOfSlot(*previous, *slot)};
+      return FoundCell{*slot, StateOfSlot(read, *slot)};
     };
-    transport = TransportBatch(given, params, config.accumulation, previous->fixed_point_bits, lookup);
+    transport = TransportBatch(defect == TransportDefect::kWeightTwice ? WithWeightTwice(given) : given, params,
+                               config.accumulation, previous->fixed_point_bits, lookup,
+                               defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr);
     run.transport_read = std::move(transport->read);
     run.transport = transport->stats;
     run.timings.transport_ms = clock.LapMs();

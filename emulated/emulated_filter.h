@@ -16,6 +16,7 @@
 #include "core/record.h"
 #include "emulated/accumulate_kernel.h"
 #include "emulated/broken_resolve.h"
+#include "emulated/broken_transport.h"
 #include "emulated/emulator_workspace.h"
 #include "emulated/eviction_kernels.h"
 #include "emulated/simt/launcher.h"
@@ -36,6 +37,8 @@ struct EmulatorOptions {
   // The resolve's neighbourhood search broken on purpose (emulated/broken_resolve.h; --inject-defect's resolve
   // variants), as the accumulate kernel is by the kernel argument.
   ResolveDefect resolve_defect = ResolveDefect::kNone;
+  // The transport pass broken on purpose (emulated/broken_transport.h), over a sequence of frames.
+  TransportDefect transport_defect = TransportDefect::kNone;
   void Validate() const;  // ConfigError naming the option
 };
 

@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "emulated/emulated_backend.h"
-#include "property_tests/grid_batch.h"
+#include "property_tests/transport_furnace.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
@@ -21,60 +21,6 @@
 
 namespace hpsf::testing {
 namespace {
-
-const glm::vec3 kEmission(1.0f, 0.5f, 0.25f);  // e: what every path finds beyond its filter vertex
-const glm::vec3 kAlbedo(0.5f, 0.75f, 0.25f);   // a: the transport weight to the scattered vertex
-constexpr std::uint32_t kCells = 8;            // a 2 x 2 x 2 block of unit cells
-constexpr std::uint32_t kPerCell = 8;
-
-glm::vec3 CellCorner(std::uint32_t cell) {
-  return glm::vec3(float(cell & 1u), float((cell >> 1) & 1u), float(cell >> 2));
-}
-
-// The cell record j of cell c scatters into: c + 1 + j mod (kCells - 1), so every cell is reached from every other.
-std::uint32_t ScatteredCell(std::uint32_t c, std::uint32_t j) { return (c + 1 + j % (kCells - 1)) % kCells; }
-
-// What cell c's records find beyond their filter vertex: e in the furnace, e (c + 1) / 8 where the light varies.
-glm::vec3 EmissionOf(std::uint32_t c, bool varying) { return varying ? kEmission * float(c + 1) / 8.0f : kEmission; }
-
-// The synthetic furnace: kPerCell records in each of kCells cells, each record's path scattering into another cell.
-// `varying`: each cell's records find another emission, so cells differ and a record must read the right one.
-RecordBatch FurnaceBatch(std::uint32_t frame, bool varying = false) {
-  RecordBatch batch;
-  batch.width = kCells * kPerCell;
-  batch.height = 1;
-  batch.samples_per_pixel = 1;
-  batch.fov_y_radians = 1.0;
-  batch.frame = frame;
-  for (std::uint32_t c = 0; c < kCells; ++c) {
-    for (std::uint32_t j = 0; j < kPerCell; ++j) {
-      VertexSample v;
-      v.pixel = c * kPerCell + j;
-      v.position = CellCorner(c) + glm::vec3(0.0625f + 0.125f * float(j), 0.5f, 0.25f);
-      v.previous = v.position + glm::vec3(0.0f, 0.0f, -4.0f);
-      v.contribution = EmissionOf(c, varying);
-      v.throughput = glm::vec3(1.0f);
-      batch.records.push_back(MakeVertexRecord(v));
-      VertexSample s;
-      s.pixel = v.pixel;
-      s.bounce = 1;
-      s.position = CellCorner(ScatteredCell(c, j)) + glm::vec3(0.5f, 0.125f + 0.0625f * float(j), 0.75f);
-      s.previous = v.position;
-      s.throughput = kAlbedo;
-      batch.scattered.push_back(MakeVertexRecord(s));
-    }
-  }
-  return batch;
-}
-
-FilterConfig FurnaceConfig(Accumulation accumulation, const std::string& temporal, std::uint32_t frames) {
-  FilterConfig config = GridConfig(1u << 10, 16);
-  config.accumulation = accumulation;
-  config.temporal = ParseTemporal(temporal);
-  config.frames = frames;
-  config.transport = true;
-  return config;
-}
 
 // Every cell's average after each frame, computed apart from hpsf: frame k's records each carry e + a c(k-1) (c(-1)
 // = 0), and the cell blends them with its history as --temporal says (docs/design/algorithm.md, "Temporal

@@ -30,7 +30,7 @@ bool ClassifiedSlots::LookupAliased(const shared::KeyWords& n) const {
   return previous_key_of_[*slot] != wanted;
 }
 
-const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
+const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run, const std::vector<bool>& fed) {
   const std::size_t capacity = run.table.capacity;
   if (key_of_.size() != capacity) {
     key_of_.assign(capacity, std::nullopt);
@@ -46,8 +46,11 @@ const std::vector<bool>& ClassifiedSlots::AddFrame(const HashedRun& run) {
     return FullKey{w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra};
   };
   for (std::size_t i = 0; i < touches.size(); ++i) {
-    if (touches.placements()[i] == kProbeFailure) failed_.insert(key_of(i));
-    if (touches.placements()[i] == kProbeFailure && seeds_levels_) tainted_.insert(key_of(i));
+    const bool differs =
+        touches.placements()[i] == kProbeFailure ||
+        (touches.RecordOf(i) < fed.size() && fed[touches.RecordOf(i)] && touches.keys()[i].status == shared::kKeyed);
+    if (differs) failed_.insert(key_of(i));
+    if (differs && seeds_levels_) tainted_.insert(key_of(i));
   }
   for (std::size_t i = 0; i < touches.size(); ++i) {
     const std::uint32_t slot = touches.placements()[i];

@@ -8,7 +8,8 @@
 // child, core/level_seed.h) failed, aliased, was evicted under pressure or was itself classified so when new: the
 // reference seeds from what it kept;
 // and when a neighbour's lookup in the table before the frame aliased (its fingerprint's first slot in the window
-// holds another cell, which a hashed backend's seed then reads).
+// holds another cell, which a hashed backend's seed then reads). With several filtered bounces, a cell fed light that
+// a record's transport read from a classified slot, an aliased lookup or a lost cell counts as failed from then on.
 #ifndef HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H
 #define HPSF_VERIFIER_CHECKER_CLASSIFIED_SLOTS_H
 
@@ -29,8 +30,10 @@ class ClassifiedSlots {
   explicit ClassifiedSlots(bool evicts_under_pressure = false, bool seeds_levels = false, bool normal_in_index = true)
       : evicts_under_pressure_(evicts_under_pressure), seeds_levels_(seeds_levels), normal_in_index_(normal_in_index) {}
 
-  // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it.
-  const std::vector<bool>& AddFrame(const HashedRun& run);
+  // Adds one frame's run, in sequence order, and returns per slot whether it is classified after it. fed: per record
+  // (the records then the deeper ones), whether the light it transported was read from where the hashed table could
+  // not hold the reference's (verifier/contract/transport_check.h): its cells, at every level, count as failed.
+  const std::vector<bool>& AddFrame(const HashedRun& run, const std::vector<bool>& fed = {});
 
   // This frame's figures: slots aliased, records placed in classified slots (with --levels, each level of a record
   // once), probe failures.
@@ -42,8 +45,11 @@ class ClassifiedSlots {
   using FullKey = std::array<std::uint32_t, 6>;
   // After AddFrame: the cell a live slot holds (the full key last placed there), for the lookups that find it.
   const std::optional<FullKey>& KeyOf(std::uint32_t slot) const { return key_of_[slot]; }
-  // Whether a cell lost records to a probe failure (or, with pressure, an eviction) in some frame so far.
+  // Whether a cell lost records to a probe failure (or, with pressure, an eviction), or was fed light read from a
+  // classified place, in some frame so far.
   bool Lost(const FullKey& key) const { return failed_.contains(key); }
+  // Whether a slot was classified after the last frame added (before the next AddFrame: in the table before it).
+  bool Classified(std::uint32_t slot) const { return slot < classified_.size() && classified_[slot]; }
 
  private:
   bool SeedTainted(const FullKey& key) const;

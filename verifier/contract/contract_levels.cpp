@@ -18,6 +18,7 @@
 #include "verifier/contract/image_check.h"
 #include "verifier/contract/rerun_check.h"
 #include "verifier/contract/search_check.h"
+#include "verifier/contract/transport_check.h"
 
 namespace hpsf {
 namespace {
@@ -31,17 +32,23 @@ std::string WorkerThreads(int threads) {
   return threads == 0 ? "all cores" : threads == 1 ? "one worker thread" : std::to_string(threads) + " worker threads";
 }
 
-// Level 1: the backend's key words, slot0 and fingerprint for every accepted record equal core's. Returns how many
-// records were compared.
+// Level 1: the backend's key words, slot0 and fingerprint for every accepted record (the records then the deeper
+// ones) equal core's. Returns how many records were compared.
 std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, std::span<const KeyResult> backend_keys,
                           const std::string& prefix, LevelVerdict& keys) {
   const KeyParams params =
       MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height),
                     std::uint32_t(batch.records.size()));
+  const TableRecords records(batch);
   std::uint64_t compared = 0;
-  for (std::size_t i = 0; i < batch.records.size(); ++i) {
-    if (CheckRecordInputs(batch.records[i]) != InputVerdict::kAccepted) continue;
-    const KeyResult expected = shared::ComputeKey(params, batch.records[i]);
+  if (backend_keys.size() != records.size()) {
+    keys.Fail(prefix + std::to_string(backend_keys.size()) + " keys for " + std::to_string(records.size()) +
+              " records");
+    return compared;
+  }
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (CheckRecordInputs(records.all()[i]) != InputVerdict::kAccepted) continue;
+    const KeyResult expected = shared::ComputeKey(params, records.all()[i]);
     const auto want = KeyResultWords(expected), got = KeyResultWords(backend_keys[i]);
     ++compared;
     for (int w = 0; w < int(want.size()); ++w) {
@@ -55,10 +62,11 @@ std::uint64_t CompareKeys(const RecordBatch& batch, const FilterConfig& config, 
   return compared;
 }
 
-// Level 2: the table checker on one frame of a hashed run, from the table before it.
-void CheckFrameTable(const std::string& who, const RecordBatch& batch, const HashedRun& run,
+// Level 2: the table checker on one frame of a hashed run, from the table before it. records: what the frame added
+// (JudgeTransportReads': the records then the deeper ones, transported from the table before).
+void CheckFrameTable(const std::string& who, std::span<const Record> records, const HashedRun& run,
                      const std::optional<HashTableDump>& before, const FilterConfig& config, LevelVerdict& tables) {
-  TableCheckInput input{run.table, batch.records, run.keys, run.placements};
+  TableCheckInput input{run.table, records, run.keys, run.placements};
   input.coarser_placements = run.coarser_placements;
   input.before = before ? &*before : nullptr;
   input.eviction = config.eviction;
@@ -69,18 +77,18 @@ void CheckFrameTable(const std::string& who, const RecordBatch& batch, const Has
   for (const TableViolation& v : CheckTable(input)) tables.Fail(who + ": " + v.ToString());
 }
 
-// Level 3 for one frame of a hashed run: every record outside the classified slots (probe failures, aliases,
-// cells that failed before) sits in a slot whose count, and in fixed64 whose sums, equal its reference cell's;
-// with nothing classified in fixed64, the image is the reference's, bit for bit; and every image is the resolve
-// of its own table. Returns how many records were compared.
+// Level 3 for one frame of a hashed run: every record (the records then the deeper ones) outside the classified
+// slots (probe failures, aliases, cells that failed before or were fed from classified reads) sits in a slot whose
+// count, and in fixed64 whose sums, equal its reference cell's; with nothing classified in fixed64, the image is the
+// reference's, bit for bit; and every image is the resolve of its own table. Returns how many records were compared.
 std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig& config, const FilterResult& reference,
                                    const HashedRun& run, const HashTableDump* before,
-                                   const std::vector<bool>& classified, std::uint64_t classified_searches,
+                                   const std::vector<bool>& classified, std::uint64_t classified_reads,
                                    const std::string& prefix, LevelVerdict& ideal) {
   const bool fixed = IntegerSums(config.accumulation);  // fixed64 or packed-decimal: exact
   std::uint64_t compared = 0, failures = 0;
   // Each level of a record in turn (core/shared/levels.h): its own cell, then the coarser ones.
-  const std::size_t n = batch.records.size();
+  const std::size_t n = batch.records.size() + batch.deeper.size();
   for (std::size_t touch = 0; touch < n * run.table.levels; ++touch) {
     const std::size_t i = touch % n;
     const std::uint32_t k = std::uint32_t(touch / n);
@@ -114,8 +122,8 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
                  std::to_string(run.table.frame_counters[slot]) + ", reference " + std::to_string(c.frames));
     }
   }
-  if (fixed && failures == 0 && std::count(classified.begin(), classified.end(), true) == 0 &&
-      classified_searches == 0 && !SameBits(run.image, reference.image)) {
+  if (fixed && failures == 0 && std::count(classified.begin(), classified.end(), true) == 0 && classified_reads == 0 &&
+      !SameBits(run.image, reference.image)) {
     ideal.Fail(prefix + "nothing failed or aliased, yet the image differs from the reference");
   }
   // Every image, classified records included, is the resolve of its own table: bit for bit in fixed64, within
@@ -124,16 +132,17 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
   return compared;
 }
 
-// Level 3, the faithful emulator in float32: each slot's recorded order of adds, replayed by the reference, gives
-// its bits, for every slot that held nothing before the frame (a sum carried over starts elsewhere).
-void CompareFloatOrder(const RecordBatch& batch, const HashedRun& run, const std::optional<HashTableDump>& before,
-                       const std::string& prefix, LevelVerdict& ideal) {
+// Level 3, the faithful emulator in float32: each slot's recorded order of adds of `records` (what the frame added),
+// replayed by the reference, gives its bits, for every slot that held nothing before the frame (a sum carried over
+// starts elsewhere).
+void CompareFloatOrder(std::span<const Record> records, const HashedRun& run,
+                       const std::optional<HashTableDump>& before, const std::string& prefix, LevelVerdict& ideal) {
   for (std::size_t entry = 0; entry < run.float_add_order.size(); ++entry) {
     const std::uint32_t slot = std::uint32_t(entry / 3);
     const int channel = int(entry % 3);
     if (before && before->counts[slot] != 0) continue;
     if (!run.seeded_slots.empty() && run.seeded_slots[slot]) continue;  // its seed was added after the frame's adds
-    const float replayed = ReplayFloatSum(batch.records, run.float_add_order[entry], channel);
+    const float replayed = ReplayFloatSum(records, run.float_add_order[entry], channel);
     if (std::bit_cast<std::uint32_t>(replayed) != std::bit_cast<std::uint32_t>(run.table.float_sums[slot][channel])) {
       ideal.Fail(prefix + "slot " + std::to_string(slot) + " channel " + std::to_string(channel) +
                  ": the replayed order of " + std::to_string(run.float_add_order[entry].size()) +
@@ -246,38 +255,50 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
                     std::to_string(fixed_point_bits) + ": sums of different scales cannot be compared");
       }
 
-      CheckFrameTable(who, batch, *run, s.before, config, tables);
-      CheckFrameTable(who + " rerun", batch, *again, s.rerun_before, config, tables);
+      const HashTableDump* before = s.before ? &*s.before : nullptr;
+      // What the frame added to each table: the records then the deeper ones, transported from the table before.
+      const RecordBatch added = JudgeTransportReads(batch, config, before, *run, who + ": ", tables);
+      const RecordBatch rerun_added = JudgeTransportReads(batch, config, s.rerun_before ? &*s.rerun_before : nullptr,
+                                                          *again, who + " rerun: ", tables);
+      const TableRecords added_records(added), rerun_added_records(rerun_added);
+      CheckFrameTable(who, added_records.all(), *run, s.before, config, tables);
+      CheckFrameTable(who + " rerun", rerun_added_records.all(), *again, s.rerun_before, config, tables);
 
-      const std::vector<bool>& classified = s.classes.AddFrame(*run);
-      const std::vector<bool>& rerun_classified = s.rerun_classes.AddFrame(*again);
+      // The transports judged against the classes of the tables before the frame, which they read.
+      const TransportComparison transports =
+          CompareTransports(batch, config, reference.result(), *run, s.classes, who + ": ", ideal);
+      LevelVerdict rerun_transports;
+      const TransportComparison rerun_fed =
+          CompareTransports(batch, config, reference.result(), *again, s.rerun_classes, "", rerun_transports);
+      s.quality.classified_transports += transports.classified;
+      const std::vector<bool>& classified = s.classes.AddFrame(*run, transports.fed);
+      const std::vector<bool>& rerun_classified = s.rerun_classes.AddFrame(*again, rerun_fed.fed);
       s.quality.probe_failures += run->probe_failures;
       s.quality.aliased_slots += s.classes.aliased_slots();
       s.quality.aliased_records += s.classes.classified_records();
 
       if (!run->float_add_order.empty()) {
         s.replayed_float_order = true;
-        CompareFloatOrder(batch, *run, s.before, who + ": ", ideal);
+        CompareFloatOrder(added_records.all(), *run, s.before, who + ": ", ideal);
       }
       if (judged.shader_keys) {  // the reference's cells are hpsf's keys; these records' cells are the shader's
-        s.records_compared += CompareWithExactMap(batch.records, *run, s.before ? &*s.before : nullptr, classified,
+        s.records_compared += CompareWithExactMap(added.records, *run, s.before ? &*s.before : nullptr, classified,
                                                   config, who + ": ", ideal);
-        for (const std::string& pixel : CheckImageAgainstTable(batch, *run, s.before ? &*s.before : nullptr)) {
+        for (const std::string& pixel : CheckImageAgainstTable(added, *run, s.before ? &*s.before : nullptr)) {
           ideal.Fail(who + ": image: " + pixel);
         }
       } else {
         const SearchComparison searches =
-            CompareSearches(batch, reference.result(), *run, s.classes, classified, who + ": ", ideal);
+            CompareSearches(added, reference.result(), *run, s.classes, classified, who + ": ", ideal);
         s.quality.classified_searches += searches.classified;
         // The rerun's own lookups, for level 4's promise: its differences from the reference are not level 3's.
         LevelVerdict rerun_searches;
         s.lookup_aliased =
             s.lookup_aliased || searches.classified > 0 ||
-            CompareSearches(batch, reference.result(), *again, s.rerun_classes, rerun_classified, "", rerun_searches)
+            CompareSearches(added, reference.result(), *again, s.rerun_classes, rerun_classified, "", rerun_searches)
                     .classified > 0;
-        s.records_compared +=
-            CompareWithReference(batch, config, reference.result(), *run, s.before ? &*s.before : nullptr, classified,
-                                 searches.classified, who + ": ", ideal);
+        s.records_compared += CompareWithReference(added, config, reference.result(), *run, before, classified,
+                                                   searches.classified + transports.classified, who + ": ", ideal);
       }
 
       if (judged.ordered && again->trace_hash != run->trace_hash) {
@@ -389,7 +410,8 @@ nlohmann::json CrosscheckReport::ToJson() const {
                             {"probe_failures", q.probe_failures},
                             {"aliased_slots", q.aliased_slots},
                             {"aliased_records", q.aliased_records},
-                            {"classified_searches", q.classified_searches}});
+                            {"classified_searches", q.classified_searches},
+                            {"classified_transports", q.classified_transports}});
   }
   return j;
 }
@@ -410,7 +432,9 @@ std::string CrosscheckReport::ToText() const {
   for (const QualityFigures& q : quality) {
     out << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots
         << ", records in aliased slots " << q.aliased_records
-        << (q.classified_searches > 0 ? ", searches classified " + std::to_string(q.classified_searches) : "") << "\n";
+        << (q.classified_searches > 0 ? ", searches classified " + std::to_string(q.classified_searches) : "")
+        << (q.classified_transports > 0 ? ", transports classified " + std::to_string(q.classified_transports) : "")
+        << "\n";
   }
   return out.str();
 }

@@ -48,6 +48,8 @@ struct QualityFigures {
   // --neighbour-search: searching records classified (a level or a corner in a classified slot, a lookup that
   // aliased, a neighbour lost to a failure; verifier/contract/search_check.h)
   std::uint64_t classified_searches = 0;
+  // Several filtered bounces: transport reads classified (verifier/contract/transport_check.h)
+  std::uint64_t classified_transports = 0;
 };
 
 struct CrosscheckReport {

@@ -1,0 +1,111 @@
+// The contract over several filtered bounces (verifier/contract/transport_check.h): each frame's transport judged on
+// the emulator from its own table before the frame (level 2) and against the reference's reads (level 3), with the
+// reads of cells the table could not hold classified and their light's cells classified from then on. Each broken
+// transport (emulated/broken_transport.h) fails it. Label `bounces`.
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "emulated/defect_injection.h"
+#include "property_tests/transport_furnace.h"
+#include "verifier/contract/contract_levels.h"
+
+namespace hpsf::testing {
+namespace {
+
+CrosscheckReport Judge(const std::vector<RecordBatch>& frames, const FilterConfig& config,
+                       const EmulatorOptions& emulator) {
+  EmulatedPair pair(emulator, Defect::kNone);
+  const JudgedBackend judged = pair.Judged();
+  std::vector<std::uint32_t> numbers;
+  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
+  return JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+}
+
+EmulatorOptions Faithful() {
+  EmulatorOptions faithful;
+  faithful.mode = simt::Mode::kFaithful;
+  faithful.warp_size = 8;
+  faithful.schedule = "random:5";
+  return faithful;
+}
+
+// The synthetic furnace whose light varies from cell to cell, over 6 frames: every level holds on the fast and the
+// faithful emulator, in fixed64 and float32, integrating and blending, and nothing is classified (no alias, no
+// failure in a table of 1024 slots for 8 cells).
+TEST(TransportContract, HoldsFrameByFrameOnTheFurnace) {
+  std::vector<RecordBatch> frames;
+  for (std::uint32_t k = 0; k < 6; ++k) frames.push_back(FurnaceBatch(k, true));
+  for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+    for (const std::string temporal : {"integrate", "ema:0.5"}) {
+      for (const EmulatorOptions& emulator : {EmulatorOptions{}, Faithful()}) {
+        const std::string where = ToString(accumulation) + ", " + temporal + ", " +
+                                  (emulator.mode == simt::Mode::kFast ? "fast" : "faithful");
+        const CrosscheckReport report = Judge(frames, FurnaceConfig(accumulation, temporal, 6), emulator);
+        EXPECT_TRUE(report.Passed()) << where << ": " << report.FirstFailure();
+        ASSERT_EQ(report.quality.size(), 1u);
+        EXPECT_EQ(report.quality[0].classified_transports, 0u) << where;
+      }
+    }
+  }
+}
+
+// The traced furnace with 3 filtered vertices per path (the deeper records in the table, keyed and compared with the
+// reference at every level like the records), under level of detail.
+TEST(TransportContract, HoldsWithDeeperRecordsOnTheTracedFurnace) {
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 3;
+  config.capacity = 1u << 14;
+  const CrosscheckReport report = Judge(TracedFurnaceFrames(3, 3, 16, 2), config, EmulatorOptions{});
+  EXPECT_TRUE(report.Passed()) << report.FirstFailure();
+  EXPECT_EQ(report.quality[0].classified_transports, 0u);
+}
+
+// With fingerprints of 8 bits in a table of 512 slots for some 700 cells, cells alias and records fail to probe: a
+// transport that reads an aliased slot, or misses a cell the table lost, carries other light than the reference's
+// into its record's cells. The contract classifies those reads, and the cells they feed from then on, instead of
+// blaming the backend.
+TEST(TransportContract, ClassifiesReadsOfCellsTheTableCouldNotHold) {
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 4;
+  config.capacity = 512;
+  config.fingerprint_bits = 8;
+  const CrosscheckReport report = Judge(TracedFurnaceFrames(2, 4, 16, 2), config, EmulatorOptions{});
+  EXPECT_TRUE(report.Passed()) << report.FirstFailure();
+  EXPECT_GT(report.quality[0].aliased_slots, 0u);
+  EXPECT_GT(report.quality[0].classified_transports, 0u);
+  std::printf("%s", report.ToText().c_str());
+}
+
+// Each broken transport fails the contract over the traced furnace's frames, at the level named.
+TEST(TransportContract, CatchesEachBrokenTransport) {
+  const std::vector<RecordBatch> frames = TracedFurnaceFrames(2, 3, 16, 2);
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 3;
+  config.capacity = 1u << 14;
+  const struct {
+    TransportDefect defect;
+    int level;  // the first level that fails
+  } cases[] = {
+      {TransportDefect::kWeightTwice, 2},             // the table's sums are not its transported records'
+      {TransportDefect::kScatteredAtRecordLevel, 2},  // a read of another cell than the scattered vertex's
+      {TransportDefect::kReadsCurrentTable, 2},       // reads of cells the table before did not hold
+  };
+  for (const auto& c : cases) {
+    EmulatorOptions emulator;
+    emulator.transport_defect = c.defect;
+    const CrosscheckReport report = Judge(frames, config, emulator);
+    EXPECT_FALSE(report.Passed()) << ToString(c.defect);
+    EXPECT_EQ(report.FirstFailure().rfind("level " + std::to_string(c.level), 0), 0u)
+        << ToString(c.defect) << ": " << report.FirstFailure();
+    std::printf("%s: %s\n", ToString(c.defect).c_str(), report.FirstFailure().c_str());
+  }
+}
+
+}  // namespace
+}  // namespace hpsf::testing
