@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/fnv1a.h"
+#include "core/transport.h"
 
 namespace hpsf {
 namespace {
@@ -15,7 +16,7 @@ static_assert(std::endian::native == std::endian::little, ".hpsfv is little-endi
 
 constexpr char kMagic[8] = {'H', 'P', 'S', 'F', 'V', 'R', 'E', 'C'};
 
-// Version 1's header is the first 48 bytes of version 2's.
+// Version 1's header is the first 48 bytes of version 2's, and version 2's the first 56 of version 3's.
 struct Header {
   char magic[8];
   std::uint32_t version;
@@ -26,11 +27,18 @@ struct Header {
   std::uint32_t samples_per_pixel;
   double fov_y_radians;
   std::uint64_t record_count;
-  std::uint32_t frame;        // version 2
-  std::uint32_t frame_count;  // version 2: the same in every block
+  std::uint32_t frame;            // version 2
+  std::uint32_t frame_count;      // version 2: the same in every block
+  std::uint64_t deeper_count;     // version 3
+  std::uint64_t scattered_count;  // version 3: none, or one per record and deeper record
 };
-static_assert(sizeof(Header) == 56);
+static_assert(sizeof(Header) == 72);
 constexpr std::uint32_t kVersion1HeaderSize = 48;
+constexpr std::uint32_t kVersion2HeaderSize = 56;
+
+std::uint32_t HeaderSize(std::uint32_t version) {
+  return version == 1 ? kVersion1HeaderSize : version == 2 ? kVersion2HeaderSize : std::uint32_t(sizeof(Header));
+}
 
 }  // namespace
 
@@ -56,10 +64,13 @@ void RecordFileWriter::Append(const RecordBatch& batch) {
     throw InputError(path_ + ": frame " + std::to_string(batch.frame) + " after frame " + std::to_string(last_frame_) +
                      "; frame numbers must increase");
   }
+  CheckScatteredShape(batch);
+  // Version 3 only where version 2 cannot hold the batch: a file of single-vertex records stays what it was.
+  const bool several_bounces = !batch.deeper.empty() || !batch.scattered.empty();
   Header header{};
   std::memcpy(header.magic, kMagic, sizeof kMagic);
-  header.version = kRecordFileVersion;
-  header.header_size = sizeof(Header);
+  header.version = several_bounces ? kRecordFileVersion : 2;
+  header.header_size = HeaderSize(header.version);
   header.record_size = sizeof(Record);
   header.width = batch.width;
   header.height = batch.height;
@@ -68,10 +79,15 @@ void RecordFileWriter::Append(const RecordBatch& batch) {
   header.record_count = batch.records.size();
   header.frame = batch.frame;
   header.frame_count = frames_;
-  const std::size_t record_bytes = batch.records.size() * sizeof(Record);
-  const std::uint64_t checksum = Fnv1a(batch.records.data(), record_bytes, Fnv1a(&header, sizeof header));
-  out_.write(reinterpret_cast<const char*>(&header), sizeof header);
-  out_.write(reinterpret_cast<const char*>(batch.records.data()), static_cast<std::streamsize>(record_bytes));
+  header.deeper_count = batch.deeper.size();
+  header.scattered_count = batch.scattered.size();
+  std::uint64_t checksum = Fnv1a(&header, header.header_size);
+  out_.write(reinterpret_cast<const char*>(&header), header.header_size);
+  for (const std::vector<Record>* records : {&batch.records, &batch.deeper, &batch.scattered}) {
+    const std::size_t bytes = records->size() * sizeof(Record);
+    checksum = Fnv1a(records->data(), bytes, checksum);
+    out_.write(reinterpret_cast<const char*>(records->data()), static_cast<std::streamsize>(bytes));
+  }
   out_.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
   if (!out_) throw InputError(path_ + ": writing the record file failed");
   ++written_;
@@ -116,18 +132,20 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     }
     in.read(reinterpret_cast<char*>(&header), kVersion1HeaderSize);
     if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw fail(at, "not an .hpsfv record file (bad magic)");
-    if (header.version != 2 && !(header.version == 1 && at == 0)) {
-      throw fail(at + 8, "format version " + std::to_string(header.version) + ", this hpsf reads versions 1 and 2" +
+    if (header.version != 2 && header.version != 3 && !(header.version == 1 && at == 0)) {
+      throw fail(at + 8, "format version " + std::to_string(header.version) + ", this hpsf reads versions 1 to 3" +
                              (at > 0 ? " (version 1 holds one frame)" : ""));
     }
-    const std::uint32_t header_size = header.version == 1 ? kVersion1HeaderSize : std::uint32_t(sizeof(Header));
+    const std::uint32_t header_size = HeaderSize(header.version);
     if (header.header_size != header_size) {
       throw fail(at + 12,
                  "header size " + std::to_string(header.header_size) + ", expected " + std::to_string(header_size));
     }
-    if (header.version == 2) {
-      if (file_size - at < sizeof header) throw fail(file_size, "truncated: the header needs 56 bytes");
-      in.read(reinterpret_cast<char*>(&header.frame), sizeof header - kVersion1HeaderSize);
+    if (header.version >= 2) {
+      if (file_size - at < header_size) {
+        throw fail(file_size, "truncated: the header needs " + std::to_string(header_size) + " bytes");
+      }
+      in.read(reinterpret_cast<char*>(&header.frame), header_size - kVersion1HeaderSize);
       if (at == 0) {
         if (header.frame_count == 0 || header.frame_count > kMaxRecordFileFrames) {
           throw fail(at + 52, "frame count " + std::to_string(header.frame_count) + ", expected 1 to 2^20");
@@ -152,7 +170,22 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     if (header.record_count > (1ull << 31)) {
       throw fail(at + 40, "record count " + std::to_string(header.record_count) + ", at most 2^31 a frame");
     }
-    const std::uint64_t block_end = at + header_size + header.record_count * sizeof(Record) + sizeof(std::uint64_t);
+    if (header.version == 3) {
+      if (header.deeper_count > (1ull << 31) - header.record_count) {
+        throw fail(at + 56, "deeper record count " + std::to_string(header.deeper_count) +
+                                ", at most 2^31 records a frame with the others");
+      }
+      if (header.scattered_count != 0 && header.scattered_count != header.record_count + header.deeper_count) {
+        throw fail(at + 64, "scattered vertex count " + std::to_string(header.scattered_count) +
+                                ", expected none or one per record and deeper record (" +
+                                std::to_string(header.record_count + header.deeper_count) + ")");
+      }
+      if (header.deeper_count == 0 && header.scattered_count == 0) {
+        throw fail(at + 56, "a version 3 block without deeper records or scattered vertices (version 2 holds it)");
+      }
+    }
+    const std::uint64_t stored = header.record_count + header.deeper_count + header.scattered_count;
+    const std::uint64_t block_end = at + header_size + stored * sizeof(Record) + sizeof(std::uint64_t);
     if (block_end > file_size) {
       throw fail(file_size, "truncated: " + std::to_string(file_size) + " bytes, frame " +
                                 std::to_string(frames.size()) + " ends at byte " + std::to_string(block_end));
@@ -168,12 +201,17 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     batch.fov_y_radians = header.fov_y_radians;
     batch.frame = header.version == 1 ? 0 : header.frame;
     batch.records.resize(header.record_count);
-    in.read(reinterpret_cast<char*>(batch.records.data()),
-            static_cast<std::streamsize>(header.record_count * sizeof(Record)));
+    batch.deeper.resize(header.deeper_count);
+    batch.scattered.resize(header.scattered_count);
+    std::uint64_t expected = Fnv1a(&header, header_size);
+    for (std::vector<Record>* records : {&batch.records, &batch.deeper, &batch.scattered}) {
+      in.read(reinterpret_cast<char*>(records->data()), static_cast<std::streamsize>(records->size() * sizeof(Record)));
+      expected = Fnv1a(records->data(), records->size() * sizeof(Record), expected);
+    }
     std::uint64_t checksum = 0;
     in.read(reinterpret_cast<char*>(&checksum), sizeof checksum);
     if (!in) throw fail(at + header_size, "read failed");
-    if (checksum != Fnv1a(batch.records.data(), batch.records.size() * sizeof(Record), Fnv1a(&header, header_size))) {
+    if (checksum != expected) {
       throw fail(block_end - sizeof checksum, "checksum mismatch: the file is corrupt");
     }
     frames.push_back(std::move(batch));

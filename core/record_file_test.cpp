@@ -125,6 +125,84 @@ TEST(RecordFile, HoldsTheFramesOfASequenceWithTheirNumbers) {
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
 }
 
+bool SameArray(const std::vector<Record>& a, const std::vector<Record>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Record)) == 0);
+}
+
+std::uint32_t VersionOf(const std::string& path, std::uint64_t at = 0) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(std::streamoff(at + 8));
+  std::uint32_t version = 0;
+  in.read(reinterpret_cast<char*>(&version), sizeof version);
+  return version;
+}
+
+// Overwrites 8 bytes at `at` and fixes nothing else: the reader names the field before it checks the sum.
+void Poke64(const std::string& path, std::uint64_t at, std::uint64_t value) {
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(std::streamoff(at));
+  f.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// Several filtered bounces: a frame with deeper records and scattered vertices is written as version 3 (a 72-byte
+// header with their counts, the arrays after the records) and reads back bit for bit; a frame without them stays
+// version 2, byte for byte what it was, in the same file.
+TEST(RecordFile, HoldsDeeperRecordsAndScatteredVerticesInVersionThree) {
+  std::vector<RecordBatch> frames(2, SmallBatch());
+  frames[0].frame = 0;
+  frames[1].frame = 1;
+  VertexSample deeper;
+  deeper.position = glm::vec3(-2.0f, 0.25f, 1.0f);
+  deeper.contribution = glm::vec3(0.125f, 3.0f, 0.0f);
+  frames[0].deeper = {MakeVertexRecord(deeper), MakeVertexRecord(deeper)};
+  frames[0].deeper[1].contribution.y = 5.0f;
+  for (std::size_t i = 0; i < 6; ++i) {
+    VertexSample s;
+    s.position = glm::vec3(float(i), 1.0f, 2.0f);
+    s.throughput = glm::vec3(0.5f);
+    frames[0].scattered.push_back(i == 3 ? MakeRecordWithoutVertex(1, 1, glm::vec3(0.0f)) : MakeVertexRecord(s));
+  }
+  const std::string path = TempPath("hpsf_bounces.hpsfv");
+  WriteRecordFile(path, frames);
+  EXPECT_EQ(VersionOf(path), 3u);
+  const std::uint64_t second = 72 + 12 * sizeof(Record) + 8;
+  EXPECT_EQ(VersionOf(path, second), 2u);
+  EXPECT_EQ(std::filesystem::file_size(path), second + 56 + 4 * sizeof(Record) + 8);
+  const std::vector<RecordBatch> read = ReadRecordFrames(path);
+  ASSERT_EQ(read.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_TRUE(SameArray(read[k].records, frames[k].records)) << k;
+    EXPECT_TRUE(SameArray(read[k].deeper, frames[k].deeper)) << k;
+    EXPECT_TRUE(SameArray(read[k].scattered, frames[k].scattered)) << k;
+  }
+
+  // A scattered count that is neither none nor one per record and deeper record, a deeper count past 2^31 records,
+  // and a version-3 block holding neither are named at their field.
+  Poke64(path, 64, 5);
+  EXPECT_NE(ErrorOf(path).find("byte 64: scattered vertex count 5, expected none or one per record and deeper record "
+                               "(6)"),
+            std::string::npos)
+      << ErrorOf(path);
+  Poke64(path, 56, 1ull << 40);
+  EXPECT_NE(ErrorOf(path).find("byte 56: deeper record count"), std::string::npos) << ErrorOf(path);
+  Poke64(path, 56, 0);
+  Poke64(path, 64, 0);
+  EXPECT_NE(ErrorOf(path).find("byte 56: a version 3 block without deeper records or scattered vertices"),
+            std::string::npos)
+      << ErrorOf(path);
+  // A deeper record changed after the header: the checksum covers the arrays too.
+  WriteRecordFile(path, frames);
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(72 + 5 * sizeof(Record)));
+    f.put('\x7f');
+  }
+  EXPECT_NE(ErrorOf(path).find("checksum mismatch"), std::string::npos) << ErrorOf(path);
+  // The writer refuses scattered vertices that are not one per record.
+  frames[0].scattered.pop_back();
+  EXPECT_THROW(WriteRecordFile(path, frames), InputError);
+}
+
 // Files written before frames (version 1: a 48-byte header, no frame number) read as one frame, frame 0.
 TEST(RecordFile, ReadsVersionOneAsFrameZero) {
   const RecordBatch batch = SmallBatch();

@@ -1,7 +1,8 @@
 // fuzz_hpsfv: .hpsfv record files through core/record_file.h. Every input is a sequence of frames or an
 // hpsf::InputError naming the file and byte; a bug is a crash, a hang, a sanitizer report, any other exception, or
-// frames that do not survive a round trip: written back (WriteRecordFile), a version-2 file is byte for byte the
-// input (version 1 is read, never written), and read again they are the same frames.
+// frames that do not survive a round trip: written back (WriteRecordFile), a file of versions 2 and 3 is byte for byte
+// the input (version 1 is read, never written), and read again they are the same frames, deeper records and scattered
+// vertices included.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,11 +22,15 @@ namespace {
 
 constexpr std::size_t kMaxInputBytes = 1 << 20;
 
+bool SameRecords(const std::vector<Record>& a, const std::vector<Record>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Record)) == 0);
+}
+
 bool SameBatch(const RecordBatch& a, const RecordBatch& b) {
   return a.frame == b.frame && a.width == b.width && a.height == b.height &&
          a.samples_per_pixel == b.samples_per_pixel &&
-         std::memcmp(&a.fov_y_radians, &b.fov_y_radians, sizeof(double)) == 0 && a.records.size() == b.records.size() &&
-         (a.records.empty() || std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(Record)) == 0);
+         std::memcmp(&a.fov_y_radians, &b.fov_y_radians, sizeof(double)) == 0 && SameRecords(a.records, b.records) &&
+         SameRecords(a.deeper, b.deeper) && SameRecords(a.scattered, b.scattered);
 }
 
 std::string ReadBytes(const std::string& path) {
@@ -56,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   WriteRecordFile(written, frames);
   std::uint32_t version = 0;
   std::memcpy(&version, data + 8, sizeof version);
-  if (version == 2 && ReadBytes(written) != bytes) Fail("the frames written back differ from the file they came from");
+  if (version != 1 && ReadBytes(written) != bytes) Fail("the frames written back differ from the file they came from");
   const std::vector<RecordBatch> again = ReadRecordFrames(written);
   if (again.size() != frames.size()) Fail("a different number of frames read again");
   for (std::size_t k = 0; k < frames.size(); ++k) {

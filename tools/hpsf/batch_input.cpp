@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "core/error.h"
 #include "core/record_file.h"
 #include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/image_size.h"
@@ -17,6 +18,20 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
   ParseSize(size, trace);
   trace.seed = seed;
   trace.Validate();
+}
+
+void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace) {
+  trace.scattered = config.transport || trace.filtered_vertices > 1;
+}
+
+void CheckTransportInput(const std::string& input, std::span<const RecordBatch> frames, const FilterConfig& config) {
+  if (!config.transport) return;
+  for (const RecordBatch& batch : frames) {
+    if (!batch.scattered.empty()) return;
+  }
+  throw ConfigError("--transport", input +
+                                       ": no frame carries scattered vertices, so nothing would be transported "
+                                       "(record the frames with --transport on, or filter without it)");
 }
 
 RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace) {

@@ -4,6 +4,7 @@
 #define HPSF_TOOLS_HPSF_BATCH_INPUT_H
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,14 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
 
 // `trace` as ResolveTraceOptions left it. A bad file or scene is an InputError naming it.
 RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace);
+
+// A scene traced for several filtered bounces (core/transport.h): with its scattered vertices where the filter
+// transports (--transport on) or a path filters more than one vertex (--filtered-vertices).
+void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace);
+
+// --transport on over frames none of which carries scattered vertices (a record file made without them) would
+// transport nothing: a ConfigError naming --transport and the input.
+void CheckTransportInput(const std::string& input, std::span<const RecordBatch> frames, const FilterConfig& config);
 
 // Whether the input names a recorded .hpsfv file rather than a scene.
 bool IsRecordFile(const std::string& input);

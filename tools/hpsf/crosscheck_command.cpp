@@ -93,10 +93,12 @@ int Run(CrosscheckOptions& o, bool options_only) {
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   // Bad names are bad input before any tracing; the Vulkan device opens at the first check.
   Crosschecker checker(SplitList(o.backends), ParseDefect(o.emulator.defect), o.emulator.vulkan);
+  TraceScatteredVertices(config, o.trace);
   ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
   CheckFrameOptions(o);
   if (options_only) return kExitOk;
   const std::vector<RecordBatch> frames = LoadOrTraceFrames(o.input, o.trace, o.frames, config);
+  CheckTransportInput(o.input, frames, config);
   if (o.frames_given && frames.size() != o.frames) {
     throw ConfigError("--frames",
                       o.input + " holds " + std::to_string(frames.size()) + " frames, not " + std::to_string(o.frames));
@@ -130,6 +132,9 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
                 "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
       ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
+  c->add_option("--filtered-vertices", o->trace.filtered_vertices,
+                "Diffuse vertices filtered per path, from --filter-bounce on, 1..8 (several filtered bounces)")
+      ->capture_default_str();
   c->add_option("--frames", o->frames,
                 "Check a sequence of this many frames through one table per backend (a scene: traced from --frame "
                 "on; a record file: must equal its frames; default every frame of a file, one of a scene)");

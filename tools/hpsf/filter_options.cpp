@@ -91,6 +91,13 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "on or off: a record whose chosen cell holds fewer than --min-count samples also reads the 2^3 "
                   "cells of its level nearest its jittered position, found by lookup, and averages them by count")
       ->capture_default_str();
+  command
+      .add_option("--transport", o.transport,
+                  "on or off: several filtered bounces (nHPSF): from a sequence's second frame on, each record whose "
+                  "path scattered to a further vertex adds the light the table before the frame holds at that "
+                  "vertex's cell, times its transport weight, so K frames hold up to K + 1 bounces (a scene is "
+                  "traced with its scattered vertices; a record file must carry them)")
+      ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction, neighbour-search; repeatable): the same bits, at the pass's cost");
@@ -106,6 +113,10 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     throw ConfigError("--neighbour-search", "expected on or off; got '" + o.neighbour_search + "'");
   }
   config.neighbour_search = o.neighbour_search == "on";
+  if (o.transport != "on" && o.transport != "off") {
+    throw ConfigError("--transport", "expected on or off; got '" + o.transport + "'");
+  }
+  config.transport = o.transport == "on";
   if (o.fixed_point_bits != "auto") {
     int bits = 0;
     const char* end = o.fixed_point_bits.data() + o.fixed_point_bits.size();
@@ -178,6 +189,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"levels", c.levels},
           {"min_count", c.min_count},
           {"neighbour_search", c.neighbour_search},
+          {"transport", c.transport},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

@@ -13,6 +13,7 @@
 #include "core/backend_registry.h"
 #include "core/error.h"
 #include "core/record_file.h"
+#include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/filter_output.h"
 #include "tools/hpsf/image_file.h"
@@ -101,8 +102,9 @@ void RunRender(RenderOptions& o, bool options_only) {
   ParseSize(o.size, o.trace);
   o.trace.seed = o.filter.config.seed;
   o.filter.config.frames = o.frames;
-  o.trace.Validate();
   FilterConfig config = ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
+  TraceScatteredVertices(config, o.trace);
+  o.trace.Validate();
   CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
   if (std::uint64_t(o.trace.frame) + o.frames - 1 > 0xFFFFFFFFu) {
     throw ConfigError("--frames", "frames " + std::to_string(o.trace.frame) + " + " + std::to_string(o.frames) +
@@ -159,6 +161,7 @@ void RunRender(RenderOptions& o, bool options_only) {
                      {"spp", o.trace.samples_per_pixel},
                      {"max_depth", o.trace.max_depth},
                      {"filter_bounce", o.trace.filter_bounce},
+                     {"filtered_vertices", o.trace.filtered_vertices},
                      {"threads", o.trace.threads},
                      {"frame", o.trace.frame},
                      {"first_frame", first},
@@ -196,6 +199,7 @@ void RunReplay(ReplayOptions& o, bool options_only) {
   const std::vector<RecordBatch> frames = ReadRecordFrames(o.records);
   o.filter.config.frames = std::uint32_t(frames.size());  // fixed64's F leaves room for all of them
   FilterConfig config = ResolveFilterConfig(o.filter);
+  CheckTransportInput(o.records, frames, config);
   BackendInstance backend = MakeBackend(o.backend, emulator, defect, o.emulator.vulkan);
   // Records bring no scene: nothing is traced, and whether it moved is not known.
   const std::vector<EffectDecision> plan = PlanSequenceEffects(config, SceneFacts{false, false}, config.frames);
@@ -234,6 +238,10 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--max-depth", o->trace.max_depth,
                 "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
+      ->capture_default_str();
+  c->add_option("--filtered-vertices", o->trace.filtered_vertices,
+                "Diffuse vertices filtered per path, from --filter-bounce on, 1..8: each further one a deeper record "
+                "in the table (several filtered bounces; the path then ends at the vertex the last one scatters to)")
       ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")
       ->capture_default_str();

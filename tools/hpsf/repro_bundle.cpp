@@ -124,6 +124,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   if (c.levels != 1 || c.min_count != 1)
     a.insert(a.end(), {"--levels", std::to_string(c.levels), "--min-count", std::to_string(c.min_count)});
   if (c.neighbour_search) a.insert(a.end(), {"--neighbour-search", "on"});
+  if (c.transport) a.insert(a.end(), {"--transport", "on"});
   if (c.compaction != Compaction::kNone) a.insert(a.end(), {"--compaction", ToString(c.compaction)});
   if (c.key_identity != KeyIdentity::kFingerprint) a.insert(a.end(), {"--key-identity", ToString(c.key_identity)});
   const bool faithful = emulator.mode == simt::Mode::kFaithful;

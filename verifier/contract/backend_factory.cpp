@@ -15,6 +15,11 @@ std::uint64_t SlotsUsed(const HashTableDump& table) {
       std::count_if(table.tags.begin(), table.tags.end(), [](SlotTag tag) { return tag != kEmptyTag; }));
 }
 
+// Several filtered bounces (core/transport.h): what the frame's transport looked up.
+nlohmann::json ToJson(const TransportStats& t) {
+  return {{"scattered", t.scattered}, {"unkeyable", t.unkeyable}, {"found", t.found}, {"missed", t.missed}};
+}
+
 double GigabytesPerSecond(std::uint64_t bytes, double ms) { return ms > 0.0 ? double(bytes) / (ms * 1e6) : 0.0; }
 
 nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
@@ -31,19 +36,15 @@ nlohmann::json ToJson(const EmulatedRun& run, const EmulatorOptions& options) {
                       {"halved", run.halved},
                       {"resolved_at_level", run.resolved_at_level},
                       {"records_searched", run.records_searched},
-                      {"neighbours_read", run.neighbours_read}};
+                      {"neighbours_read", run.neighbours_read},
+                      {"transport", ToJson(run.transport)}};
   const EmulatedTimings& t = run.timings;
-  j["timings_ms"] = {{"keys", t.keys_ms},
-                     {"fixed_point", t.fixed_point_ms},
-                     {"clear", t.clear_ms},
-                     {"accumulate", t.accumulate_ms},
-                     {"level_seed", t.level_seed_ms},
-                     {"compaction", t.compaction_ms},
-                     {"settle", t.settle_ms},
-                     {"temporal", t.temporal_ms},
-                     {"eviction", t.eviction_ms},
-                     {"read_back", t.read_back_ms},
-                     {"resolve", t.resolve_ms}};
+  j["timings_ms"] = {{"transport", t.transport_ms},     {"keys", t.keys_ms},
+                     {"fixed_point", t.fixed_point_ms}, {"clear", t.clear_ms},
+                     {"accumulate", t.accumulate_ms},   {"level_seed", t.level_seed_ms},
+                     {"compaction", t.compaction_ms},   {"settle", t.settle_ms},
+                     {"temporal", t.temporal_ms},       {"eviction", t.eviction_ms},
+                     {"read_back", t.read_back_ms},     {"resolve", t.resolve_ms}};
   if (options.mode == simt::Mode::kFaithful) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.trace_hash));
@@ -120,7 +121,8 @@ nlohmann::json ToJson(const FilterStats& s) {
           {"cells_halved", s.cells_halved},
           {"resolved_at_level", s.resolved_at_level},
           {"records_searched", s.records_searched},
-          {"neighbours_read", s.neighbours_read}};
+          {"neighbours_read", s.neighbours_read},
+          {"transport", ToJson(s.transport)}};
 }
 
 BackendInstance MakeBackend(const BackendInfo& info, const BackendSettings& settings, VulkanDevice* device) {
