@@ -187,6 +187,73 @@ simt::KernelTask LevelUnjittered(simt::ThreadContext& c, const AccumulateArgs& a
   return AccumulateLevels(c, a, UnjitteredKeyOfLevel);
 }
 
+// Meijer's Algorithm 4 as written (Meijer's thesis, "HPSF pseudocode: Collect contributions"), for linear probing:
+// a first loop over the window adds to every slot that holds the record's identity, without stopping, up to the
+// first empty slot, which it remembers (slot0 where it found none); a second loop from there, probe_limit slots long
+// and so past the window, claims by compare-and-swap and adds where the swap found the slot empty or holding the
+// identity, then stops. A record of a cell already in the table adds to the cell and again to the next free slot,
+// which it claims for the same cell. Its placement is the slot the algorithm returns (the second loop's add), else
+// its last add, else a probe failure. Each add is the record's sums and one count, as the correct kernel's.
+simt::KernelTask Algorithm4AsWritten(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  const std::uint32_t i = ctx.Thread();
+  const KeyResult& key = args.keys[i];
+  const TableBuffers& b = args.buffers;
+  if (!args.accepted[i] || key.status != shared::kKeyed) {
+    co_await ctx.Store(b.placements, i, kNotPlaced);
+    co_return;
+  }
+  const SlotTag identity = StoredIdentity(key);
+  const Record& r = args.records[i];
+  const std::uint32_t mask = args.capacity - 1u;
+  std::uint32_t placement = kProbeFailure;
+  bool second = false;  // which of the two loops
+  std::uint32_t index = 0, end = args.probe_limit;
+  for (;;) {
+    if (index == end) {
+      if (second) break;
+      second = true;  // the window held no empty slot: the second loop starts at slot0
+      index = 0;
+      end = args.probe_limit;
+      continue;
+    }
+    const std::uint32_t slot = (key.slot0 + index) & mask;
+    if (!second) {
+      if (co_await ctx.Load(b.tags, slot) != identity) {
+        if (co_await ctx.Load(b.tags, slot) == kEmptyTag) {  // the algorithm loads the tag again
+          second = true;
+          end = index + args.probe_limit;  // from the first free slot on
+          continue;
+        }
+        ++index;
+        continue;
+      }
+    } else {
+      const std::uint64_t original = co_await ctx.AtomicCas(b.tags, slot, kEmptyTag, identity);
+      if (original != kEmptyTag && original != identity) {
+        ++index;
+        continue;
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      if (IntegerSums(args.accumulation)) {
+        const std::uint64_t add = shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+        const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, std::uint64_t(slot) * 3 + c, add);
+        if (SumAddWrapped(args.accumulation, old, add)) co_await ctx.AtomicAdd(b.wraps, 0, 1);
+      } else {
+        co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c,
+                                    std::bit_cast<std::uint32_t>(r.contribution[c]));
+      }
+    }
+    if (CountAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.counts, slot, 1)))
+      co_await ctx.AtomicAdd(b.wraps, 1, 1);
+    if (args.track_last_seen) co_await ctx.Store(b.last_seen, slot, args.frame);
+    placement = slot;
+    if (second) break;
+    ++index;
+  }
+  co_await ctx.Store(b.placements, i, placement);
+}
+
 simt::KernelTask D2(simt::ThreadContext& c, const AccumulateArgs& a) { return Mutant(c, a, Defect::kD2AddsAgain); }
 simt::KernelTask D3(simt::ThreadContext& c, const AccumulateArgs& a) {
   return Mutant(c, a, Defect::kD3ZeroFingerprint);
@@ -287,6 +354,7 @@ simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const Eviction
 Defect ParseDefect(const std::string& text) {
   if (text == "none") return Defect::kNone;
   if (text == "D2") return Defect::kD2AddsAgain;
+  if (text == "algorithm-4") return Defect::kAlgorithm4AsWritten;
   if (text == "D3") return Defect::kD3ZeroFingerprint;
   if (text == "D8") return Defect::kD8ClampedProbe;
   if (text == "D8-unwrapped") return Defect::kD8UnwrappedProbe;
@@ -309,7 +377,7 @@ Defect ParseDefect(const std::string& text) {
                     "expected none, D2, D3, D8, D8-unwrapped, D9, D11, D13, count-store-claim-first, "
                     "count-store-join-first, last-seen-claimer-only, full-bucket-masked, window-past-the-end, "
                     "weak-cas-old-value, full-key-low-word, level-unjittered, level-wrong-count, search-claims, "
-                    "search-stops-at-tombstone or stencil-truncated; got '" +
+                    "search-stops-at-tombstone, stencil-truncated or algorithm-4; got '" +
                         text + "'");
 }
 
@@ -319,6 +387,8 @@ std::string ToString(Defect defect) {
       return "none";
     case Defect::kD2AddsAgain:
       return "D2";
+    case Defect::kAlgorithm4AsWritten:
+      return "algorithm-4";
     case Defect::kD3ZeroFingerprint:
       return "D3";
     case Defect::kD8ClampedProbe:
@@ -365,6 +435,8 @@ AccumulateKernelFn KernelWithDefect(Defect defect) {
       return AccumulateKernel;
     case Defect::kD2AddsAgain:
       return D2;
+    case Defect::kAlgorithm4AsWritten:
+      return Algorithm4AsWritten;
     case Defect::kD3ZeroFingerprint:
       return D3;
     case Defect::kD8ClampedProbe:

@@ -41,12 +41,15 @@ enum class Defect {
   kSearchClaims,
   kSearchStopsAtTombstone,
   kStencilTruncated,
+  // Meijer's Algorithm 4 as written (docs/design/defects.md, "Meijer's Algorithm 4"): adds to every slot of the window
+  // holding the record's identity up to the first empty one, then claims from there and adds again.
+  kAlgorithm4AsWritten,
 };
 
 // "none", "D2", "D3", "D8", "D8-unwrapped", "D9", "D11", "D13", "count-store-claim-first",
 // "count-store-join-first", "last-seen-claimer-only", "full-bucket-masked", "window-past-the-end",
 // "weak-cas-old-value", "full-key-low-word", "level-unjittered", "level-wrong-count", "search-claims",
-// "search-stops-at-tombstone", "stencil-truncated"; a ConfigError naming --inject-defect otherwise.
+// "search-stops-at-tombstone", "stencil-truncated", "algorithm-4"; a ConfigError naming --inject-defect otherwise.
 Defect ParseDefect(const std::string& text);
 std::string ToString(Defect defect);
 // The accumulate kernel a defect runs (hpsf's own where the defect lies in another pass).

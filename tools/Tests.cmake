@@ -457,6 +457,17 @@ foreach(bug full-bucket-masked window-past-the-end weak-cas-old-value)
       -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
   set_tests_properties(HpsfFuzz.FindsShippedBug${bug}InTheEmulator PROPERTIES LABELS "unit;schemes;untrusted")
 endforeach()
+# Meijer's Algorithm 4 as written (docs/design/defects.md): found, shrunk and reproduced in the emulator and as a shader.
+add_test(NAME HpsfFuzz.FindsMeijersAlgorithm4InTheEmulator
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_emulated_algorithm4 -DMAX_RECORDS=9
+    "-DARGS=--backend;emulated;--inject-defect;algorithm-4;--runs;200;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsMeijersAlgorithm4InTheEmulator PROPERTIES LABELS "unit;bounces;untrusted")
+add_test(NAME HpsfFuzz.FindsMeijersAlgorithm4InAShader
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_vulkan_algorithm4 -DMAX_RECORDS=9
+    "-DARGS=--backend;vulkan;--accumulate-spv;${HPSF_SHADER_VARIANT_DIR}/accumulate_ALGORITHM_4.spv;--accum;fixed64;--runs;200;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsMeijersAlgorithm4InAShader PROPERTIES LABELS "vulkan;bounces;untrusted")
 # Coarser levels keyed at the unjittered position (--levels, core/shared/levels.h): hpsf fuzz draws several levels
 # for this kernel, which adds them, and finds, shrinks and reproduces it.
 add_test(NAME HpsfFuzz.FindsCoarserLevelsKeyedUnjitteredInTheEmulator

@@ -61,7 +61,7 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
           "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full; "
           "level-unjittered and level-wrong-count with --levels 2 or more; search-claims, search-stops-at-tombstone "
           "and stencil-truncated, "
-          "resolves with --neighbour-search)")
+          "resolves with --neighbour-search; algorithm-4, Meijer's Algorithm 4 as written)")
       ->capture_default_str();
 }
 

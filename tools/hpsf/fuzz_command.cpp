@@ -398,7 +398,7 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
        "full-bucket-masked, window-past-the-end and weak-cas-old-value; full-key-low-word with --key-identity full; "
        "level-unjittered and level-wrong-count with --levels 2 or more; search-claims, search-stops-at-tombstone and "
        "stencil-truncated, "
-       "resolves with --neighbour-search)")
+       "resolves with --neighbour-search; algorithm-4, Meijer's Algorithm 4 as written)")
       ->capture_default_str();
   CLI::Option* time =
       c->add_option("--time", o->seconds, "Stop after this many seconds (default 60 when --runs is not given)");

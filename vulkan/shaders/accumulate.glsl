@@ -30,7 +30,8 @@ layout(local_size_x = 128) in;
 
 // The test suite compiles this file once more per known defect of docs/design/defects.md (HPSF_DEFECT_D2, _D3, _D8, _D9,
 // _D12, _D13, each exactly one change), per bug a production cache shipped (_FULL_BUCKET_MASKED, SHaRC #4;
-// _WINDOW_PAST_THE_END, SHaRC #5), of a full key (_FULL_KEY_LOW_WORD, matched by its low word) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
+// _WINDOW_PAST_THE_END, SHaRC #5), of a full key (_FULL_KEY_LOW_WORD, matched by its low word), Meijer's Algorithm 4 as
+// written (_ALGORITHM_4) and of frames (HPSF_DEFECT_D10, _EVICT_RACE), and runs the variants through
 // --accumulate-spv: the gate must catch each. HPSF_DEFECT_D11, _COUNT_STORE_CLAIM_FIRST, _COUNT_STORE_JOIN_FIRST
 // and _LAST_SEEN_CLAIMER_ONLY are the classes `hpsf fuzz` must find unaided (a rounding defect the automatic F
 // hides, a race one execution order hides, a frame-state defect one frame hides). HPSF_DEFECT_SLOT0_FOR_FAILURE and HPSF_DEFECT_GARBAGE_* write words
@@ -38,6 +39,11 @@ layout(local_size_x = 128) in;
 
 #if defined(HPSF_DEFECT_D12)
 layout(std430, binding = 4) buffer CountWords { uint count_words[]; };  // binding 4 again, as 32-bit words
+#endif
+#if defined(HPSF_DEFECT_ALGORITHM_4)
+const bool ALGORITHM_4 = true;  // the insertion below replaces the correct loop
+#else
+const bool ALGORITHM_4 = false;
 #endif
 #if defined(HPSF_DEFECT_EVICT_RACE)
 layout(std430, binding = 8) buffer LastSeenRead { uint last_seen_read[]; };  // binding 8 again, read too
@@ -213,7 +219,33 @@ uint PlaceRecord(KeyResult k, Record r, KeyParams p, TableParams t) {
         last_seen[placement] = t.frame;
       }
     }
-    for (uint probe = 0u; probe < t.probe_limit && t.claim_tombstones == 0u; ++probe) {
+#if defined(HPSF_DEFECT_ALGORITHM_4)
+    // Meijer's Algorithm 4 as written (emulated/defect_injection.cpp, Algorithm4AsWritten, says what it does): add to
+    // every slot of the window holding the identity up to the first empty one, then claim from there and add again.
+    uint first_free = 0u;
+    for (uint probe = 0u; probe < t.probe_limit; ++probe) {
+      uint slot = (k.slot0 + probe) & (t.capacity - 1u);
+      if (LoadTag(slot, full) == identity) {
+        AddToSlot(slot, r, t.fixed_point_scale, false);
+        if (t.track_last_seen != 0u) last_seen[slot] = t.frame;
+        placement = slot;
+      } else if (LoadTag(slot, full) == 0ul) {
+        first_free = probe;
+        break;
+      }
+    }
+    for (uint index = first_free; index < t.probe_limit + first_free; ++index) {
+      uint slot = (k.slot0 + index) & (t.capacity - 1u);
+      uint64_t original = SwapTag(slot, 0ul, identity, full);
+      if (original == 0ul || original == identity) {
+        AddToSlot(slot, r, t.fixed_point_scale, original == 0ul);
+        if (t.track_last_seen != 0u) last_seen[slot] = t.frame;
+        placement = slot;
+        break;
+      }
+    }
+#endif
+    for (uint probe = 0u; probe < t.probe_limit && t.claim_tombstones == 0u && !ALGORITHM_4; ++probe) {
 #if defined(HPSF_DEFECT_D8)  // the probe index clamped to the last slot instead of wrapped
       uint slot = min(k.slot0 + probe, t.capacity - 1u);
 #elif defined(HPSF_DEFECT_WINDOW_PAST_THE_END)  // SHaRC #5: bucket-window's window not clamped to the table
