@@ -81,6 +81,20 @@ TEST(TransportContract, ClassifiesReadsOfCellsTheTableCouldNotHold) {
   std::printf("%s", report.ToText().c_str());
 }
 
+// In float32 a slot's sum is held to the exact sum of the records placed in it, the deeper ones included: under
+// pressure (256 slots) the traced furnace's deeper records share slots with the pixels' records.
+TEST(TransportContract, HoldsInFloat32UnderPressureWithDeeperRecords) {
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 3;
+  config.capacity = 256;
+  config.fingerprint_bits = 24;
+  config.accumulation = Accumulation::kFloat32;
+  const CrosscheckReport report = Judge(TracedFurnaceFrames(2, 3, 16, 2), config, EmulatorOptions{});
+  EXPECT_TRUE(report.Passed()) << report.FirstFailure();
+  EXPECT_GT(report.quality[0].probe_failures, 0u);
+}
+
 // Each broken transport fails the contract over the traced furnace's frames, at the level named.
 TEST(TransportContract, CatchesEachBrokenTransport) {
   const std::vector<RecordBatch> frames = TracedFurnaceFrames(2, 3, 16, 2);

@@ -16,7 +16,8 @@ namespace {
 constexpr std::size_t kShown = 20;
 constexpr double kUnitRoundoff = 0x1p-23;  // float atomics: not promised round-to-nearest (docs/design/contract.md)
 
-// Per slot: the exact sum and the sum of magnitudes of the contributions placed there, per channel.
+// Per slot: the exact sum and the sum of magnitudes of the contributions placed there, per channel, by the records
+// and the deeper ones (several filtered bounces: they share the table).
 struct SlotSums {
   std::vector<glm::dvec3> exact, magnitude;
   std::vector<std::uint64_t> records;  // placed this frame
@@ -26,12 +27,14 @@ SlotSums SumsByPlacement(const RecordBatch& batch, const HashedRun& run) {
   SlotSums s{std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)),
              std::vector<glm::dvec3>(run.table.capacity, glm::dvec3(0.0)),
              std::vector<std::uint64_t>(run.table.capacity, 0)};
-  for (std::size_t touch = 0; touch < batch.records.size() * run.table.levels; ++touch) {
-    const std::size_t i = touch % batch.records.size();
-    const std::uint32_t slot = LevelPlacement(run, i, std::uint32_t(touch / batch.records.size()));
+  const TableRecords table(batch);
+  const std::size_t n = table.size();
+  for (std::size_t touch = 0; touch < n * run.table.levels; ++touch) {
+    const std::size_t i = touch % n;
+    const std::uint32_t slot = LevelPlacement(run, i, std::uint32_t(touch / n));
     if (slot >= run.table.capacity) continue;
     ++s.records[slot];
-    const glm::dvec3 c(batch.records[i].contribution);
+    const glm::dvec3 c(table.all()[i].contribution);
     s.exact[slot] += c;  // doubles: 29 bits beyond float's, far below the bound
     s.magnitude[slot] += glm::abs(c);
   }
