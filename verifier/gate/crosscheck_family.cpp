@@ -1,6 +1,8 @@
 // The gate's crosscheck family (gate_families.h): scene x config x backend x sequence x seed, each case one
 // `hpsf crosscheck` of a backend beside the reference.
 #include <algorithm>
+#include <map>
+#include <set>
 
 #include "core/backend_registry.h"
 #include "verifier/gate/gate_families.h"
@@ -30,13 +32,33 @@ void ExpandCrosscheck(const json& c, const std::string& folder, const GateError&
       error.At(b.pointer + "/backend", "expected the backend checked beside the reference: " + BackendNames(true));
     }
   }
+  // A sequence's "gate-backends": the family's backends it runs on (names, comma-separated), where a pass is not built
+  // on every backend; the others skip it. Not a command-line option.
+  std::map<std::string, std::set<std::string>> runs_on;
+  for (const Named& sequence : sequences) {
+    if (!sequence.options.contains("gate-backends")) continue;
+    const json& value = sequence.options["gate-backends"];
+    const std::string pointer = sequence.pointer + "/gate-backends";
+    if (!value.is_string()) error.At(pointer, "expected a comma-separated string of this family's backend names");
+    std::set<std::string>& names = runs_on[sequence.name];
+    std::string list = value.get<std::string>() + ",";
+    for (std::size_t start = 0, comma; (comma = list.find(',', start)) != std::string::npos; start = comma + 1) {
+      const std::string name = list.substr(start, comma - start);
+      if (std::none_of(backends.begin(), backends.end(), [&](const Named& b) { return b.name == name; })) {
+        error.At(pointer, "'" + name + "' names none of this family's backends");
+      }
+      names.insert(name);
+    }
+  }
   for (const SceneEntry& scene : scenes) {
     // A recorded sequence holds its own frames.
-    const std::set<std::string> skipped =
-        scene.recorded ? std::set<std::string>{"frames", "frame"} : std::set<std::string>{};
+    std::set<std::string> skipped = scene.recorded ? std::set<std::string>{"frames", "frame"} : std::set<std::string>{};
+    skipped.insert("gate-backends");
     for (const Named& config : configs) {
       for (const Named& backend : backends) {
         for (const Named& sequence : sequences) {
+          const auto only = runs_on.find(sequence.name);
+          if (only != runs_on.end() && !only->second.contains(backend.name)) continue;
           for (const std::uint32_t seed : seeds) {
             GateCase gc;
             gc.family = "crosscheck";

@@ -69,5 +69,32 @@ TEST(GateSchema, EveryBadGateIsRefusedByTheSchemaAndByTheLoader) {
   EXPECT_EQ(ExpandGate(good, "gate.json", "").cases.size(), 2u);
 }
 
+// A sequence's "gate-backends" names the family's backends it runs on (a pass not built on every backend): the other
+// backends skip it, it is no option of the command, and a name that is not the family's is refused by the loader.
+TEST(GateFile, ASequenceRunsOnTheBackendsItNames) {
+  const std::string family = R"({"hpsf_gate": 1, "crosscheck": {"scenes": ["cornell"], "backends": {"e": {"backend": )"
+                             R"("emulated"}, "v": {"backend": "vulkan"}}, "sequences": {"one-frame": {}, "t": )"
+                             R"({"frames": 2, "transport": "on", "gate-backends": "e"}}}})";
+  EXPECT_EQ(SchemaViolations(Schema(), json::parse(family)), std::vector<std::string>{});
+  const Gate gate = ExpandGate(family, "gate.json", "");
+  std::vector<std::string> ids;
+  for (const GateCase& c : gate.cases) {
+    ids.push_back(c.id);
+    for (const std::string& a : c.arguments) EXPECT_EQ(a.find("gate-backends"), std::string::npos) << c.id;
+  }
+  EXPECT_EQ(ids, (std::vector<std::string>{"crosscheck/cornell/default/e/one-frame/seed1",
+                                           "crosscheck/cornell/default/e/t/seed1",
+                                           "crosscheck/cornell/default/v/one-frame/seed1"}));
+  std::string unknown = family;
+  unknown.replace(unknown.find(R"("gate-backends": "e")"), 20, R"("gate-backends": "x")");
+  try {
+    ExpandGate(unknown, "gate.json", "");
+    ADD_FAILURE() << "the loader accepts an unknown backend name";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/crosscheck/sequences/t/gate-backends"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'x' names none of this family's backends"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hpsf
