@@ -124,6 +124,26 @@ EffectDecision DecideNeighbourSearch(const FilterConfig& config, std::uint32_t f
   return d;
 }
 
+EffectDecision DecideTransport(const FilterConfig& config, std::uint32_t frames) {
+  EffectDecision d{Effect::kTransport, config.transport, config.forced.Has(Effect::kTransport), 0, ""};
+  if (!d.asked) {
+    d.reason = "--transport off";
+    return d;
+  }
+  d.frames_run = FramesRunning(config, frames, &FrameEffects::transport);
+  const std::string empty = "the first frame's table before it is empty: every lookup misses";
+  if (d.forced) {
+    d.reason = "forced on every frame, though " + empty;
+  } else if (frames == 1) {
+    d.reason = "a single frame: " + empty;
+  } else {
+    d.reason =
+        "runs from frame 1 of the sequence on: each record takes its scattered vertex's light from the table "
+        "before the frame";
+  }
+  return d;
+}
+
 }  // namespace
 
 std::string EffectName(Effect effect) {
@@ -138,6 +158,8 @@ std::string EffectName(Effect effect) {
       return "eviction";
     case Effect::kNeighbourSearch:
       return "neighbour-search";
+    case Effect::kTransport:
+      return "transport";
   }
   return "?";
 }
@@ -146,8 +168,8 @@ Effect ParseEffect(const std::string& name) {
   for (Effect effect : kEffects) {
     if (EffectName(effect) == name) return effect;
   }
-  throw ConfigError("--force-effect",
-                    "is not an effect: '" + name + "' (animation, temporal, level-seed, eviction, neighbour-search)");
+  throw ConfigError("--force-effect", "is not an effect: '" + name +
+                                          "' (animation, temporal, level-seed, eviction, neighbour-search, transport)");
 }
 
 bool ForcedEffects::Any() const { return std::find(forced.begin(), forced.end(), true) != forced.end(); }
@@ -169,7 +191,8 @@ FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index) {
   e.eviction =
       config.eviction.enabled() && (index >= FirstEvictingFrame(config.eviction) || forced.Has(Effect::kEviction));
   e.search_every_pixel = config.neighbour_search && forced.Has(Effect::kNeighbourSearch);
-  e.transport = config.transport && index > 0;  // the first frame's table before it is empty: every lookup misses
+  // The first frame's table before it is empty: every lookup misses.
+  e.transport = config.transport && (index > 0 || forced.Has(Effect::kTransport));
   return e;
 }
 
@@ -177,7 +200,7 @@ std::vector<EffectDecision> PlanSequenceEffects(const FilterConfig& config, cons
                                                 std::uint32_t frames) {
   return {DecideAnimation(config, scene, frames), DecideTemporal(config, scene, frames),
           DecideLevelSeed(config, scene, frames), DecideEviction(config, scene, frames),
-          DecideNeighbourSearch(config, frames)};
+          DecideNeighbourSearch(config, frames),  DecideTransport(config, frames)};
 }
 
 bool RebuildsScenePerFrame(const FilterConfig& config, const SceneFacts& scene) {

@@ -19,6 +19,9 @@
 //               workgroup where there is none; the emulator and the reference search record by record. Forced, every
 //               pixel goes through the search pass (Vulkan's first pass lists them all), which searches below the
 //               threshold only.
+//   transport   several filtered bounces (--transport on): each record takes its scattered vertex's light from the
+//               table before the frame; called for from the second frame of a sequence on. The first frame's table
+//               before it is empty, so every lookup misses: forced there, the pass looks up and finds nothing.
 // An effect asked for but not called for by the scene (temporal forgetting on a static scene, say) still runs, since
 // skipping it would change the result the user asked for; the plan says so in its reason.
 #ifndef HPSF_CORE_EFFECT_PLAN_H
@@ -33,11 +36,11 @@ namespace hpsf {
 
 struct FilterConfig;
 
-enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch };
-inline constexpr std::array<Effect, 5> kEffects = {Effect::kAnimation, Effect::kTemporal, Effect::kLevelSeed,
-                                                   Effect::kEviction, Effect::kNeighbourSearch};
+enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch, kTransport };
+inline constexpr std::array<Effect, 6> kEffects = {Effect::kAnimation, Effect::kTemporal,        Effect::kLevelSeed,
+                                                   Effect::kEviction,  Effect::kNeighbourSearch, Effect::kTransport};
 
-// "animation", "temporal", "level-seed", "eviction", "neighbour-search"
+// "animation", "temporal", "level-seed", "eviction", "neighbour-search", "transport"
 std::string EffectName(Effect effect);
 
 // Parses an effect's name; a ConfigError naming --force-effect otherwise.

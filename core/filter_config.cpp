@@ -136,6 +136,9 @@ void FilterConfig::Validate() const {
   if (forced.Has(Effect::kNeighbourSearch) && !neighbour_search) {
     throw ConfigError("--force-effect", "neighbour-search needs --neighbour-search on");
   }
+  if (forced.Has(Effect::kTransport) && !transport) {
+    throw ConfigError("--force-effect", "transport needs --transport on");
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }

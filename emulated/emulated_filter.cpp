@@ -82,7 +82,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   // Several filtered bounces: a host pass over the table before the frame, which no launch of the frame writes, so
   // no schedule can change what it reads.
   std::optional<TransportResult> transport;
-  if (previous && (effects ? effects->transport : PlanFrameEffects(config, kLaterFrame).transport)) {
+  // Without a table before the frame (the first, where the transport is forced) every lookup misses.
+  if (effects ? effects->transport : previous && PlanFrameEffects(config, kLaterFrame).transport) {
     const TransportDefect defect = options.transport_defect;
     // reads-current-table: the table this frame accumulates, as the frame without its transport leaves it.
     std::optional<EmulatedRun> current;
@@ -93,14 +94,14 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
       correct.transport_defect = TransportDefect::kNone;
       current = EmulatedFilter(given, untransported, correct, accumulate, previous, eviction_kernels);
     }
-    const HashTableDump& read = current ? current->table : *previous;
+    const HashTableDump* read = current ? &current->table : previous;
     const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
-      const std::optional<std::uint32_t> slot = FindSlotInTable(read, w, config.normal_in_index);
+      const std::optional<std::uint32_t> slot = read ? FindSlotInTable(*read, w, config.normal_in_index) : std::nullopt;
       if (!slot) return std::nullopt;
-      return FoundCell{*slot, StateOfSlot(read, *slot)};
+      return FoundCell{*slot, StateOfSlot(*read, *slot)};
     };
     transport = TransportBatch(defect == TransportDefect::kWeightTwice ? WithWeightTwice(given) : given, params,
-                               config.accumulation, previous->fixed_point_bits, lookup,
+                               config.accumulation, read ? read->fixed_point_bits : 0, lookup,
                                defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr);
     run.transport_read = std::move(transport->read);
     run.transport = transport->stats;

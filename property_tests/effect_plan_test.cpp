@@ -56,6 +56,12 @@ TEST(EffectPlan, PlansEachPassByWhatTheFrameGivesIt) {
   EXPECT_TRUE(PlanFrameEffects(config, 0).temporal);
   EXPECT_TRUE(PlanFrameEffects(config, 0).eviction);
   EXPECT_EQ(config.forced.ToString(), "temporal,level-seed,eviction");
+  // The transport from the second frame on, or forced on the first, whose lookups all miss.
+  config.transport = true;
+  EXPECT_FALSE(PlanFrameEffects(config, 0).transport);
+  EXPECT_TRUE(PlanFrameEffects(config, 1).transport);
+  config.forced.Add(Effect::kTransport);
+  EXPECT_TRUE(PlanFrameEffects(config, 0).transport);
 
   // The sequence's decisions, with the frames each pass runs on and why.
   FilterConfig plain;
@@ -78,7 +84,8 @@ TEST(EffectPlan, PlansEachPassByWhatTheFrameGivesIt) {
 TEST(EffectPlan, ForcingNeedsAnEffectTheOptionsAskFor) {
   EXPECT_EQ(ParseEffect("level-seed"), Effect::kLevelSeed);
   EXPECT_THROW(ParseEffect("glossy"), ConfigError);
-  for (Effect effect : {Effect::kTemporal, Effect::kLevelSeed, Effect::kEviction, Effect::kNeighbourSearch}) {
+  for (Effect effect :
+       {Effect::kTemporal, Effect::kLevelSeed, Effect::kEviction, Effect::kNeighbourSearch, Effect::kTransport}) {
     FilterConfig config;
     config.forced.Add(effect);
     try {

@@ -226,6 +226,44 @@ TEST(Transport, TheFirstFrameTransportsNothing) {
   EXPECT_THROW(ReferenceFilter(uneven, with), InputError);
 }
 
+// Forced on the first frame (--force-effect transport), the pass looks every scattered vertex up in the empty table
+// before it, finds nothing and changes no bit: the reference's and the emulator's images and tables are those of the
+// frame it skips, in fixed64 and float32; skipped, the emulator's transport timer reads exactly 0.
+TEST(Transport, ForcedOnTheFirstFrameItFindsNothingAndChangesNoBit) {
+  const RecordBatch batch = TracedFurnaceFrames(2, 1, 16, 2)[0];
+  for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+    FilterConfig planned;
+    planned.transport = true;
+    planned.capacity = 4096;
+    planned.accumulation = accumulation;
+    FilterConfig forced = planned;
+    forced.forced.Add(Effect::kTransport);
+    ReferenceBackend reference_planned, reference_forced;
+    const Image& a = reference_planned.FilterFrame(batch, planned);
+    const Image& b = reference_forced.FilterFrame(batch, forced);
+    EXPECT_EQ(a.pixels, b.pixels) << ToString(accumulation);
+    EXPECT_EQ(reference_planned.LastExactResult()->stats.transport.scattered, 0u);
+    EXPECT_GT(reference_forced.LastExactResult()->stats.transport.scattered, 0u);
+    EXPECT_EQ(reference_forced.LastExactResult()->stats.transport.found, 0u);
+    EmulatorOptions one_worker;
+    one_worker.threads = 1;
+    EmulatedBackend emulated_planned(one_worker), emulated_forced(one_worker);
+    emulated_planned.FilterFrame(batch, planned);
+    emulated_forced.FilterFrame(batch, forced);
+    const EmulatedRun& p = emulated_planned.run();
+    const EmulatedRun& f = emulated_forced.run();
+    EXPECT_EQ(p.image.pixels, f.image.pixels) << ToString(accumulation);
+    EXPECT_EQ(p.table.tags, f.table.tags);
+    EXPECT_EQ(p.table.counts, f.table.counts);
+    EXPECT_EQ(p.table.fixed_sums, f.table.fixed_sums);
+    EXPECT_EQ(p.table.float_sums, f.table.float_sums);
+    EXPECT_EQ(p.timings.transport_ms, 0.0);
+    EXPECT_TRUE(p.transport_read.empty());
+    EXPECT_EQ(f.transport.found, 0u);
+    EXPECT_GT(f.transport.missed, 0u);
+  }
+}
+
 // A scattered vertex whose cell the table before the frame never held transports nothing (a miss, counted), and one
 // that is rejected as input (a negative weight) is not looked up.
 TEST(Transport, AMissTransportsNothing) {

@@ -154,16 +154,17 @@ shared::LevelChoice ChooseCell(const FilterResult& result, const FilterConfig& c
 
 // Several filtered bounces (core/transport.h): the scattered vertices' cells looked up in the exact map before the
 // frame (cell_of_key, before any of the frame's adds).
+// Without a previous frame (the first, where the transport is forced) the map is empty and every lookup misses.
 TransportResult TransportFromPrevious(const RecordBatch& batch, const KeyParams& params, const FilterConfig& config,
-                                      const FilterResult& previous,
+                                      const FilterResult* previous,
                                       const std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key) {
   const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
     const auto it = cell_of_key.find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
     if (it == cell_of_key.end()) return std::nullopt;
-    const TableCell& c = previous.cells[it->second];
+    const TableCell& c = previous->cells[it->second];
     return FoundCell{it->second, {c.fixed_sum, c.float_sum, c.count}};
   };
-  return TransportBatch(batch, params, config.accumulation, previous.stats.fixed_point_bits, lookup);
+  return TransportBatch(batch, params, config.accumulation, previous ? previous->stats.fixed_point_bits : 0, lookup);
 }
 
 }  // namespace
@@ -185,8 +186,8 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     for (std::size_t c = 0; c < result.cells.size(); ++c) cell_of_key.emplace(result.cells[c].key, std::uint32_t(c));
   }
   std::optional<TransportResult> transport;
-  if (planned.transport && previous) {
-    transport = TransportFromPrevious(given, params, config, *previous, cell_of_key);
+  if (planned.transport) {
+    transport = TransportFromPrevious(given, params, config, previous, cell_of_key);
     result.transport_read = std::move(transport->read);
     stats.transport = transport->stats;
   }

@@ -100,7 +100,7 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
       ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
-                     "eviction, neighbour-search; repeatable): the same bits, at the pass's cost");
+                     "eviction, neighbour-search, transport; repeatable): the same bits, at the pass's cost");
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {

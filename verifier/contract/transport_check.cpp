@@ -22,7 +22,16 @@ std::string ReadName(std::uint32_t read) {
 RecordBatch JudgeTransportReads(const RecordBatch& batch, const FilterConfig& config, const HashTableDump* before,
                                 const HashedRun& run, const std::string& prefix, LevelVerdict& tables) {
   if (!config.transport || !before) {
-    if (!run.transport_read.empty()) tables.Fail(prefix + "transported light where no transport runs");
+    // Without --transport nothing is looked up; without a table before the frame (forced on the first) nothing found.
+    if (!config.transport && !run.transport_read.empty()) {
+      tables.Fail(prefix + "transported light where no transport runs");
+    }
+    for (std::size_t i = 0; i < run.transport_read.size(); ++i) {
+      if (run.transport_read[i] == kNothingTransported) continue;
+      tables.Fail(prefix + "record " + std::to_string(i) + "'s transport read " + ReadName(run.transport_read[i]) +
+                  ", with no table before the frame");
+      break;
+    }
     RecordBatch added = batch;
     added.scattered.clear();
     return added;
