@@ -240,7 +240,7 @@ int Run(FuzzOptions& o, bool options_only) {
       probing,       full_keys,
       fingerprints,  packed_sums,
       levels,        search,
-      level_change};
+      level_change,  !backend.on_device};  // the transport: the emulator's, not yet Vulkan's
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

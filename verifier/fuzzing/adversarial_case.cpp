@@ -489,6 +489,29 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
       }
     }
   }
+  // Several filtered bounces (core/transport.h), from a generator of their own: each record of each frame scatters
+  // to the vertex of a record of its frame drawn at random, with a transport weight below 1/2 per channel (so the
+  // transported light stays within twice the frame's, inside F's headroom for the sequence); one in eight scatters
+  // nowhere.
+  RecordGenerator transport_draws(
+      shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 5u, 0u}, 0xADF5u));
+  if (options.transport && !a.later.empty() && a.config.accumulation != Accumulation::kPackedDecimal &&
+      transport_draws.Bits() % 2u == 0u) {
+    a.config.transport = true;
+    std::vector<RecordBatch*> frames = {&a.batch};
+    for (RecordBatch& frame : a.later) frames.push_back(&frame);
+    for (RecordBatch* frame : frames) {
+      frame->scattered.clear();
+      const std::size_t n = frame->records.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        Record s = frame->records[transport_draws.Bits() % n];
+        if (transport_draws.Bits() % 8u == 0u) s.path.z &= ~shared::kRecordHasVertex;
+        s.throughput = glm::vec4(transport_draws.Uniform(0.0f, 0.5f), transport_draws.Uniform(0.0f, 0.5f),
+                                 transport_draws.Uniform(0.0f, 0.5f), 0.0f);
+        frame->scattered.push_back(s);
+      }
+    }
+  }
   a.config.Validate();
   return a;
 }

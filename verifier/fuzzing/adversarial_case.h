@@ -12,7 +12,9 @@
 // (the automatic F makes it whole and hides truncation); and one case in four is a sequence of 2 to 6 frames through
 // one table, with a drawn eviction policy and temporal mode, whose later frames revisit the first frame's records and
 // add new ones (a frame-state defect one frame hides); half the sequences keep an occupied list (core/compaction.h),
-// and a later frame in eight sees only sky, so that a policy may evict every cell.
+// and a later frame in eight sees only sky, so that a policy may evict every cell. Half the sequences not in
+// packed-decimal transport light between frames (several filtered bounces): each record scatters to the vertex of
+// another record of its frame, so a later frame finds the cells the frame before filled.
 #ifndef HPSF_VERIFIER_FUZZING_ADVERSARIAL_CASE_H
 #define HPSF_VERIFIER_FUZZING_ADVERSARIAL_CASE_H
 
@@ -72,6 +74,9 @@ struct AdversarialOptions {
   // Whether a sequence with level of detail may seed the cells new at another level (--level-change seed): false
   // where a broken kernel or a team's shader runs, which need not keep a table level seeding can read.
   bool level_change = true;
+  // Whether a sequence may transport its scattered vertices' light (--transport, core/transport.h): false on a
+  // backend without the transport pass (Vulkan).
+  bool transport = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -223,6 +223,44 @@ TEST(AdversarialCase, SeveralLevelsAreDrawnWhereTheKernelsKnowThem) {
   for (std::uint64_t run = 0; run < 200; ++run) EXPECT_EQ(MakeAdversarialCase(6, run, none).config.levels, 1u);
 }
 
+// Several filtered bounces in half the sequences not in packed-decimal: every frame carries one scattered vertex per
+// record, a record of its own frame with a weight below 1/2 (or no vertex), and the reference finds the cells of the
+// frame before for some of them, so the fuzzed backend's transport is judged; none where the options say the backend
+// does not transport.
+TEST(AdversarialCase, SequencesTransportLightBetweenFrames) {
+  int transporting = 0, sequences = 0;
+  std::uint64_t found = 0;
+  constexpr int kRuns = 2000;
+  for (std::uint64_t run = 0; run < kRuns; ++run) {
+    const AdversarialCase c = MakeAdversarialCase(7, run);
+    sequences += !c.later.empty() && c.config.accumulation != Accumulation::kPackedDecimal;
+    if (!c.config.transport) continue;
+    ++transporting;
+    ASSERT_FALSE(c.later.empty());
+    for (const RecordBatch& frame : c.Frames()) {
+      ASSERT_EQ(frame.scattered.size(), frame.records.size());
+      for (const Record& s : frame.scattered) {
+        for (int k = 0; k < 3; ++k) EXPECT_LT(s.throughput[k], 0.5f);
+      }
+    }
+    if (transporting <= 40) {
+      std::optional<FilterResult> previous;
+      FilterConfig config = c.config;
+      for (const RecordBatch& frame : c.Frames()) {
+        config.frame = frame.frame;
+        previous = ReferenceFilter(frame, config, previous ? &*previous : nullptr);
+        found += previous->stats.transport.found;
+      }
+    }
+  }
+  EXPECT_GT(transporting, sequences / 3);
+  EXPECT_LT(transporting, 2 * sequences / 3);
+  EXPECT_GT(found, 0u);
+  AdversarialOptions none;
+  none.transport = false;
+  for (std::uint64_t run = 0; run < 200; ++run) EXPECT_FALSE(MakeAdversarialCase(7, run, none).config.transport);
+}
+
 // Level seeding (--level-change seed) in some of the sequences keyed with level of detail, whose later frames see
 // records from twice or half as far: in most of those the reference seeds a cell from the frame before, so the
 // fuzzed backend's seeding is judged; in none where the options say the kernels do not seed.

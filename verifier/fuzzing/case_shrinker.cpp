@@ -54,21 +54,18 @@ class Shrinker {
   void ShrinkRecords(AdversarialCase& c, std::ptrdiff_t which) {
     std::size_t n = 2;
     while (FrameOf(c, which).records.size() >= 2 && !exhausted_) {
-      const std::vector<Record> records = FrameOf(c, which).records;
-      const std::size_t size = records.size(), chunks = std::min(n, size);
+      const std::size_t size = FrameOf(c, which).records.size(), chunks = std::min(n, size);
       bool reduced = false;
       for (std::size_t pass = 0; pass < 2 && !reduced; ++pass) {
         for (std::size_t i = 0; i < chunks && !reduced; ++i) {
           const std::size_t begin = i * size / chunks, end = (i + 1) * size / chunks;
-          std::vector<Record> kept;
-          if (pass == 0) {  // the chunk alone
-            kept.assign(records.begin() + std::ptrdiff_t(begin), records.begin() + std::ptrdiff_t(end));
-          } else {  // everything but the chunk
-            kept.assign(records.begin(), records.begin() + std::ptrdiff_t(begin));
-            kept.insert(kept.end(), records.begin() + std::ptrdiff_t(end), records.end());
+          std::vector<std::size_t> kept;
+          for (std::size_t r = 0; r < size; ++r) {
+            // pass 0: the chunk alone; pass 1: everything but the chunk
+            if ((r >= begin && r < end) == (pass == 0)) kept.push_back(r);
           }
           if (pass == 1 && chunks == 2) continue;  // with two chunks, the complements are the chunks again
-          AdversarialCase candidate = WithRecords(c, which, std::move(kept));
+          AdversarialCase candidate = WithRecords(c, which, kept);
           if (Fails(candidate)) {
             c = std::move(candidate);
             n = pass == 0 ? 2 : std::max<std::size_t>(chunks - 1, 2);
@@ -109,6 +106,7 @@ class Shrinker {
       });
     }
     if (c.config.level_seed.enabled) attempt([](AdversarialCase& a) { a.config.level_seed = {}; });
+    if (c.config.transport) attempt([](AdversarialCase& a) { a.config.transport = false; });
     if (c.config.levels > 1) {
       attempt([](AdversarialCase& a) {
         a.config.levels = 1;
@@ -145,10 +143,18 @@ class Shrinker {
   static RecordBatch& FrameOf(AdversarialCase& c, std::ptrdiff_t which) {
     return which < 0 ? c.batch : c.later[std::size_t(which)];
   }
-  static AdversarialCase WithRecords(const AdversarialCase& c, std::ptrdiff_t which, std::vector<Record> records) {
+  // The frame's records at `kept`, and their scattered vertices with them (one per record: a case has no deeper ones).
+  static AdversarialCase WithRecords(const AdversarialCase& c, std::ptrdiff_t which,
+                                     const std::vector<std::size_t>& kept) {
     AdversarialCase candidate = c;
     RecordBatch& frame = FrameOf(candidate, which);
-    frame.records = std::move(records);
+    const RecordBatch& from = which < 0 ? c.batch : c.later[std::size_t(which)];
+    frame.records.clear();
+    frame.scattered.clear();
+    for (const std::size_t i : kept) {
+      frame.records.push_back(from.records[i]);
+      if (!from.scattered.empty()) frame.scattered.push_back(from.scattered[i]);
+    }
     frame.width = std::uint32_t(frame.records.size());
     frame.height = 1;
     frame.samples_per_pixel = 1;

@@ -50,6 +50,27 @@ TEST(ShrinkCase, ReachesTheTwoRecordsThatFailTogetherAndTheSimplestConfig) {
   EXPECT_LT(result.checks, 200u) << "ddmin on 2 of " << large.batch.records.size() << " records";
 }
 
+// With several filtered bounces each record carries its scattered vertex: the shrinker keeps the two in step, so the
+// two records that fail keep their own scattered vertices, and a transport the failure does not need is dropped.
+TEST(ShrinkCase, KeepsEachRecordsScatteredVertexWithIt) {
+  AdversarialCase large = LargeCase();
+  large.config.transport = true;
+  for (std::uint32_t i = 0; i < large.batch.records.size(); ++i) {
+    Record s = large.batch.records[(i * 7u) % large.batch.records.size()];
+    s.path.y = 1000u + i;  // marks whose scattered vertex it is
+    large.batch.scattered.push_back(s);
+  }
+  const auto fails = [](const AdversarialCase& c) {
+    return c.batch.scattered.size() == c.batch.records.size() && HasPixel(c, 5) && HasPixel(c, 41);
+  };
+  const ShrinkResult result = ShrinkCase(large, fails);
+  ASSERT_EQ(result.shrunk.batch.records.size(), 2u);
+  ASSERT_EQ(result.shrunk.batch.scattered.size(), 2u);
+  EXPECT_EQ(result.shrunk.batch.scattered[0].path.y, 1005u);
+  EXPECT_EQ(result.shrunk.batch.scattered[1].path.y, 1041u);
+  EXPECT_FALSE(result.shrunk.config.transport);
+}
+
 // A sequence of 5 frames that fails when the frame numbered 3 holds pixel 7 after a frame that holds pixel 2, under
 // stale:2 eviction and an ema: the frames in between and after go, each kept frame keeps one record, the
 // simplifications the failure needs stay and the others go.
