@@ -117,17 +117,7 @@ TEST(Algorithm4, UnderTheTransportTheFurnaceStaysBelowItsLimit) {
 // The Cornell box with 2 filtered vertices, transported over 8 frames in an integrating table of 2^16 slots: the same
 // effects as in the furnace, on a scene with shadows (docs/design/algorithm.md, "Meijer's Algorithm 4").
 TEST(Algorithm4, UnderTheTransportTheCornellBoxRunsAheadOfTheIntegratingMean) {
-  const Scene cornell = LoadScene(HPSF_SCENES_DIR "/cornell.json");
-  std::vector<RecordBatch> frames;
-  for (std::uint32_t k = 0; k < 8; ++k) {
-    TraceOptions trace;
-    trace.width = trace.height = 32;
-    trace.samples_per_pixel = 4;
-    trace.frame = k;
-    trace.scattered = true;
-    trace.filtered_vertices = 2;
-    frames.push_back(TraceRecords(cornell, trace).batch);
-  }
+  const std::vector<RecordBatch> frames = TracedFrames(LoadScene(HPSF_SCENES_DIR "/cornell.json"), 32, 4, 8, 2);
   FilterConfig config;
   config.transport = true;
   config.frames = 8;

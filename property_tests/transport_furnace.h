@@ -12,7 +12,7 @@
 #include "core/record.h"
 #include "core/temporal.h"
 #include "property_tests/grid_batch.h"
-#include "tracer/path_tracer.h"
+#include "property_tests/traced_batch.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf::testing {
@@ -77,18 +77,7 @@ inline FilterConfig FurnaceConfig(Accumulation accumulation, const std::string& 
 // vertices and carrying its scattered vertices.
 inline std::vector<RecordBatch> TracedFurnaceFrames(std::uint32_t filtered, std::uint32_t frames, std::uint32_t size,
                                                     std::uint32_t spp) {
-  const Scene furnace = LoadScene(HPSF_SCENES_DIR "/furnace.json");
-  std::vector<RecordBatch> batches;
-  for (std::uint32_t k = 0; k < frames; ++k) {
-    TraceOptions trace;
-    trace.width = trace.height = size;
-    trace.samples_per_pixel = spp;
-    trace.frame = k;
-    trace.scattered = true;
-    trace.filtered_vertices = filtered;
-    batches.push_back(TraceRecords(furnace, trace).batch);
-  }
-  return batches;
+  return TracedFrames(LoadScene(HPSF_SCENES_DIR "/furnace.json"), size, spp, frames, filtered);
 }
 
 }  // namespace hpsf::testing
