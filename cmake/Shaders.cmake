@@ -7,6 +7,7 @@ option(HPSF_LINT_KEY_SHADERS "Fail the build when a key-path shader uses inexact
 file(GLOB HPSF_SHARED_SOURCES CONFIGURE_DEPENDS
      ${PROJECT_SOURCE_DIR}/core/shared/*.h ${PROJECT_SOURCE_DIR}/vulkan/shaders/*.glsl)
 
+set(HPSF_RESTORE_FLOAT_CONTROLS ${CMAKE_CURRENT_LIST_DIR}/RestoreFloatControls.cmake)
 function(hpsf_add_shader target source)
   cmake_parse_arguments(ARG "KEY_PATH" "" "" ${ARGN})
   get_filename_component(name ${source} NAME_WE)
@@ -21,10 +22,12 @@ function(hpsf_add_shader target source)
     OUTPUT ${spv} ${header}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
     COMMAND ${GLSLANG_VALIDATOR} -V --quiet --target-env ${HPSF_SHADER_TARGET_ENV} -o ${spv} ${source}
+    COMMAND ${CMAKE_COMMAND} -DSPV=${spv} -DSPIRV_DIS=${SPIRV_DIS} -DSPIRV_AS=${SPIRV_AS}
+            -DTARGET_ENV=${HPSF_SHADER_TARGET_ENV} -DHEADER=${header} -DNAME=${name}_spv
+            -P ${HPSF_RESTORE_FLOAT_CONTROLS}
     COMMAND ${SPIRV_VAL} --target-env ${HPSF_SHADER_TARGET_ENV} ${spv}
     ${lint_command}
-    COMMAND ${GLSLANG_VALIDATOR} -V --quiet --target-env ${HPSF_SHADER_TARGET_ENV} --vn ${name}_spv -o ${header} ${source}
-    DEPENDS ${source} ${HPSF_SHARED_SOURCES} $<$<BOOL:${ARG_KEY_PATH}>:spirv_lint>
+    DEPENDS ${source} ${HPSF_SHARED_SOURCES} ${HPSF_RESTORE_FLOAT_CONTROLS} $<$<BOOL:${ARG_KEY_PATH}>:spirv_lint>
     COMMENT "Compiling, validating and linting ${name}.comp"
     VERBATIM)
   target_sources(${target} PRIVATE ${header})
