@@ -17,7 +17,7 @@
 #include "reference/reference_filter.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
-#include "vulkan/vulkan_filter.h"
+#include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {
 namespace {
@@ -82,6 +82,8 @@ TEST(Transport, TheFurnaceGainsOneBouncePerFrame) {
       ReferenceBackend reference;
       EmulatedBackend fast{EmulatorOptions{}};
       EmulatedBackend slow{faithful};
+      VulkanBackend mapped{TestDevice(StagingPolicy::kNever)};
+      VulkanBackend staged{TestDevice(StagingPolicy::kAlways)};
       for (std::uint32_t k = 0; k < kFrames; ++k) {
         const RecordBatch batch = FurnaceBatch(k);
         FilterConfig frame_config = config;
@@ -100,10 +102,10 @@ TEST(Transport, TheFurnaceGainsOneBouncePerFrame) {
           ExpectNear(expected[k], FurnaceSeries(k), std::ldexp(1.0, -20), where + ", the series");
         }
         EXPECT_EQ(exact.stats.transport.found, k == 0 ? 0u : kCells * kPerCell) << where;
-        for (EmulatedBackend* emulated : {&fast, &slow}) {
-          emulated->FilterFrame(batch, frame_config);
-          const EmulatedRun& run = emulated->run();
-          EXPECT_EQ(run.transport.found, exact.stats.transport.found) << where;
+        for (Backend* backend : std::initializer_list<Backend*>{&fast, &slow, &mapped, &staged}) {
+          const Image& image = backend->FilterFrame(batch, frame_config);
+          const HashedRun& run = *backend->LastHashedRun();
+          EXPECT_EQ(run.transport.found, exact.stats.transport.found) << where << ", " << backend->Name();
           if (accumulation != Accumulation::kFixed64) continue;
           // fixed64: the same bits as the reference, slot by cell and pixel by pixel.
           for (std::size_t i = 0; i < batch.records.size(); ++i) {
@@ -113,7 +115,7 @@ TEST(Transport, TheFurnaceGainsOneBouncePerFrame) {
             EXPECT_EQ(run.table.fixed_sums[slot], cell.fixed_sum) << where << ", record " << i;
             EXPECT_EQ(run.table.counts[slot], cell.count) << where << ", record " << i;
           }
-          EXPECT_EQ(run.image.pixels, exact.image.pixels) << where;
+          EXPECT_EQ(image.pixels, exact.image.pixels) << where << ", " << backend->Name();
         }
       }
       const glm::dvec3 limit = glm::dvec3(kEmission) / (glm::dvec3(1.0) - glm::dvec3(kAlbedo));
@@ -133,6 +135,7 @@ TEST(Transport, EachRecordReadsItsScatteredVertexsCell) {
   std::vector<glm::dvec3> sums(kCells, glm::dvec3(0.0)), averages(kCells, glm::dvec3(0.0));
   ReferenceBackend reference;
   EmulatedBackend emulated{EmulatorOptions{}};
+  VulkanBackend vulkan{TestDevice(StagingPolicy::kNever)};
   for (std::uint32_t k = 0; k < kFrames; ++k) {
     const std::vector<glm::dvec3> before = averages;
     for (std::uint32_t c = 0; c < kCells; ++c) {
@@ -154,6 +157,8 @@ TEST(Transport, EachRecordReadsItsScatteredVertexsCell) {
                  std::ldexp(1.0, -20), where);
     }
     EXPECT_EQ(emulated.run().image.pixels, exact.image.pixels) << "frame " << k;
+    EXPECT_EQ(vulkan.FilterFrame(batch, frame_config).pixels, exact.image.pixels) << "frame " << k;
+    EXPECT_EQ(vulkan.run().transport.found, exact.stats.transport.found) << "frame " << k;
   }
 }
 
@@ -177,6 +182,7 @@ TEST(Transport, TheTracedFurnaceGainsOneBouncePerFrame) {
     config.capacity = 1u << 16;
     ReferenceBackend reference;
     EmulatedBackend emulated{EmulatorOptions{}};
+    VulkanBackend vulkan{TestDevice(StagingPolicy::kNever)};
     double worst_miss = 0.0;
     for (std::uint32_t k = 0; k < config.frames; ++k) {
       TraceOptions trace;
@@ -190,6 +196,7 @@ TEST(Transport, TheTracedFurnaceGainsOneBouncePerFrame) {
       // The emulator, whose table holds nothing failed or aliased here, gives the same bits (fixed64).
       EXPECT_EQ(emulated.FilterFrame(batch, config).pixels, image.pixels) << filtered << " filtered, frame " << k;
       EXPECT_EQ(emulated.run().probe_failures, 0u);
+      EXPECT_EQ(vulkan.FilterFrame(batch, config).pixels, image.pixels) << filtered << " filtered, frame " << k;
       double mean = 0.0;
       for (const glm::vec3& pixel : image.pixels) mean += double(pixel.x);
       mean /= double(image.pixels.size());
@@ -261,6 +268,15 @@ TEST(Transport, ForcedOnTheFirstFrameItFindsNothingAndChangesNoBit) {
     EXPECT_TRUE(p.transport_read.empty());
     EXPECT_EQ(f.transport.found, 0u);
     EXPECT_GT(f.transport.missed, 0u);
+    // Vulkan's pass, forced, probes no slot of the device table (which may hold an earlier sequence's cells).
+    VulkanBackend vulkan_planned{TestDevice(StagingPolicy::kNever)}, vulkan_forced{TestDevice(StagingPolicy::kAlways)};
+    EXPECT_EQ(vulkan_planned.FilterFrame(batch, planned).pixels, a.pixels) << ToString(accumulation);
+    EXPECT_EQ(vulkan_forced.FilterFrame(batch, forced).pixels, a.pixels) << ToString(accumulation);
+    EXPECT_EQ(vulkan_planned.run().table.counts, vulkan_forced.run().table.counts);
+    EXPECT_TRUE(vulkan_planned.run().transport_read.empty());
+    EXPECT_EQ(vulkan_forced.run().transport.found, 0u);
+    EXPECT_EQ(vulkan_forced.run().transport.missed, f.transport.missed);
+    EXPECT_EQ(vulkan_forced.run().transport.unkeyable, f.transport.unkeyable);
   }
 }
 
@@ -269,18 +285,26 @@ TEST(Transport, ForcedOnTheFirstFrameItFindsNothingAndChangesNoBit) {
 TEST(Transport, AMissTransportsNothing) {
   const FilterConfig config = FurnaceConfig(Accumulation::kFixed64, "integrate", 2);
   ReferenceBackend reference;
-  reference.FilterFrame(FurnaceBatch(0), config);
+  EmulatedBackend emulated{EmulatorOptions{}};
+  VulkanBackend vulkan{TestDevice(StagingPolicy::kAlways)};
   RecordBatch next = FurnaceBatch(1);
   next.scattered[0].position.x += 100.0f;  // a cell no frame reached
   next.scattered[1].throughput.y = -1.0f;
   FilterConfig frame_config = config;
   frame_config.frame = 1;
-  reference.FilterFrame(next, frame_config);
-  const TransportStats& stats = reference.LastExactResult()->stats.transport;
-  EXPECT_EQ(stats.scattered, kCells * kPerCell - 1);
-  EXPECT_EQ(stats.missed, 1u);
-  EXPECT_EQ(stats.found, kCells * kPerCell - 2);
-  EXPECT_EQ(reference.LastExactResult()->transport_read[0], kNothingTransported);
+  for (Backend* backend : std::initializer_list<Backend*>{&reference, &emulated, &vulkan}) {
+    backend->FilterFrame(FurnaceBatch(0), config);
+    backend->FilterFrame(next, frame_config);
+    const TransportStats& stats =
+        backend == &reference ? reference.LastExactResult()->stats.transport : backend->LastHashedRun()->transport;
+    EXPECT_EQ(stats.scattered, kCells * kPerCell - 1) << backend->Name();
+    EXPECT_EQ(stats.missed, 1u) << backend->Name();
+    EXPECT_EQ(stats.found, kCells * kPerCell - 2) << backend->Name();
+    const std::vector<std::uint32_t>& read =
+        backend == &reference ? reference.LastExactResult()->transport_read : backend->LastHashedRun()->transport_read;
+    EXPECT_EQ(read[0], kNothingTransported) << backend->Name();
+    EXPECT_EQ(read[1], kNothingTransported) << backend->Name();
+  }
 }
 
 // fixed64's F is chosen by the first frame, which transports nothing, so that two frames like it stay below 2^63: the
@@ -291,25 +315,42 @@ TEST(Transport, LightThatOutgrowsTheFirstFramesFIsCounted) {
   FilterConfig config = FurnaceConfig(Accumulation::kFixed64, "integrate", 2);
   ReferenceBackend reference;
   EmulatedBackend emulated{EmulatorOptions{}};
+  VulkanBackend vulkan{TestDevice(StagingPolicy::kNever)};
   for (std::uint32_t k = 0; k < 2; ++k) {
     RecordBatch batch = FurnaceBatch(k);
     for (Record& s : batch.scattered) s.throughput = glm::vec4(64.0f, 64.0f, 64.0f, 0.0f);
     config.frame = k;
     reference.FilterFrame(batch, config);
     emulated.FilterFrame(batch, config);
+    vulkan.FilterFrame(batch, config);
   }
   EXPECT_GT(reference.LastExactResult()->stats.fixed_point_wraps, 0u);
   EXPECT_EQ(emulated.run().wraps, reference.LastExactResult()->stats.fixed_point_wraps);
+  EXPECT_EQ(vulkan.run().wraps, reference.LastExactResult()->stats.fixed_point_wraps);
 }
 
-// Vulkan's transport pass is not built: asking for it there is a ConfigError naming --transport, never a frame
-// filtered without it.
-TEST(Transport, VulkanRefusesItByName) {
-  try {
-    TestFilter(StagingPolicy::kNever).Run(FurnaceBatch(0), FurnaceConfig(Accumulation::kFixed64, "integrate", 1));
-    FAIL() << "Vulkan filtered a frame with --transport";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("--transport"), std::string::npos) << e.what();
+// Deeper records at several levels: the accumulate places every record at each level, level-major over the records
+// with the deeper ones, and Vulkan's resolve reads its own records' placements copied out level by level. The
+// traced furnace with 3 filtered vertices at 3 levels, over frames: the reference's pixels, bit for bit, on both
+// staging policies.
+TEST(Transport, VulkanResolvesDeeperRecordsAtSeveralLevels) {
+  const std::vector<RecordBatch> frames = TracedFurnaceFrames(3, 3, 16, 2);
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 3;
+  config.levels = 3;
+  config.min_count = 4;
+  config.capacity = 1u << 14;
+  ReferenceBackend reference;
+  VulkanBackend mapped{TestDevice(StagingPolicy::kNever)};
+  VulkanBackend staged{TestDevice(StagingPolicy::kAlways)};
+  for (std::uint32_t k = 0; k < config.frames; ++k) {
+    config.frame = k;
+    ASSERT_FALSE(frames[k].deeper.empty());
+    const Image& image = reference.FilterFrame(frames[k], config);
+    EXPECT_EQ(mapped.FilterFrame(frames[k], config).pixels, image.pixels) << "frame " << k;
+    EXPECT_EQ(staged.FilterFrame(frames[k], config).pixels, image.pixels) << "frame " << k;
+    EXPECT_EQ(mapped.run().placements.size(), frames[k].records.size() + frames[k].deeper.size());
   }
 }
 

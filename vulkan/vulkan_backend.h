@@ -27,7 +27,8 @@ class VulkanBackend : public Backend {
   FrameTimings LastFrameTimings() const override {
     if (!run_) return {};
     const VulkanTimings& t = run_->timings;
-    return {.keys_ms = std::nullopt,  // computed in the accumulate pass
+    return {.transport_ms = t.transport_ms,
+            .keys_ms = std::nullopt,  // computed in the accumulate pass
             .accumulate_ms = t.accumulate_ms,
             .level_seed_ms = t.level_seed_ms,
             .compaction_ms = t.compaction_ms,

@@ -38,6 +38,7 @@
 #include "resolve_search_packed_decimal_spv.h"
 #include "temporal_spv.h"
 #include "vulkan/spirv_reflection.h"
+#include "vulkan/transport_pass.h"
 #include "vulkan/vulkan_internal.h"
 
 namespace hpsf {
@@ -382,6 +383,15 @@ struct VulkanFilter::Impl {
   // packed-decimal's settle (packed_settle.comp).
   std::optional<ComputeProgram> settle;
   DeviceBuffer halved;
+  // Several filtered bounces (transport_pass.h), and the resolve's placements where deeper records follow the
+  // frame's at several levels: the resolve reads its records' level-major placements over them alone.
+  std::optional<TransportPass> transport;
+  DeviceBuffer resolve_placements;
+
+  TransportPass& Transport() {
+    if (!transport) transport.emplace(device);
+    return *transport;
+  }
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
@@ -398,6 +408,8 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      resolve_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(resolve_spv),
                      resolve_spv,
                      Accumulation::kFixed64,
+                     {},
+                     {},
                      {},
                      {},
                      {},
@@ -512,14 +524,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
 VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table,
                             const FrameEffects* effects) {
   CheckBatchShape(batch);
+  CheckScatteredShape(batch);
   config.Validate();
-  if (config.transport) {  // several filtered bounces run on the reference and the emulator so far
-    throw ConfigError("--transport", "is not built on Vulkan yet: filter with the reference or the emulator");
-  }
-  if (!batch.deeper.empty()) {
-    throw InputError("record batch: " + std::to_string(batch.deeper.size()) +
-                     " deeper records: Vulkan does not filter deeper vertices yet");
-  }
   Impl& p = *impl_;
   if (!p.custom_accumulate.empty() && p.custom_accumulation != config.accumulation) {
     throw ConfigError("--accum", p.accumulate_name + " declares its sums (binding 3) as " +
@@ -560,7 +566,11 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     throw ConfigError("--compaction", "the device table has no occupied list; start a new sequence");
   }
   p.table.reset();  // until this run has written a whole table
-  const std::uint32_t n = static_cast<std::uint32_t>(batch.records.size());
+  // The table's records: the frame's, then the deeper ones (several filtered bounces), which only the resolve skips.
+  const TableRecords table_records(batch);
+  const std::span<const Record> all = table_records.all();
+  const std::uint32_t n = static_cast<std::uint32_t>(all.size());
+  const std::uint32_t resolved = static_cast<std::uint32_t>(batch.records.size());
   const bool fixed = config.accumulation == Accumulation::kFixed64;
   const bool packed = config.accumulation == Accumulation::kPackedDecimal;
   const std::size_t sum_bytes = std::size_t(config.capacity) * SumBytesPerSlot(config.accumulation);
@@ -571,6 +581,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                         std::to_string(std::uint64_t(config.capacity) * 24) +
                                         " bytes of sums, more than the " + std::to_string(storage_range) + " bytes '" +
                                         p.device.info.name + "' can bind");
+  }
+  if (std::uint64_t(all.size()) * config.levels > UINT32_MAX) {
+    throw InputError("record batch: " + std::to_string(all.size()) + " records with the deeper ones at " +
+                     std::to_string(config.levels) + " levels need more than 2^32 - 1 placements");
   }
   if (vk::DeviceSize(n) * sizeof(KeyResult) > storage_range) {
     throw InputError("record batch: " + std::to_string(n) + " records need " +
@@ -592,7 +606,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // Upload: the records as they are, and the host's input verdicts (a shader never sees a rejected record),
   // written into the kernels' buffers where the host maps them, else into staging buffers copied over.
   auto start = std::chrono::steady_clock::now();
-  p.Ensure(p.records, batch.records.size() * sizeof(Record));
+  p.Ensure(p.records, all.size() * sizeof(Record));
   p.Ensure(p.keys, vk::DeviceSize(n) * sizeof(KeyResult));
   const std::size_t tag_bytes = std::size_t(config.capacity) * TagBytes(config.key_identity);
   p.Ensure(p.tags, vk::DeviceSize(tag_bytes));
@@ -625,16 +639,45 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     p.Ensure(p.listed, vk::DeviceSize(config.capacity) * 4);
     p.Ensure(p.next_occupied, vk::DeviceSize(config.capacity) * 4);
   }
+  const KeyParams key_params =
+      MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n);
+
+  // Several filtered bounces (vulkan/transport_pass.h): the records' contributions transported from the table as the
+  // previous frame left it, before anything of this frame touches it; the records then enter the table as any do.
+  std::optional<DeviceTransport> transport;
+  if (planned.transport) {
+    const TransportTable before{p.tags,
+                                p.sums,
+                                p.counts,
+                                AccumulationWord(config.accumulation),
+                                kept_fixed_point_bits,
+                                config.probe_limit,
+                                config.probing,
+                                keep_table};
+    transport = batch.scattered.empty() ? DeviceTransport{{}, std::vector<std::uint32_t>(n, kNothingTransported), {}, 0}
+                                        : p.Transport().Run(all, batch.scattered, key_params, before);
+    run.transport_read = std::move(transport->read);
+    run.transport = transport->stats;
+    run.timings.transport_ms = transport->ms;
+  }
+  start = std::chrono::steady_clock::now();
   vulkan_internal::Transfer upload(p.device, p.staging);
-  auto* records = static_cast<Record*>(upload.Upload(p.records, batch.records.size() * sizeof(Record)));
+  auto* records = static_cast<Record*>(upload.Upload(p.records, all.size() * sizeof(Record)));
   auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
   std::vector<glm::vec3> entering;  // for F: the contributions of the records that enter the table, else zero
   ResizeOnHugePages(entering, n);
   tbb::parallel_for(
       tbb::blocked_range<std::uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
-        std::memcpy(records + range.begin(), batch.records.data() + range.begin(), range.size() * sizeof(Record));
+        std::memcpy(records + range.begin(), all.data() + range.begin(), range.size() * sizeof(Record));
         for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
-          const Record& r = batch.records[i];
+          Record transported;
+          const Record* given = &all[i];
+          if (transport && run.transport_read[i] != kNothingTransported) {
+            transported = all[i];
+            transported.contribution = records[i].contribution = transport->contributions[i];
+            given = &transported;
+          }
+          const Record& r = *given;
           accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
           entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
         }
@@ -671,12 +714,11 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                               &p.counts,    &p.placements,    &p.stats,          &p.accepted,
                                               &p.last_seen, &p.previous_sums, &p.previous_counts};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
-  AccumulatePush push{
-      MakeKeyParams(config, FootprintScale(config.filter_width_px, batch.fov_y_radians, batch.height), n),
-      {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
-       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
-       by_priority ? 1u : 0u, SharedProbeKind(config.probing), config.levels},
-      MakeTemporalParams(config.temporal)};
+  AccumulatePush push{key_params,
+                      {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
+                       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
+                       by_priority ? 1u : 0u, SharedProbeKind(config.probing), config.levels},
+                      MakeTemporalParams(config.temporal)};
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
     if (seeding) {
@@ -876,8 +918,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // Resolve: a separate pass, 16 pixels per invocation; with the search, a second pass over the pixels the first
   // listed, one per invocation, dispatched by the first.
   ComputeProgram& resolve = p.Resolve(config.accumulation, config.neighbour_search);
-  DeviceBuffer* const resolve_buffers[] = {&p.records, &p.sums, &p.counts,          &p.placements,     &p.accepted,
-                                           &p.pixels,  &p.tags, &p.deferred_pixels, &p.deferred_header};
+  // With deeper records at several levels, the frame's records' placements copied out level by level
+  // (core/shared/levels.h): the resolve's interface places level k of record i at k * records + i.
+  const bool separate_placements = resolved != n && config.levels > 1;
+  if (separate_placements) p.Ensure(p.resolve_placements, vk::DeviceSize(resolved) * config.levels * 4);
+  DeviceBuffer* const resolve_buffers[] = {
+      &p.records,        &p.sums,   &p.counts, separate_placements ? &p.resolve_placements : &p.placements,
+      &p.accepted,       &p.pixels, &p.tags,   &p.deferred_pixels,
+      &p.deferred_header};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   ComputeProgram* const search_resolve = deferring ? &p.SearchResolve(config.accumulation) : nullptr;
   if (search_resolve) vulkan_internal::BindBuffers(p.device, *search_resolve, resolve_buffers);
@@ -895,6 +943,18 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                  planned.search_every_pixel ? 1u : 0u,
                                  0};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+    if (separate_placements) {
+      std::vector<vk::BufferCopy> levels;
+      for (std::uint32_t k = 0; k < config.levels; ++k)
+        levels.emplace_back(vk::DeviceSize(k) * n * 4, vk::DeviceSize(k) * resolved * 4, vk::DeviceSize(resolved) * 4);
+      const vk::MemoryBarrier placed(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eTransferRead);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, placed,
+                         nullptr, nullptr);
+      cb.copyBuffer(*p.placements.buffer, *p.resolve_placements.buffer, levels);
+      const vk::MemoryBarrier copied(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead);
+      cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, copied,
+                         nullptr, nullptr);
+    }
     if (search_resolve) {  // no pixel listed, and a dispatch of (0, 1, 1)
       cb.fillBuffer(*p.deferred_header.buffer, 0, 8, 0);
       cb.fillBuffer(*p.deferred_header.buffer, 8, 8, 1);

@@ -21,6 +21,7 @@ namespace hpsf {
 // Kernel times from device timestamps; transfers split into the host's part and, on a staged device, the
 // device's copies (timestamps), with the bytes moved each way.
 struct VulkanTimings {
+  double transport_ms = 0;       // device: several filtered bounces' lookups (transport_pass.h); 0 without
   double upload_ms = 0;          // host: records and input verdicts into mapped or staging memory
   double upload_copy_ms = 0;     // device: staging to device copies (0 when mapped)
   double accumulate_ms = 0;      // device: clearing the table and the accumulate dispatch (keys included)
@@ -35,7 +36,8 @@ struct VulkanTimings {
   std::uint64_t upload_bytes = 0;
   std::uint64_t read_back_bytes = 0;
   double FilterMs() const {
-    return accumulate_ms + level_seed_ms + compaction_ms + settle_ms + temporal_ms + eviction_ms + resolve_ms;
+    return transport_ms + accumulate_ms + level_seed_ms + compaction_ms + settle_ms + temporal_ms + eviction_ms +
+           resolve_ms;
   }
   double UploadMs() const { return upload_ms + upload_copy_ms; }
   double ReadBackMs() const { return read_back_copy_ms + read_back_ms; }

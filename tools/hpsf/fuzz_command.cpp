@@ -240,7 +240,7 @@ int Run(FuzzOptions& o, bool options_only) {
       probing,       full_keys,
       fingerprints,  packed_sums,
       levels,        search,
-      level_change,  !backend.on_device};  // the transport: the emulator's, not yet Vulkan's
+      level_change,  !backend.on_device || level_change};  // the transport: Vulkan's with hpsf's own shaders
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

@@ -74,8 +74,8 @@ struct AdversarialOptions {
   // Whether a sequence with level of detail may seed the cells new at another level (--level-change seed): false
   // where a broken kernel or a team's shader runs, which need not keep a table level seeding can read.
   bool level_change = true;
-  // Whether a sequence may transport its scattered vertices' light (--transport, core/transport.h): false on a
-  // backend without the transport pass (Vulkan).
+  // Whether a sequence may transport its scattered vertices' light (--transport, core/transport.h): false on Vulkan
+  // where a broken kernel or a team's shader runs, so that what the fuzzer finds there stays the shader's.
   bool transport = true;
 };
 
