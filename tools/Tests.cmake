@@ -268,14 +268,22 @@ hpsf_add_cli_test(HpsfStats.BucketWindowRatesAreNotJudged "unit;schemes" 0
 hpsf_add_cli_test(HpsfCrosscheck.PassesOnTheCornellBox "unit;vulkan" 0 "level 2 tables: PASS.*level 3 agreement with the reference: PASS" ""
   $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --mode faithful --warp-size 8 --schedule random:3 --capacity 512)
 # Several filtered bounces (label bounces): the furnace traced with 3 filtered vertices per path and its scattered
-# vertices, transported over 3 frames, holds the contract; Vulkan refuses the transport by name; a record file without
-# scattered vertices has nothing to transport.
-hpsf_add_cli_test(HpsfCrosscheck.SeveralFilteredBouncesHoldTheContract "unit;bounces" 0
-  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*4608 records compared over 3 frames" ""
+# vertices, transported over 3 frames, holds the contract on all three backends; a record file without scattered
+# vertices has nothing to transport.
+hpsf_add_cli_test(HpsfCrosscheck.SeveralFilteredBouncesHoldTheContract "unit;bounces;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*emulated: .*4608 records compared over 3 frames.*vulkan: .*4608 records compared over 3 frames" ""
   $<TARGET_FILE:hpsf> crosscheck furnace --size 16x16 --spp 2 --frames 3 --transport on --filtered-vertices 3
-  --backends reference,emulated --capacity 16384)
-hpsf_add_cli_test(HpsfCrosscheck.TheTransportOnVulkanExits3 "unit;bounces" 3 "--transport: is not built on Vulkan yet" ""
-  $<TARGET_FILE:hpsf> crosscheck furnace --size 8x8 --frames 2 --transport on --backends reference,vulkan)
+  --capacity 16384)
+# Amortized: each sample's path kept across frames and extended by one filtered vertex per frame (A-nHPSF) holds the
+# contract on all three backends; a depth the frame's own path already reaches is refused by name.
+hpsf_add_cli_test(HpsfCrosscheck.KeptPathsHoldTheContract "unit;bounces;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*emulated: .*over 4 frames.*vulkan: .*over 4 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck furnace --size 16x16 --spp 2 --frames 4 --transport on --continuation-depth 5
+  --capacity 16384)
+hpsf_add_cli_test(HpsfRender.AShallowContinuationDepthExits3 "unit;bounces" 3
+  "--continuation-depth: must be 0 \\(off\\) or lie in \\[3, 1024\\]" ""
+  $<TARGET_FILE:hpsf> render furnace --size 8x8 --filtered-vertices 2 --transport on --continuation-depth 2
+  -o ${hpsf_out}/shallow.exr ABSENT ${hpsf_out}/shallow.exr)
 hpsf_add_cli_test(HpsfReplay.TransportOverRecordsWithoutScatteredVerticesExits3 "unit;bounces" 3
   "--transport: .*seed_lookup_alias.hpsfv: no frame carries scattered vertices" ""
   $<TARGET_FILE:hpsf> replay ${hpsf_data}/seed_lookup_alias.hpsfv --transport on -o ${hpsf_out}/no-transport.exr

@@ -20,6 +20,7 @@
 #include "core/shared/rng.h"
 #include "core/tangent_frame.h"
 #include "tracer/embree_scene.h"
+#include "tracer/scene_digest.h"
 
 namespace hpsf {
 namespace {
@@ -98,7 +99,12 @@ struct PathOutputs {
   Record* scattered = nullptr;
   Record* deeper = nullptr;
   Record* deeper_scattered = nullptr;
+  // With continuation_depth: where the vertex the last filtered one scattered to is kept (invalid without one).
+  ContinuationVertex* fresh = nullptr;
 };
+
+// The counter RNG's bounce word of a continued vertex: apart from every bounce a frame's own paths draw (at most 1024).
+constexpr std::uint32_t kContinuationStreams = 1u << 16;
 
 class Tracer {
  public:
@@ -118,6 +124,12 @@ class Tracer {
 
   // The pixel record; with options.scattered also `out`'s.
   Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, const PathOutputs& out) const;
+
+  // A-nHPSF: extends the sample's kept path by one vertex. Writes the kept vertex's record (its next-event estimate
+  // and the next vertex's emission) and the vertex it scattered to, or records without a vertex where nothing is
+  // kept; `kept` becomes the next vertex where the path goes on below continuation_depth, else invalid.
+  void Continue(std::uint32_t pixel, std::uint32_t sample, ContinuationVertex& kept, TraceStats& stats, Record& deeper,
+                Record& scattered) const;
 
  private:
   // The random numbers of one path vertex: the counter's prefix is hashed once, each dimension then finishes it.
@@ -287,6 +299,11 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       if (options_.scattered && reached == filtered && !has_scattered[filtered - 1]) {  // the last one's next vertex
         scattered_to[filtered - 1] = here(weight);
         has_scattered[filtered - 1] = true;
+        if (out.fresh) {
+          *out.fresh = ContinuationVertex{true,       bounce,   std::uint32_t(p.material - scene_.materials.data()),
+                                          p.position, p.normal, previous,
+                                          d_prefix};
+        }
       }
     }
     d_prefix += segment;
@@ -325,6 +342,60 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   return MakeVertexRecord(chain[0]);
 }
 
+void Tracer::Continue(std::uint32_t pixel, std::uint32_t sample, ContinuationVertex& kept, TraceStats& stats,
+                      Record& deeper, Record& scattered) const {
+  const Record none = MakeRecordWithoutVertex(pixel, sample, glm::vec3(0.0f));
+  deeper = scattered = none;
+  if (!kept.valid) return;
+  ++stats.continued;
+  const SurfacePoint p{kept.position, kept.normal, &scene_.materials[kept.material]};
+  const VertexRandom random = RandomAt(pixel, sample, kContinuationStreams + kept.bounce);
+  glm::dvec3 gathered = DirectLight(p, random, stats);
+  const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));
+  const double r = std::sqrt(double(random(kBounceU)));
+  const double phi = 2.0 * std::numbers::pi * random(kBounceV);
+  const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
+  const glm::dvec3 direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) +
+                                              glm::dvec3(frame.bitangent) * (r * std::sin(phi)) + p.normal * z);
+  ++stats.bounce_rays;
+  const auto hit = Cast(Offset(p), direction);
+  if (hit && hit->material->IsEmissive()) {
+    gathered += glm::dvec3(hit->material->emission) * BounceEmissionWeight(p, *hit, direction);
+  } else if (!hit) {
+    gathered += glm::dvec3(scene_.sky);
+  }
+  VertexSample v;
+  v.pixel = pixel;
+  v.sample = sample;
+  v.bounce = kept.bounce;
+  v.position = glm::vec3(kept.position);
+  v.normal = glm::vec3(kept.normal);
+  v.previous = glm::vec3(kept.previous);
+  v.d_prefix = static_cast<float>(kept.d_prefix);
+  v.contribution = glm::vec3(gathered);
+  deeper = MakeVertexRecord(v);
+  if (!hit) {
+    kept.valid = false;
+    return;
+  }
+  // The vertex it scattered to, keyed as any, with the transport weight of a cosine-sampled bounce: its albedo.
+  const ContinuationVertex next{
+      true,        kept.bounce + 1, std::uint32_t(hit->material - scene_.materials.data()), hit->position,
+      hit->normal, kept.position,   kept.d_prefix + MaxAbs(kept.position - kept.previous)};
+  VertexSample s;
+  s.pixel = pixel;
+  s.sample = sample;
+  s.bounce = next.bounce;
+  s.position = glm::vec3(next.position);
+  s.normal = glm::vec3(next.normal);
+  s.previous = glm::vec3(next.previous);
+  s.d_prefix = static_cast<float>(next.d_prefix);
+  s.throughput = hit->material->albedo;
+  scattered = MakeVertexRecord(s);
+  kept = next;
+  kept.valid = next.bounce < options_.continuation_depth;
+}
+
 }  // namespace
 
 void TraceOptions::Validate() const {
@@ -348,23 +419,40 @@ void TraceOptions::Validate() const {
   if (filtered_vertices > 1 && !scattered) {
     throw ConfigError("--filtered-vertices", "more than one filtered vertex needs the transport's scattered vertices");
   }
+  if (continuation_depth > 0 && !scattered) {
+    throw ConfigError("--continuation-depth",
+                      "continuing paths across frames needs the transport's scattered vertices");
+  }
+  if (continuation_depth > 1024 ||
+      (continuation_depth > 0 && continuation_depth <= filter_bounce + filtered_vertices)) {
+    throw ConfigError("--continuation-depth",
+                      "must be 0 (off) or lie in [" + std::to_string(filter_bounce + filtered_vertices + 1) +
+                          ", 1024]: deeper than the vertex a frame's own path reaches (the filter bounce plus the "
+                          "filtered vertices); got " +
+                          std::to_string(continuation_depth));
+  }
 }
 
 PreparedScene::PreparedScene(const Scene& scene, std::uint32_t frame)
-    : frame_(frame), animated_(!scene.animation.Static()), built_(std::make_unique<Built>(scene.AtFrame(frame))) {}
+    : frame_(frame),
+      animated_(!scene.animation.Static()),
+      digest_(SceneDigest(scene, frame)),
+      built_(std::make_unique<Built>(scene.AtFrame(frame))) {}
 
 PreparedScene::~PreparedScene() = default;
 
 const Scene& PreparedScene::scene() const { return built_->scene; }
 
 TraceResult TraceRecords(const Scene& animated, const TraceOptions& options,
-                         const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress,
+                         PathContinuation* continuation) {
   options.Validate();
-  return TraceRecords(PreparedScene(animated, options.frame), options, progress);
+  return TraceRecords(PreparedScene(animated, options.frame), options, progress, continuation);
 }
 
 TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
-                         const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress,
+                         PathContinuation* continuation) {
   options.Validate();
   if (prepared.animated() && prepared.frame() != options.frame) {
     throw std::logic_error("an animated scene prepared at frame " + std::to_string(prepared.frame()) +
@@ -383,10 +471,22 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
   batch.fov_y_radians = scene.camera.fov_y_degrees * std::numbers::pi / 180.0;
   batch.frame = options.frame;
   batch.records.resize(std::size_t(options.width) * options.height * options.samples_per_pixel);
-  const std::size_t n = batch.records.size(), more = options.scattered ? options.filtered_vertices - 1u : 0u;
+  // Per sample, its filtered vertices past the first, then with continuation_depth the vertex its kept path reached.
+  const bool continuing = options.continuation_depth > 0;
+  const std::size_t n = batch.records.size();
+  const std::size_t more = options.scattered ? options.filtered_vertices - 1u + (continuing ? 1u : 0u) : 0u;
   if (options.scattered) {  // the records' scattered vertices, then the deeper records' (record i's at n + i more)
     batch.deeper.resize(n * more);
     batch.scattered.resize(n + n * more);
+  }
+  // The kept paths: the frame before's where they continue into this frame, else none.
+  PathContinuation fresh_state;
+  PathContinuation& state = continuation ? *continuation : fresh_state;
+  std::vector<ContinuationVertex>* kept = nullptr;
+  if (continuing) {
+    const bool continues = state.ContinuesInto(options.frame, prepared.digest(), options.seed, n);
+    kept = &state.Write(options.frame, prepared.digest(), options.seed, n);
+    if (!continues) std::fill(kept->begin(), kept->end(), ContinuationVertex{});
   }
 
   const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
@@ -404,11 +504,20 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
               const std::uint32_t pixel = y * options.width + x;
               for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
                 const std::size_t i = std::size_t(pixel) * options.samples_per_pixel + s;
-                const PathOutputs out = options.scattered
-                                            ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
-                                                          batch.scattered.data() + n + i * more}
-                                            : PathOutputs{};
+                ContinuationVertex fresh;
+                const PathOutputs out =
+                    options.scattered
+                        ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
+                                      batch.scattered.data() + n + i * more, continuing ? &fresh : nullptr}
+                        : PathOutputs{};
                 batch.records[i] = tracer.TraceSample(pixel, s, local, out);
+                if (continuing) {
+                  // The kept path grows by a vertex; where it cannot go on, the frame's own path is kept.
+                  ContinuationVertex& path = (*kept)[i];
+                  tracer.Continue(pixel, s, path, local, batch.deeper[i * more + more - 1],
+                                  batch.scattered[n + i * more + more - 1]);
+                  if (!path.valid && fresh.valid && fresh.bounce < options.continuation_depth) path = fresh;
+                }
               }
             }
           }
@@ -418,6 +527,7 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
         result.stats.camera_rays += local.camera_rays;
         result.stats.bounce_rays += local.bounce_rays;
         result.stats.shadow_rays += local.shadow_rays;
+        result.stats.continued += local.continued;
         if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
       },
       threads);

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/record.h"
+#include "tracer/path_continuation.h"
 #include "tracer/scene.h"
 
 namespace hpsf {
@@ -38,6 +39,10 @@ struct TraceOptions {
   // With scattered: the vertices of each path filtered, the first at filter_bounce; the others are the batch's deeper
   // records (RecordBatch::deeper), each also with the vertex it scattered to. The path ends at the last one's.
   std::uint32_t filtered_vertices = 1;
+  // Amortized (A-nHPSF, tracer/path_continuation.h), with scattered: 0 off; else each sample also extends the path it
+  // kept from the frame before by one vertex, filtered as one more deeper record per sample, while that vertex's index
+  // stays below this depth (Meijer's precedence rule: the deepest path still below it is kept).
+  std::uint32_t continuation_depth = 0;
   int threads = 0;  // 0: all cores
 
   void Validate() const;  // ConfigError naming the option
@@ -47,6 +52,7 @@ struct TraceStats {
   std::uint64_t camera_rays = 0;
   std::uint64_t bounce_rays = 0;
   std::uint64_t shadow_rays = 0;
+  std::uint64_t continued = 0;  // samples whose kept path grew by a vertex (continuation_depth)
   std::uint64_t Rays() const { return camera_rays + bounce_rays + shadow_rays; }
 };
 
@@ -67,25 +73,31 @@ class PreparedScene {
 
   std::uint32_t frame() const { return frame_; }
   bool animated() const { return animated_; }
+  // What the tracer sees of it (tracer/scene_digest.h): equal at every frame of a static scene.
+  std::uint64_t digest() const { return digest_; }
   const Scene& scene() const;
 
   struct Built;
 
  private:
   friend TraceResult TraceRecords(const PreparedScene&, const TraceOptions&,
-                                  const std::function<void(std::uint32_t, std::uint32_t)>&);
+                                  const std::function<void(std::uint32_t, std::uint32_t)>&, PathContinuation*);
   std::uint32_t frame_;
   bool animated_;
+  std::uint64_t digest_;
   std::unique_ptr<Built> built_;
 };
 
-// progress(done, total) is called now and then from the calling thread's view of finished tiles.
+// progress(done, total) is called now and then from the calling thread's view of finished tiles. continuation: with
+// options.continuation_depth, the state the frame before left, updated for the next; null, every sample starts afresh.
 TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
-                         const std::function<void(std::uint32_t, std::uint32_t)>& progress = {});
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress = {},
+                         PathContinuation* continuation = nullptr);
 // Traces a prepared scene: any frame of a static one, only its own frame of an animated one (a logic_error
 // otherwise). The same records as TraceRecords of the scene.
 TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
-                         const std::function<void(std::uint32_t, std::uint32_t)>& progress = {});
+                         const std::function<void(std::uint32_t, std::uint32_t)>& progress = {},
+                         PathContinuation* continuation = nullptr);
 
 }  // namespace hpsf
 

@@ -21,7 +21,7 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
 }
 
 void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace) {
-  trace.scattered = config.transport || trace.filtered_vertices > 1;
+  trace.scattered = config.transport || trace.filtered_vertices > 1 || trace.continuation_depth > 0;
 }
 
 void CheckTransportInput(const std::string& input, std::span<const RecordBatch> frames, const FilterConfig& config) {
@@ -47,13 +47,14 @@ std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const Trace
   TraceOptions frame_trace = trace;
   // A static scene is built once for every frame, an animated one for each (core/effect_plan.h, "animation").
   std::optional<PreparedScene> prepared;
+  PathContinuation continuation;  // A-nHPSF's kept paths, from frame to frame
   for (std::uint32_t k = 0; k < frames; ++k) {
     frame_trace.frame = trace.frame + k;
     if (!prepared || RebuildsScenePerFrame(config, FactsOf(scene))) {
       prepared.reset();
       prepared.emplace(scene, frame_trace.frame);
     }
-    sequence.push_back(TraceRecords(*prepared, frame_trace).batch);
+    sequence.push_back(TraceRecords(*prepared, frame_trace, {}, &continuation).batch);
   }
   return sequence;
 }

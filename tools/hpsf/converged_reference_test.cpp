@@ -75,7 +75,7 @@ TEST(ConvergedReference, TheDigestFollowsTheContent) {
 // maximum depth would hand back an image traced to another depth). A field added to the request must be added
 // here: the sizes below stop the build of this test until it is.
 TEST(ConvergedReference, EveryFieldThatChangesTheImageChangesTheCacheKey) {
-  static_assert(sizeof(TraceOptions) == 10 * sizeof(std::uint32_t), "a new TraceOptions field: add it below");
+  static_assert(sizeof(TraceOptions) == 11 * sizeof(std::uint32_t), "a new TraceOptions field: add it below");
   static_assert(sizeof(ReferenceRequest) == sizeof(TraceOptions) + 2 * sizeof(std::uint32_t),
                 "a new ReferenceRequest field: add it below");
   const Scene scene = LoadScene("cornell");
@@ -98,6 +98,8 @@ TEST(ConvergedReference, EveryFieldThatChangesTheImageChangesTheCacheKey) {
       {"threads", [](ReferenceRequest& r) { r.trace.threads = 1; }},
       {"scattered", [](ReferenceRequest& r) { r.trace.scattered = true; }},
       {"filtered vertices", [](ReferenceRequest& r) { r.trace.scattered = true, r.trace.filtered_vertices = 2; }},
+      // Kept paths add deeper records only: each pass is traced afresh, and its pixels are the records' own.
+      {"continuation depth", [](ReferenceRequest& r) { r.trace.scattered = true, r.trace.continuation_depth = 3; }},
       {"spp", [](ReferenceRequest& r) { r.samples_per_pixel = 16; }},
       {"pass spp", [](ReferenceRequest& r) { r.pass_samples = 4; }},
   };

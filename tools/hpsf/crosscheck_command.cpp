@@ -135,6 +135,7 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--filtered-vertices", o->trace.filtered_vertices,
                 "Diffuse vertices filtered per path, from --filter-bounce on, 1..8 (several filtered bounces)")
       ->capture_default_str();
+  c->add_option("--continuation-depth", o->trace.continuation_depth, kContinuationDepthHelp)->capture_default_str();
   c->add_option("--frames", o->frames,
                 "Check a sequence of this many frames through one table per backend (a scene: traced from --frame "
                 "on; a record file: must equal its frames; default every frame of a file, one of a scene)");

@@ -129,6 +129,8 @@ void RunRender(RenderOptions& o, bool options_only) {
   const SceneFacts facts = FactsOf(scene);
   const std::vector<EffectDecision> plan = PlanSequenceEffects(config, facts, o.frames);
   std::optional<PreparedScene> prepared;
+  PathContinuation continuation;  // A-nHPSF's kept paths, from frame to frame
+  std::uint64_t continued = 0;
   for (std::uint32_t k = 0; k < o.frames; ++k) {
     o.trace.frame = first + k;
     config.frame = o.trace.frame;  // the jitter's random numbers follow the frame too
@@ -141,7 +143,8 @@ void RunRender(RenderOptions& o, bool options_only) {
     }
     const auto start = std::chrono::steady_clock::now();
     const auto progress = TerminalProgress();
-    traced = TraceRecords(*prepared, o.trace, progress);
+    traced = TraceRecords(*prepared, o.trace, progress, &continuation);
+    continued += traced.stats.continued;
     if (progress) std::fprintf(stderr, "\r              \r");
     trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool last = k + 1 == o.frames;
@@ -162,6 +165,8 @@ void RunRender(RenderOptions& o, bool options_only) {
                      {"max_depth", o.trace.max_depth},
                      {"filter_bounce", o.trace.filter_bounce},
                      {"filtered_vertices", o.trace.filtered_vertices},
+                     {"continuation_depth", o.trace.continuation_depth},
+                     {"continued", continued},
                      {"threads", o.trace.threads},
                      {"frame", o.trace.frame},
                      {"first_frame", first},
@@ -245,6 +250,7 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
       ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")
       ->capture_default_str();
+  c->add_option("--continuation-depth", o->trace.continuation_depth, kContinuationDepthHelp)->capture_default_str();
   c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")
       ->capture_default_str();
   c->add_option("--frame", o->trace.frame,
