@@ -620,6 +620,11 @@ hpsf_add_test(converged_reference_tests
   SOURCES hpsf/converged_reference_test.cpp hpsf/sweep_grid_test.cpp
   LIBRARIES hpsf_commands
   LABELS "unit;verdicts")
+# Several filtered bounces on the Cornell box against the converged image with deep paths (label bounces).
+hpsf_add_test(multi_bounce_convergence_tests
+  SOURCES hpsf/multi_bounce_convergence_test.cpp
+  LIBRARIES hpsf_commands
+  LABELS "property;bounces")
 
 # hpsf reference: rendered once, then read from the cache, the same bits again with --refresh, a new key for a new
 # seed; a bad sample count is bad input.
