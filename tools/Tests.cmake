@@ -284,6 +284,21 @@ hpsf_add_cli_test(HpsfRender.AShallowContinuationDepthExits3 "unit;bounces" 3
   "--continuation-depth: must be 0 \\(off\\) or lie in \\[3, 1024\\]" ""
   $<TARGET_FILE:hpsf> render furnace --size 8x8 --filtered-vertices 2 --transport on --continuation-depth 2
   -o ${hpsf_out}/shallow.exr ABSENT ${hpsf_out}/shallow.exr)
+# The hard case: the furnace of albedo 1 feeds its light back frame after frame without bound. Where its sums outgrow F
+# (given, so that it happens within a test's frames) the frame is refused and nothing written; where they do not,
+# the report says the series has not converged.
+hpsf_add_cli_test(HpsfRender.AWrappedFixed64SumIsRefusedAndNothingWritten "unit;bounces" 3
+  "--fixed-point-bits: frame 8: [0-9]+ fixed64 sums wrapped: the table.s light outgrew what F = 58" ""
+  $<TARGET_FILE:hpsf> render ${PROJECT_SOURCE_DIR}/scenes/furnace-albedo-1.json --size 8x8 --spp 1 --frames 40
+  --transport on --continuation-depth 8 --temporal ema:0.5 --fixed-point-bits 58 -o ${hpsf_out}/wrapped.exr
+  ABSENT ${hpsf_out}/wrapped.exr)
+hpsf_add_cli_test(HpsfRender.TheFurnaceOfAlbedo1IsNotConverged "unit;bounces" 0
+  "series: not converged \\([0-9]+ rising frames" ""
+  $<TARGET_FILE:hpsf> render ${PROJECT_SOURCE_DIR}/scenes/furnace-albedo-1.json --size 32x32 --spp 2 --frames 60
+  --transport on --continuation-depth 8 --temporal ema:0.5 -o ${hpsf_out}/albedo-1.exr)
+hpsf_add_cli_test(HpsfRender.TheFurnaceOfAlbedoOneHalfConverges "unit;bounces" 0 "series: converged" ""
+  $<TARGET_FILE:hpsf> render furnace --size 32x32 --spp 2 --frames 60 --transport on --continuation-depth 8
+  --temporal ema:0.5 -o ${hpsf_out}/albedo-half.exr)
 hpsf_add_cli_test(HpsfReplay.TransportOverRecordsWithoutScatteredVerticesExits3 "unit;bounces" 3
   "--transport: .*seed_lookup_alias.hpsfv: no frame carries scattered vertices" ""
   $<TARGET_FILE:hpsf> replay ${hpsf_data}/seed_lookup_alias.hpsfv --transport on -o ${hpsf_out}/no-transport.exr
@@ -620,6 +635,12 @@ hpsf_add_test(converged_reference_tests
   SOURCES hpsf/converged_reference_test.cpp hpsf/sweep_grid_test.cpp
   LIBRARIES hpsf_commands
   LABELS "unit;verdicts")
+# Whether a sequence's fed-back light settled (label bounces).
+hpsf_add_test(series_convergence_tests
+  SOURCES hpsf/series_convergence_test.cpp
+  LIBRARIES hpsf_commands
+  LABELS "property;bounces;verdicts")
+target_compile_definitions(series_convergence_tests PRIVATE HPSF_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
 # Several filtered bounces on the Cornell box against the converged image with deep paths (label bounces).
 hpsf_add_test(multi_bounce_convergence_tests
   SOURCES hpsf/multi_bounce_convergence_test.cpp

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tools/hpsf/frame_soundness.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/version.h"
@@ -55,6 +56,7 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
   const auto filter_start = std::chrono::steady_clock::now();
   const Image& filtered = backend.backend->FilterFrame(batch, config);
   const double filter_seconds = SecondsSince(filter_start);
+  RequireSoundFrame(*backend.backend, filtered, config);
   const Image image = options.no_filter ? UnfilteredImage(batch) : filtered;
   const FilterResult* exact = backend.backend->LastExactResult();
   const int fixed_point_bits =
@@ -127,6 +129,11 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
     const auto& v = report["mean_variance"];
     std::printf("variance of the image mean: %.3g %.3g %.3g\n", v[0].get<double>(), v[1].get<double>(),
                 v[2].get<double>());
+  }
+  if (report.contains("series")) {
+    std::cout << "series: " << (report["series"]["converged"].get<bool>() ? "converged" : "not converged") << " ("
+              << report["series"]["rising_frames"] << " rising frames at the end, last change "
+              << report["series"]["last_relative_change"].get<double>() * 100.0 << "%)\n";
   }
   if (report.contains("rays_per_s")) {
     std::printf("%.3g rays/s, %.3g records/s filtered\n", report["rays_per_s"].get<double>(),

@@ -16,9 +16,11 @@
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/filter_output.h"
+#include "tools/hpsf/frame_soundness.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/image_size.h"
 #include "tools/hpsf/seconds_since.h"
+#include "tools/hpsf/series_convergence.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
@@ -85,8 +87,9 @@ nlohmann::json FilterSequenceFrame(BackendInstance& backend, const RecordBatch& 
     frame["filter_s"] = written["timings"]["filter_s"];
   } else {
     const auto filter_start = std::chrono::steady_clock::now();
-    backend.backend->FilterFrame(batch, config);
+    const Image& image = backend.backend->FilterFrame(batch, config);
     frame["filter_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
+    RequireSoundFrame(*backend.backend, image, config);
   }
   if (config.eviction.enabled()) frame["eviction"] = LastFrameEviction(*backend.backend);
   if (config.temporal.blends()) frame["temporal"] = LastFrameTemporal(*backend.backend);
@@ -131,6 +134,7 @@ void RunRender(RenderOptions& o, bool options_only) {
   std::optional<PreparedScene> prepared;
   PathContinuation continuation;  // A-nHPSF's kept paths, from frame to frame
   std::uint64_t continued = 0;
+  SeriesConvergence series;  // with the transport: whether the fed-back light settled
   for (std::uint32_t k = 0; k < o.frames; ++k) {
     o.trace.frame = first + k;
     config.frame = o.trace.frame;  // the jitter's random numbers follow the frame too
@@ -153,6 +157,8 @@ void RunRender(RenderOptions& o, bool options_only) {
     nlohmann::json written = FilterSequenceFrame(backend, traced.batch, config, o.filter,
                                                  {scene.name, o.backend, o.output}, o.frame_out, last, frame);
     if (last) report = std::move(written);
+    const FilterResult* exact = backend.backend->LastExactResult();
+    series.means.push_back(ImageMean(exact ? exact->image : backend.backend->LastHashedRun()->image));
     per_frame.push_back(frame);
   }
   if (dump) dump->Finish();
@@ -172,6 +178,7 @@ void RunRender(RenderOptions& o, bool options_only) {
                      {"first_frame", first},
                      {"frames", o.frames}};
   if (o.frames > 1) report["frames"] = per_frame;
+  if (config.transport && o.frames > 1) report["series"] = series.ToJson();
   report["effects"] = EffectsJson(plan);
   report["timings"]["scene_s"] = per_frame.back()["scene_s"];
   report["rays"] = traced.stats.Rays();
@@ -209,6 +216,7 @@ void RunReplay(ReplayOptions& o, bool options_only) {
   // Records bring no scene: nothing is traced, and whether it moved is not known.
   const std::vector<EffectDecision> plan = PlanSequenceEffects(config, SceneFacts{false, false}, config.frames);
   nlohmann::json report, per_frame = nlohmann::json::array();
+  SeriesConvergence series;  // with the transport: whether the fed-back light settled
   for (std::size_t k = 0; k < frames.size(); ++k) {
     config.frame = frames[k].frame;
     nlohmann::json frame = {{"frame", config.frame}};
@@ -216,12 +224,15 @@ void RunReplay(ReplayOptions& o, bool options_only) {
     nlohmann::json written = FilterSequenceFrame(backend, frames[k], config, o.filter, {o.records, o.backend, o.output},
                                                  o.frame_out, last, frame);
     if (last) report = std::move(written);
+    const FilterResult* exact = backend.backend->LastExactResult();
+    series.means.push_back(ImageMean(exact ? exact->image : backend.backend->LastHashedRun()->image));
     per_frame.push_back(frame);
   }
   report["version"] = 1;
   report["command"] = "replay";
   report["records_file"] = o.records;
   if (frames.size() > 1) report["frames"] = per_frame;
+  if (config.transport && frames.size() > 1) report["series"] = series.ToJson();
   report["effects"] = EffectsJson(plan);
   PrintReport(report, o.json);
   if (!o.json && !EffectsLine(plan, config.frames).empty()) std::cout << EffectsLine(plan, config.frames) << "\n";
