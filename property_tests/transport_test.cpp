@@ -329,6 +329,62 @@ TEST(Transport, LightThatOutgrowsTheFirstFramesFIsCounted) {
   EXPECT_EQ(vulkan.run().wraps, reference.LastExactResult()->stats.fixed_point_wraps);
 }
 
+// A firefly fed back: frame 0's record 0 carries 10^4 times e (a path that found a light by chance). The transport
+// carries it into the cells whose records scatter into its cell, weighed by the albedo: the excess frame k's records
+// bring is at most r = (9/8) a times the excess in the averages they read, with a = 3/4 (green, the largest albedo) and
+// 9/8 the most records that scatter into one cell over a cell's records. A table that forgets its history holds frame
+// k's alone, so its excess T(k) <= r^k T(0) falls geometrically. An integrating table keeps frame 0's sums, and frame k
+// reads them over k + 1 frames' counts: T(k) <= T(k - 1) (1 + r / k), so its sums' excess grows as k^r while the
+// cells' averages, and the image, carry T(k) / (k + 1), which falls as k^(r - 1): slower than the 1 / k of a table
+// without the transport. Either way it reaches every cell and stays bounded. Measured as the table's sums with the
+// firefly less those without it, on the reference, frame by frame; docs/design/algorithm.md has the figures.
+TEST(Transport, AFireflyFedBackSpreadsButStaysBounded) {
+  constexpr std::uint32_t kFrames = 24;
+  const double ratio = 9.0 / 8.0 * double(kAlbedo.y);
+  for (const std::string temporal : {"integrate", "ema:0.000000000931322574615478515625"}) {
+    const bool integrating = temporal == "integrate";
+    const FilterConfig config = FurnaceConfig(Accumulation::kFixed64, temporal, kFrames);
+    ReferenceBackend with, without;
+    double bound = 0.0, first_average = 0.0;
+    std::uint32_t cells_reached = 0;
+    for (std::uint32_t k = 0; k < kFrames; ++k) {
+      FilterConfig frame_config = config;
+      frame_config.frame = k;
+      const RecordBatch batch = FurnaceBatch(k);
+      RecordBatch bright = batch;
+      if (k == 0) bright.records[0].contribution *= 1e4f;
+      with.FilterFrame(bright, frame_config);
+      without.FilterFrame(batch, frame_config);
+      const FilterResult& a = *with.LastExactResult();
+      const FilterResult& b = *without.LastExactResult();
+      ASSERT_EQ(a.cells.size(), b.cells.size());
+      double excess = 0.0, average = 0.0;  // green: in the sums, and in the averages, over the table's cells
+      cells_reached = 0;
+      for (std::size_t c = 0; c < a.cells.size(); ++c) {
+        const double more_average = CellAverage(a.cells[c], Accumulation::kFixed64, a.stats.fixed_point_bits).y -
+                                    CellAverage(b.cells[c], Accumulation::kFixed64, b.stats.fixed_point_bits).y;
+        const double more =
+            CellAverage(a.cells[c], Accumulation::kFixed64, a.stats.fixed_point_bits).y * double(a.cells[c].count) -
+            CellAverage(b.cells[c], Accumulation::kFixed64, b.stats.fixed_point_bits).y * double(b.cells[c].count);
+        excess += more;
+        average += more_average;
+        cells_reached += more_average > 1e-6;
+      }
+      bound = k == 0 ? excess : bound * (integrating ? 1.0 + ratio / double(k) : ratio);
+      if (k == 0) first_average = average;
+      std::printf(
+          "%s, frame %2u: the firefly's excess in the sums %.6g (bound %.6g), in the averages %.6g (%.4f of "
+          "frame 0's), %u of %zu cells reached\n",
+          temporal.c_str(), k, excess, bound, average, average / first_average, cells_reached, a.cells.size());
+      EXPECT_LE(excess, bound * (1.0 + 1e-9)) << temporal << ", frame " << k;
+      if (k >= 2) {
+        EXPECT_LT(average, first_average) << temporal << ", frame " << k;
+      }
+    }
+    EXPECT_EQ(cells_reached, kCells) << temporal << ": fed back, the firefly reaches every cell";
+  }
+}
+
 // Deeper records at several levels: the accumulate places every record at each level, level-major over the records
 // with the deeper ones, and Vulkan's resolve reads its own records' placements copied out level by level. The
 // traced furnace with 3 filtered vertices at 3 levels, over frames: the reference's pixels, bit for bit, on both
