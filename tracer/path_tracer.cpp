@@ -148,6 +148,29 @@ class Tracer {
     return p.position + p.normal * (32.0 * spacing);
   }
 
+  // A cosine-weighted direction about p's normal, from the vertex's bounce dimensions.
+  static glm::dvec3 CosineDirection(const SurfacePoint& p, const VertexRandom& random) {
+    const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));
+    const double r = std::sqrt(double(random(kBounceU)));
+    const double phi = 2.0 * std::numbers::pi * random(kBounceV);
+    const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
+    return glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) +
+                          glm::dvec3(frame.bitangent) * (r * std::sin(phi)) + p.normal * z);
+  }
+
+  // A kept path's vertex as a record's vertex, keyed as the frame's own vertices are.
+  static VertexSample KeptSample(std::uint32_t pixel, std::uint32_t sample, const ContinuationVertex& kept) {
+    VertexSample v;
+    v.pixel = pixel;
+    v.sample = sample;
+    v.bounce = kept.bounce;
+    v.position = glm::vec3(kept.position);
+    v.normal = glm::vec3(kept.normal);
+    v.previous = glm::vec3(kept.previous);
+    v.d_prefix = static_cast<float>(kept.d_prefix);
+    return v;
+  }
+
   std::optional<SurfacePoint> Cast(glm::dvec3 origin, glm::dvec3 direction) const {
     const auto hit = embree_.Intersect(glm::vec3(origin), glm::vec3(direction), 0.0f, INFINITY);
     if (!hit) return std::nullopt;
@@ -318,12 +341,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     if (last_vertex) break;
 
     // Cosine-weighted bounce: cos / pdf cancels the 1 / pi of the lobe, leaving the albedo (applied above).
-    const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));
-    const double r = std::sqrt(double(random(kBounceU)));
-    const double phi = 2.0 * std::numbers::pi * random(kBounceV);
-    const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
-    direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) +
-                               glm::dvec3(frame.bitangent) * (r * std::sin(phi)) + p.normal * z);
+    direction = CosineDirection(p, random);
     origin = Offset(p);
     ++stats.bounce_rays;
   }
@@ -351,12 +369,7 @@ void Tracer::Continue(std::uint32_t pixel, std::uint32_t sample, ContinuationVer
   const SurfacePoint p{kept.position, kept.normal, &scene_.materials[kept.material]};
   const VertexRandom random = RandomAt(pixel, sample, kContinuationStreams + kept.bounce);
   glm::dvec3 gathered = DirectLight(p, random, stats);
-  const TangentFrame frame = DuffTangentFrame(glm::vec3(p.normal));
-  const double r = std::sqrt(double(random(kBounceU)));
-  const double phi = 2.0 * std::numbers::pi * random(kBounceV);
-  const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
-  const glm::dvec3 direction = glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) +
-                                              glm::dvec3(frame.bitangent) * (r * std::sin(phi)) + p.normal * z);
+  const glm::dvec3 direction = CosineDirection(p, random);
   ++stats.bounce_rays;
   const auto hit = Cast(Offset(p), direction);
   if (hit && hit->material->IsEmissive()) {
@@ -364,14 +377,7 @@ void Tracer::Continue(std::uint32_t pixel, std::uint32_t sample, ContinuationVer
   } else if (!hit) {
     gathered += glm::dvec3(scene_.sky);
   }
-  VertexSample v;
-  v.pixel = pixel;
-  v.sample = sample;
-  v.bounce = kept.bounce;
-  v.position = glm::vec3(kept.position);
-  v.normal = glm::vec3(kept.normal);
-  v.previous = glm::vec3(kept.previous);
-  v.d_prefix = static_cast<float>(kept.d_prefix);
+  VertexSample v = KeptSample(pixel, sample, kept);
   v.contribution = glm::vec3(gathered);
   deeper = MakeVertexRecord(v);
   if (!hit) {
@@ -382,14 +388,7 @@ void Tracer::Continue(std::uint32_t pixel, std::uint32_t sample, ContinuationVer
   const ContinuationVertex next{
       true,        kept.bounce + 1, std::uint32_t(hit->material - scene_.materials.data()), hit->position,
       hit->normal, kept.position,   kept.d_prefix + MaxAbs(kept.position - kept.previous)};
-  VertexSample s;
-  s.pixel = pixel;
-  s.sample = sample;
-  s.bounce = next.bounce;
-  s.position = glm::vec3(next.position);
-  s.normal = glm::vec3(next.normal);
-  s.previous = glm::vec3(next.previous);
-  s.d_prefix = static_cast<float>(next.d_prefix);
+  VertexSample s = KeptSample(pixel, sample, next);
   s.throughput = hit->material->albedo;
   scattered = MakeVertexRecord(s);
   kept = next;

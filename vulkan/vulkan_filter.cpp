@@ -669,17 +669,18 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   tbb::parallel_for(
       tbb::blocked_range<std::uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::uint32_t>& range) {
         std::memcpy(records + range.begin(), all.data() + range.begin(), range.size() * sizeof(Record));
-        for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
-          Record transported;
-          const Record* given = &all[i];
-          if (transport && run.transport_read[i] != kNothingTransported) {
-            transported = all[i];
-            transported.contribution = records[i].contribution = transport->contributions[i];
-            given = &transported;
-          }
-          const Record& r = *given;
+        const auto judge = [&](std::uint32_t i, const Record& r) {
           accepted[i] = CheckRecordInputs(r) == InputVerdict::kAccepted;
           entering[i] = accepted[i] && shared::RecordHasVertex(r) ? glm::vec3(r.contribution) : glm::vec3(0.0f);
+        };
+        for (std::uint32_t i = range.begin(); i < range.end(); ++i) {
+          if (!transport || run.transport_read[i] == kNothingTransported) {
+            judge(i, all[i]);
+            continue;
+          }
+          Record transported = all[i];  // judged as it enters the table
+          transported.contribution = records[i].contribution = transport->contributions[i];
+          judge(i, transported);
         }
       });
   run.timings.upload_ms = MillisecondsSince(start);
