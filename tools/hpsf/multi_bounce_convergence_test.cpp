@@ -16,6 +16,7 @@
 #include "core/temporal.h"
 #include "reference/reference_backend.h"
 #include "tools/hpsf/converged_reference.h"
+#include "tools/hpsf/series_convergence.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 #include "verifier/metrics/channel_image.h"
@@ -51,12 +52,6 @@ double Tail(const std::vector<double>& values, std::size_t first) {
   return sum / double(values.size() - first);
 }
 
-double Mean(const Image& image) {
-  double sum = 0.0;
-  for (const glm::vec3& p : image.pixels) sum += (double(p.x) + double(p.y) + double(p.z)) / 3.0;
-  return sum / double(image.pixels.size());
-}
-
 Series FilterFrames(const Scene& scene, const Method& method, std::uint32_t frames, const ChannelImage& converged) {
   TraceOptions trace;
   trace.width = trace.height = kSize;
@@ -80,7 +75,7 @@ Series FilterFrames(const Scene& scene, const Method& method, std::uint32_t fram
     const TraceResult traced = TraceRecords(scene, trace, {}, &continuation);
     const Image& image = reference.FilterFrame(traced.batch, config);
     series.relmse.push_back(ComputeMetrics(ColourChannels(image), converged).relmse);
-    series.mean.push_back(Mean(image));
+    series.mean.push_back(ImageMean(image));
     series.rays = traced.stats.Rays();
     if (k < frames / 2) continue;
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
@@ -113,7 +108,7 @@ TEST(MultiBounceConvergence, TheCornellBoxGainsTheBouncesPlainHpsfCannotReach) {
                                        {"nHPSF, 2 filtered", true, 8, 2, 0},
                                        {"A-nHPSF, depth 8", true, 8, 1, 8}};
   std::map<std::string, Series> results;
-  const double target = Mean(converged_image);
+  const double target = ImageMean(converged_image);
   std::printf("converged image mean %.5f\n%-20s %8s %8s %8s %8s %10s %10s  %s\n", target, "relMSE after", "1", "4",
               "16", "32", "17 to 32", "mean 17-32", "rays per frame");
   for (const Method& method : methods) {
