@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,29 +32,6 @@ void DrawValues(plot::Canvas& canvas, const plot::LogAxis& x, const plot::LogAxi
     last_x = px;
     last_y = py;
   }
-}
-
-std::vector<std::string> Words(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<std::string> words;
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
-}
-
-// A label without the words every series shares and without "backend=-" (a method with no backend), so the legend
-// names what tells the series apart; the method where nothing does.
-std::string ShortLabel(const std::string& label, const std::vector<WidthSeries>& series) {
-  std::string text;
-  for (const std::string& word : Words(label)) {
-    bool shared = true;
-    for (const WidthSeries& s : series) {
-      const std::vector<std::string> other = Words(s.label);
-      shared = shared && std::find(other.begin(), other.end(), word) != other.end();
-    }
-    if (shared || word == "backend=-") continue;
-    text += (text.empty() ? "" : " ") + word;
-  }
-  return text.empty() ? series.front().method : text;
 }
 
 }  // namespace
@@ -102,7 +78,8 @@ Rgb8Image RenderBiasVariancePlot(const std::string& title, const std::vector<Wid
               14, kText, OIIO::ImageBufAlgo::TextAlignX::Center);
   canvas.Text(12, 26, title + ": relMSE's bias^2 (filled) and variance (hollow)", 16, kText);
 
-  std::vector<std::string> methods;
+  std::vector<std::string> methods, labels;
+  for (const WidthSeries& s : series) labels.push_back(s.label);
   for (std::size_t i = 0; i < series.size(); ++i) {
     const WidthSeries& s = series[i];
     const auto known = std::find(methods.begin(), methods.end(), s.method);
@@ -117,7 +94,7 @@ Rgb8Image RenderBiasVariancePlot(const std::string& title, const std::vector<Wid
     DrawValues(canvas, x, y, s, s.variance, colour, false);
     const int ly = kMarginTop + 10 + int(i) * 20;
     canvas.Box(kPlotWidth - kMarginRight + 20, ly - 4, kPlotWidth - kMarginRight + 28, ly + 4, colour, true);
-    canvas.Text(kPlotWidth - kMarginRight + 36, ly + 5, ShortLabel(s.label, series), 12, kText);
+    canvas.Text(kPlotWidth - kMarginRight + 36, ly + 5, DistinguishingWords(s.label, labels, s.method), 12, kText);
   }
   return canvas.Pixels();
 }

@@ -1,7 +1,9 @@
 #include "tools/hpsf/plot_canvas.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <utility>
 
 #include "core/error.h"
@@ -14,7 +16,7 @@ constexpr const char* kPlotFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.t
 }  // namespace
 
 Colour MethodColour(const std::string& method, std::size_t index) {
-  if (method == "pt") return {{0.85f, 0.85f, 0.85f}};
+  if (method == "pt" || method.rfind("pt,", 0) == 0) return {{0.85f, 0.85f, 0.85f}};  // after some frames too
   static const Colour palette[] = {{{0.97f, 0.55f, 0.16f}}, {{0.35f, 0.70f, 0.95f}}, {{0.45f, 0.85f, 0.40f}},
                                    {{0.90f, 0.40f, 0.75f}}, {{0.95f, 0.85f, 0.30f}}, {{0.60f, 0.50f, 0.95f}}};
   return palette[index % (sizeof palette / sizeof palette[0])];
@@ -78,6 +80,32 @@ std::string Decade(int exponent) {
   char text[16];
   std::snprintf(text, sizeof text, "1e%d", exponent);
   return text;
+}
+
+namespace {
+
+std::vector<std::string> Words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> words;
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+}  // namespace
+
+std::string DistinguishingWords(const std::string& label, const std::vector<std::string>& labels,
+                                const std::string& otherwise) {
+  std::string text;
+  for (const std::string& word : Words(label)) {
+    bool shared = true;
+    for (const std::string& other : labels) {
+      const std::vector<std::string> words = Words(other);
+      shared = shared && std::find(words.begin(), words.end(), word) != words.end();
+    }
+    if (shared || word == "backend=-") continue;
+    text += (text.empty() ? "" : " ") + word;
+  }
+  return text.empty() ? otherwise : text;
 }
 
 }  // namespace hpsf::plot

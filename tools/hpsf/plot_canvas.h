@@ -5,6 +5,7 @@
 #define HPSF_TOOLS_HPSF_PLOT_CANVAS_H
 
 #include <string>
+#include <vector>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -51,6 +52,11 @@ class Canvas {
 };
 
 std::string Decade(int exponent);  // "1e-3"
+
+// A legend's label: `label`'s words without those every one of `labels` shares and without "backend=-" (a method
+// with no backend), so the legend names what tells the series apart; `otherwise` where nothing does.
+std::string DistinguishingWords(const std::string& label, const std::vector<std::string>& labels,
+                                const std::string& otherwise);
 
 }  // namespace hpsf::plot
 

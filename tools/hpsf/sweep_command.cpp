@@ -11,6 +11,8 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +24,8 @@
 #include "tools/hpsf/bias_variance_plot.h"
 #include "tools/hpsf/channel_image_file.h"
 #include "tools/hpsf/filter_options.h"
+#include "tools/hpsf/frame_soundness.h"
+#include "tools/hpsf/frames_plot.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
 #include "tools/hpsf/image_size.h"
@@ -30,6 +34,8 @@
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/sweep_grid.h"
 #include "tools/hpsf/sweep_html_report.h"
+#include "tracer/path_continuation.h"
+#include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 #include "verifier/gate/gate_file.h"
 #include "verifier/metrics/channel_image.h"
@@ -98,51 +104,162 @@ double Median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-struct Traced {
+// One traced frame: its batch, the tracer's time and rays.
+struct TracedFrame {
   RecordBatch batch;
   double seconds = 0.0;
+  std::uint64_t rays = 0;
 };
 
-// One seed of one configuration: its image, the filter's time and phases, the table's failures.
+// The scene built for tracing at a frame: a static scene's once for every frame, an animated one's per frame. Its
+// build is in no configuration's time (a renderer builds a static scene once, not per frame).
+class SceneAtFrame {
+ public:
+  explicit SceneAtFrame(const Scene& scene) : scene_(scene) {}
+  const PreparedScene& At(std::uint32_t frame) {
+    if (!prepared_ || (prepared_->animated() && prepared_->frame() != frame)) {
+      prepared_.reset();
+      prepared_.emplace(scene_, frame);
+    }
+    return *prepared_;
+  }
+
+ private:
+  const Scene& scene_;
+  std::optional<PreparedScene> prepared_;
+};
+
+TracedFrame TraceFrame(SceneAtFrame& scene, const TraceOptions& trace, PathContinuation& continuation) {
+  const auto start = Clock::now();
+  TraceResult traced = TraceRecords(scene.At(trace.frame), trace, {}, &continuation);
+  return {std::move(traced.batch), SecondsSince(start), traced.stats.Rays()};
+}
+
+// How a configuration's paths are traced: the sweep's options, the configuration's spp, and its method's and trace
+// axes' choices. nhpsf and anhpsf trace the scattered vertices the transport reads; anhpsf keeps each sample's path
+// to the continuation depth (by default the sweep's --max-depth, the converged image's).
+TraceOptions TraceOf(const SweepConfig& c, const TraceOptions& sweep) {
+  TraceOptions trace = sweep;
+  trace.samples_per_pixel = c.spp;
+  if (c.max_depth) trace.max_depth = *c.max_depth;
+  if (c.Transports()) {
+    trace.scattered = true;
+    trace.filtered_vertices = c.filtered_vertices.value_or(1u);
+    if (c.method == "anhpsf") {
+      trace.continuation_depth =
+          c.continuation_depth.value_or(sweep.max_depth < 0 ? 1024u : std::uint32_t(sweep.max_depth));
+    }
+  }
+  try {
+    trace.Validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError("--grid", c.id + ": " + e.what());
+  }
+  return trace;
+}
+
+// What a configuration traces, as a key: configurations of one frame that trace alike share their batches.
+std::string TraceKey(const TraceOptions& t) {
+  return std::to_string(t.samples_per_pixel) + "/" + std::to_string(t.max_depth) + "/" + std::to_string(t.scattered) +
+         "/" + std::to_string(t.filtered_vertices) + "/" + std::to_string(t.continuation_depth);
+}
+
+// One seed of one configuration, over its frames: the image after the last, its relMSE after each, the medians over
+// frames of the trace and filter times and the hashed backends' phases, the rays per pixel per frame, the table's
+// probe failures (over every frame) and aliased slots (in the last frame's table).
 struct SeedRun {
   Image image;
-  double filter_s = 0.0;
+  std::vector<double> relmse_by_frame;
+  double trace_s = 0.0, filter_s = 0.0, rays_per_pixel = 0.0;
   json phases = json::object();
   std::uint64_t probe_failures = 0, aliased_slots = 0;
 };
 
 class Runner {
  public:
-  SeedRun Run(const SweepConfig& c, const FilterConfig& config, const RecordBatch& batch) {
+  explicit Runner(const Scene& scene) : scene_(scene) {}
+
+  // A hashed method's frames go through one backend whose table carries over (its temporal mode is the
+  // configuration's --temporal); every other method shows the mean of its frames' images, as a progressive renderer
+  // does. A frame `cached` (one-frame configurations) is used as traced; otherwise each frame is traced in turn.
+  SeedRun Run(const SweepConfig& c, FilterConfig config, TraceOptions trace, std::uint32_t seed,
+              const TracedFrame* cached, const ChannelImage& reference) {
     SeedRun run;
-    const auto start = Clock::now();
-    if (c.method == "pt") {
-      run.image = UnfilteredImage(batch);
-    } else if (c.method == "radius") {
-      run.image = RadiusSearchFilter(batch, config).image;
-    } else if (c.method == "screen") {
-      run.image = ScreenSpaceFilter(batch, config).image;
-    } else {
-      BackendInstance& backend = BackendFor(c.backend);
-      backend.backend->Reset();
-      run.image = backend.backend->FilterFrame(batch, config);
-      run.filter_s = SecondsSince(start);
-      if (backend.info->hashed) {  // the reference times none of its phases
-        const FrameTimings t = backend.backend->LastFrameTimings();
-        if (t.keys_ms) run.phases["key_s"] = *t.keys_ms / 1e3;  // Vulkan computes keys in its accumulate pass
-        run.phases["accumulate_s"] = t.accumulate_ms / 1e3;
-        run.phases["resolve_s"] = t.resolve_ms / 1e3;
-        if (t.transfer_ms) run.phases["transfer_s"] = *t.transfer_ms / 1e3;
+    trace.seed = config.seed = seed;
+    config.frames = c.frames;
+    config.transport = c.Transports();
+    PathContinuation continuation;
+    BackendInstance* backend = c.Hashed() ? &BackendFor(c.backend) : nullptr;
+    if (backend) backend->backend->Reset();
+    std::vector<double> trace_s, filter_s;
+    std::map<std::string, std::vector<double>> phases;
+    std::vector<glm::dvec3> sum;  // the other methods' frames, summed
+    std::uint64_t rays = 0;
+    for (std::uint32_t f = 0; f < c.frames; ++f) {
+      trace.frame = config.frame = f;
+      TracedFrame traced_now;
+      if (!cached) traced_now = TraceFrame(scene_, trace, continuation);
+      const TracedFrame& traced = cached ? *cached : traced_now;
+      trace_s.push_back(traced.seconds);
+      rays += traced.rays;
+      const auto start = Clock::now();
+      Image image;
+      if (backend) {
+        image = backend->backend->FilterFrame(traced.batch, config);
+        filter_s.push_back(SecondsSince(start));
+        RequireSoundFrame(*backend->backend, image, config);
+        if (backend->info->hashed) {  // the reference times none of its phases
+          const FrameTimings t = backend->backend->LastFrameTimings();
+          if (t.keys_ms) phases["key_s"].push_back(*t.keys_ms / 1e3);  // Vulkan computes keys in its accumulate
+          if (config.transport) phases["transport_s"].push_back(t.transport_ms / 1e3);
+          phases["accumulate_s"].push_back(t.accumulate_ms / 1e3);
+          phases["resolve_s"].push_back(t.resolve_ms / 1e3);
+          if (t.transfer_ms) phases["transfer_s"].push_back(*t.transfer_ms / 1e3);
+        }
+        if (const HashedRun* hashed = backend->backend->LastHashedRun()) {
+          run.probe_failures += hashed->probe_failures;
+          if (f + 1 == c.frames) {
+            const std::vector<bool> aliased = AliasedSlots(*hashed);
+            run.aliased_slots = std::uint64_t(std::count(aliased.begin(), aliased.end(), true));
+          }
+        }
+      } else {
+        const Image frame = c.method == "pt"       ? UnfilteredImage(traced.batch)
+                            : c.method == "radius" ? RadiusSearchFilter(traced.batch, config).image
+                                                   : ScreenSpaceFilter(traced.batch, config).image;
+        sum.resize(frame.pixels.size(), glm::dvec3(0.0));
+        image = Image(frame.width, frame.height);
+        for (std::size_t p = 0; p < sum.size(); ++p) {
+          sum[p] += glm::dvec3(frame.pixels[p]);
+          image.pixels[p] = glm::vec3(sum[p] / double(f + 1));
+        }
+        filter_s.push_back(SecondsSince(start));
       }
-      if (const HashedRun* hashed = backend.backend->LastHashedRun()) {
-        run.probe_failures = hashed->probe_failures;
-        const std::vector<bool> aliased = AliasedSlots(*hashed);
-        run.aliased_slots = std::uint64_t(std::count(aliased.begin(), aliased.end(), true));
-      }
-      return run;
+      run.relmse_by_frame.push_back(ComputeMetrics(ColourChannels(image), reference).relmse);
+      if (f + 1 == c.frames) run.image = std::move(image);
     }
-    run.filter_s = SecondsSince(start);
+    run.trace_s = Median(trace_s);
+    run.filter_s = Median(filter_s);
+    run.rays_per_pixel = double(rays) / (double(trace.width) * trace.height * c.frames);
+    for (const auto& [name, values] : phases) run.phases[name] = Median(values);
     return run;
+  }
+
+  // The one-frame batches of seeds 1..K traced with `trace`, kept for every configuration that traces alike.
+  const std::vector<TracedFrame>& OneFrame(const TraceOptions& trace, std::uint32_t seeds) {
+    const std::string key = TraceKey(trace);
+    if (key != one_frame_key_) {
+      one_frame_.clear();
+      for (std::uint32_t k = 1; k <= seeds; ++k) {
+        TraceOptions seeded = trace;
+        seeded.seed = k;
+        seeded.frame = 0;
+        PathContinuation continuation;
+        one_frame_.push_back(TraceFrame(scene_, seeded, continuation));
+      }
+      one_frame_key_ = key;
+    }
+    return one_frame_;
   }
 
  private:
@@ -151,7 +268,10 @@ class Runner {
     if (it == backends_.end()) it = backends_.emplace(name, MakeBackend(name, EmulatorOptions{})).first;
     return it->second;
   }
+  SceneAtFrame scene_;
   std::map<std::string, BackendInstance> backends_;
+  std::string one_frame_key_;
+  std::vector<TracedFrame> one_frame_;
 };
 
 // Everything a configuration's figures depend on: a kept result is reused only when this matches.
@@ -168,26 +288,30 @@ std::string ConfigFile(const fs::path& out, std::size_t index, const SweepConfig
   return (out / "configs" / (prefix + name + ".json")).string();
 }
 
-json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::vector<Traced>& traced,
+json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const TraceOptions& trace, std::uint32_t seeds,
                    const Image& reference, const Image& reference_variance, std::uint32_t reference_spp,
                    Runner& runner) {
   const ChannelImage reference_channels = ColourChannels(reference);
+  const std::vector<TracedFrame>* one_frame = c.frames == 1 ? &runner.OneFrame(trace, seeds) : nullptr;
   std::vector<Image> images;
-  std::vector<double> trace_s, filter_s, mse, relmse, ssim, fireflies;
+  std::vector<double> trace_s, filter_s, mse, relmse, ssim, fireflies, rays_per_pixel;
+  std::vector<std::vector<double>> relmse_by_frame(c.frames);  // per frame, each seed's
   std::map<std::string, std::vector<double>> phases;
   std::uint64_t probe_failures = 0, aliased = 0;
-  for (std::size_t k = 0; k < traced.size(); ++k) {
-    FilterConfig seeded = config;
-    seeded.seed = std::uint32_t(k + 1);
-    SeedRun run = runner.Run(c, seeded, traced[k].batch);
+  for (std::uint32_t k = 1; k <= seeds; ++k) {
+    SeedRun run = runner.Run(c, config, trace, k, one_frame ? &(*one_frame)[k - 1] : nullptr, reference_channels);
     const ChannelImage channels = ColourChannels(run.image);
     const ImageMetrics metrics = ComputeMetrics(channels, reference_channels);
-    trace_s.push_back(traced[k].seconds);
+    trace_s.push_back(run.trace_s);
     filter_s.push_back(run.filter_s);
+    rays_per_pixel.push_back(run.rays_per_pixel);
     mse.push_back(metrics.mse);
     relmse.push_back(metrics.relmse);
     ssim.push_back(SrgbSsim(channels, reference_channels));
-    fireflies.push_back(double(CountFireflies(run.image, c.spp, reference, reference_variance, reference_spp)));
+    // Against path tracing's spread at the samples a pixel holds after the frames.
+    fireflies.push_back(
+        double(CountFireflies(run.image, c.spp * c.frames, reference, reference_variance, reference_spp)));
+    for (std::uint32_t f = 0; f < c.frames; ++f) relmse_by_frame[f].push_back(run.relmse_by_frame[f]);
     for (auto it = run.phases.begin(); it != run.phases.end(); ++it) phases[it.key()].push_back(it.value());
     probe_failures += run.probe_failures;
     aliased += run.aliased_slots;
@@ -202,17 +326,34 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
                  {"method", c.method},
                  {"backend", c.backend},
                  {"spp", c.spp},
+                 {"frames", c.frames},
+                 {"trace",
+                  {{"max_depth", trace.max_depth},
+                   {"filtered_vertices", trace.filtered_vertices},
+                   {"continuation_depth", trace.continuation_depth}}},
                  {"filter", json::object()},
-                 {"seeds", traced.size()},
+                 {"seeds", seeds},
                  {"trace_s", Median(trace_s)},
                  {"filter_s", Median(filter_s)},
                  {"total_s", Median(trace_s) + Median(filter_s)},
+                 {"rays_per_pixel", mean(rays_per_pixel)},
                  {"mse", mean(mse)},
                  {"relmse", mean(relmse)},
                  {"ssim", mean(ssim)},
                  {"fireflies", mean(fireflies)},
                  {"probe_failures", probe_failures},
                  {"aliased_slots", aliased}};
+  if (c.frames > 1) {
+    json by_frame = json::array();
+    for (const std::vector<double>& seeds_relmse : relmse_by_frame) by_frame.push_back(mean(seeds_relmse));
+    result["relmse_by_frame"] = by_frame;  // the last is the relMSE
+  }
+  // The trace axes the grid set for this method (the CSV's columns), beside "trace", which holds what was traced.
+  json trace_axes = json::object();
+  if (c.max_depth) trace_axes["max-depth"] = std::to_string(*c.max_depth);
+  if (c.filtered_vertices) trace_axes["filtered-vertices"] = std::to_string(*c.filtered_vertices);
+  if (c.continuation_depth) trace_axes["continuation-depth"] = std::to_string(*c.continuation_depth);
+  result["trace_axes"] = trace_axes;
   for (const auto& [name, value] : c.filter) result["filter"][name] = value;
   for (const auto& [name, values] : phases) result["phases"][name] = Median(values);
   if (images.size() >= 2) {
@@ -230,25 +371,34 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const std::
   return result;
 }
 
-// Each finished configuration's place against time: whether it is on its method's frontier of relMSE against total
-// time (hpsf per backend), and the relMSE plain path tracing's frontier reaches in the same time, the line to beat
-// (null when no pt configuration is that fast); and the plot of them all, OUT/pareto.png.
+// What a frontier runs over: a method (a hashed one per backend) after a number of frames. Configurations after
+// other numbers of frames are not on one frontier: time per frame is the axis, and the image after 16 frames has had
+// 16 of them.
+std::string FrontierLabel(const std::string& method, const std::string& backend, std::uint32_t frames) {
+  return method + (backend == "-" ? "" : "/" + backend) +
+         (frames == 1 ? "" : ", " + std::to_string(frames) + " frames");
+}
+
+// Each finished configuration's place against time: whether it is on its frontier of relMSE against total time per
+// frame, and the relMSE plain path tracing's frontier after as many frames reaches in the same time per frame, the
+// line to beat (null when no pt configuration is that fast); and the plot of them all, OUT/pareto.png.
 void MarkFrontiers(std::vector<json>& results, const std::string& scene, const fs::path& out) {
   std::vector<TimedError> points;
   std::vector<std::size_t> at;
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (results[i].is_null()) continue;
     const json& r = results[i];
-    const std::string backend = r["backend"].get<std::string>();
-    points.push_back({r["method"].get<std::string>() + (backend == "-" ? "" : "/" + backend),
-                      r["total_s"].get<double>(), r["relmse"].get<double>()});
+    points.push_back(
+        {FrontierLabel(r["method"].get<std::string>(), r["backend"].get<std::string>(), r.value("frames", 1u)),
+         r["total_s"].get<double>(), r["relmse"].get<double>()});
     at.push_back(i);
   }
   const std::vector<bool> frontier = ParetoFrontier(points);
   for (std::size_t k = 0; k < points.size(); ++k) {
     json& r = results[at[k]];
     r["frontier"] = bool(frontier[k]);
-    const double pt = FrontierErrorAt(points, frontier, "pt", points[k].seconds);
+    const double pt =
+        FrontierErrorAt(points, frontier, FrontierLabel("pt", "-", r.value("frames", 1u)), points[k].seconds);
     r["pt_relmse_at_equal_time"] = pt < 0.0 ? json() : json(pt);
   }
   if (!points.empty()) WritePng((out / "pareto.png").string(), RenderParetoPlot(scene, points, frontier));
@@ -292,6 +442,20 @@ void PlotBiasAgainstWidth(const std::vector<json>& results, const std::string& s
   if (!series.empty()) WritePng((out / "bias-variance.png").string(), RenderBiasVariancePlot(scene, series));
 }
 
+// The third plot, OUT/frames.png: relMSE after each frame of every configuration of more than one frame; none, and
+// none left from before, without such a configuration.
+void PlotFrames(const std::vector<json>& results, const std::string& scene, const fs::path& out) {
+  std::vector<FrameSeries> series;
+  for (const json& r : results) {
+    if (r.is_null() || !r.contains("relmse_by_frame")) continue;
+    series.push_back(
+        {r["id"].get<std::string>(), r["method"].get<std::string>(), r["relmse_by_frame"].get<std::vector<double>>()});
+  }
+  std::error_code ignored;
+  fs::remove(out / "frames.png", ignored);
+  if (!series.empty()) WritePng((out / "frames.png").string(), RenderFramesPlot(scene, series));
+}
+
 std::string CsvField(const json& value) {
   if (value.is_null()) return "";
   if (value.is_string()) return value.get<std::string>();
@@ -300,12 +464,19 @@ std::string CsvField(const json& value) {
 
 void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs, const std::vector<json>& results,
                     const std::vector<GridAxis>& axes, const std::string& scene, const std::string& reference) {
-  std::vector<std::string> filter_axes;
+  // The trace axes the grid names, then its filter axes: a configuration's own value, or an empty field where its
+  // method reads none.
+  std::vector<std::string> trace_axes, filter_axes;
   for (const GridAxis& a : axes) {
-    if (a.name != "spp" && a.name != "method" && a.name != "backend") filter_axes.push_back(a.name);
+    if (a.name == "max-depth" || a.name == "filtered-vertices" || a.name == "continuation-depth") {
+      trace_axes.push_back(a.name);
+    } else if (a.name != "spp" && a.name != "frames" && a.name != "method" && a.name != "backend") {
+      filter_axes.push_back(a.name);
+    }
   }
   std::ofstream csv(out / "sweep.csv");
-  csv << "id,method,backend,spp";
+  csv << "id,method,backend,spp,frames";
+  for (const std::string& a : trace_axes) csv << "," << a;
   for (const std::string& a : filter_axes) csv << "," << a;
   const std::vector<std::string> figures = {"seeds",
                                             "trace_s",
@@ -326,6 +497,7 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
                                             "rel_reference_variance",
                                             "probe_failures",
                                             "aliased_slots",
+                                            "rays_per_pixel",
                                             "frontier",
                                             "pt_relmse_at_equal_time"};
   for (const std::string& f : figures) csv << "," << f;
@@ -335,7 +507,9 @@ void WriteSummaries(const fs::path& out, const std::vector<SweepConfig>& configs
     if (results[i].is_null()) continue;
     const json& r = results[i];
     csv << '"' << r["id"].get<std::string>() << "\"," << CsvField(r["method"]) << "," << CsvField(r["backend"]) << ","
-        << CsvField(r["spp"]);
+        << CsvField(r["spp"]) << "," << CsvField(r.value("frames", json(1)));
+    for (const std::string& a : trace_axes)
+      csv << "," << CsvField(r.value("trace_axes", json::object()).value(a, json()));
     for (const std::string& a : filter_axes) csv << "," << CsvField(r["filter"].value(a, json()));
     for (const std::string& f : figures) csv << "," << CsvField(r.value(f, json()));
     csv << "\n";
@@ -360,7 +534,11 @@ int Run(SweepOptions& o, bool options_only) {
   }
   const std::vector<SweepConfig> configs = ExpandGrid(axes);
   std::vector<FilterConfig> filter_configs;
-  for (const SweepConfig& c : configs) filter_configs.push_back(FilterConfigOf(c));
+  std::vector<TraceOptions> traces;
+  for (const SweepConfig& c : configs) {
+    filter_configs.push_back(FilterConfigOf(c));
+    traces.push_back(TraceOf(c, reference_request.trace));
+  }
   const auto [shard, shards] = ParseShard(o.shard);
   if (options_only) return kExitOk;
 
@@ -377,17 +555,18 @@ int Run(SweepOptions& o, bool options_only) {
   const fs::path out = o.out;
   fs::create_directories(out / "configs");
 
-  // Run in order of spp, so that each spp's K batches are traced once; report in grid order.
+  // Run in order of what is traced, so that the one-frame configurations that trace alike share their batches;
+  // report in grid order.
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < configs.size(); ++i) {
     if (i % shards == shard - 1) order.push_back(i);
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return configs[a].spp < configs[b].spp; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::make_tuple(configs[a].spp, configs[a].frames, TraceKey(traces[a])) <
+           std::make_tuple(configs[b].spp, configs[b].frames, TraceKey(traces[b]));
+  });
   std::vector<json> results(configs.size());
-  Runner runner;
-  std::vector<Traced> traced;
-  std::uint32_t traced_spp = 0;
+  Runner runner(scene);
   std::size_t done = 0, resumed = 0;
   const auto start = Clock::now();
   for (const std::size_t i : order) {
@@ -403,20 +582,8 @@ int Run(SweepOptions& o, bool options_only) {
         continue;
       }
     }
-    if (traced_spp != c.spp) {
-      traced.clear();
-      for (std::uint32_t k = 1; k <= o.seeds; ++k) {
-        TraceOptions trace = reference_request.trace;
-        trace.samples_per_pixel = c.spp;
-        trace.seed = k;
-        const auto trace_start = Clock::now();
-        RecordBatch batch = TraceRecords(scene, trace).batch;
-        traced.push_back({std::move(batch), SecondsSince(trace_start)});
-      }
-      traced_spp = c.spp;
-    }
-    results[i] =
-        MeasureConfig(c, filter_configs[i], traced, reference_image, reference_variance, o.reference_spp, runner);
+    results[i] = MeasureConfig(c, filter_configs[i], traces[i], o.seeds, reference_image, reference_variance,
+                               o.reference_spp, runner);
     std::ofstream(path) << json{{"description", description}, {"result", results[i]}}.dump(2) << "\n";
     ++done;
     if (terminal) {
@@ -438,6 +605,7 @@ int Run(SweepOptions& o, bool options_only) {
     }
   }
   MarkFrontiers(results, o.scene, out);
+  PlotFrames(results, o.scene, out);
   // One seed measures the error but cannot split it into bias^2 and variance: no plot, and none left from before.
   if (o.seeds >= 2) {
     PlotBiasAgainstWidth(results, o.scene, out);

@@ -6,6 +6,7 @@
 
 #include "core/backend_registry.h"
 #include "core/error.h"
+#include "tracer/path_tracer.h"
 
 namespace hpsf {
 namespace {
@@ -27,15 +28,36 @@ std::vector<std::string> Split(const std::string& text, char separator) {
   }
 }
 
+// The whole of `value` as an integer in [low, high], or nothing.
+std::optional<long> Integer(const std::string& value, long low, long high) {
+  long n = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), n);
+  if (error != std::errc() || end != value.data() + value.size() || n < low || n > high) return std::nullopt;
+  return n;
+}
+
+constexpr long kMaxFrames = 4096;
+
 void CheckValue(const std::string& axis, const std::string& value) {
   const auto refuse = [&](const std::string& why) { throw ConfigError("--grid", axis + "=" + value + ": " + why); };
   if (axis == "spp") {
-    std::uint32_t spp = 0;
-    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), spp);
-    if (error != std::errc() || end != value.data() + value.size() || spp == 0) refuse("a positive sample count");
+    if (!Integer(value, 1, 0xFFFFFFFFl)) refuse("a positive sample count");
+  } else if (axis == "frames") {
+    if (!Integer(value, 1, kMaxFrames)) refuse("a frame count in [1, " + std::to_string(kMaxFrames) + "]");
+  } else if (axis == "max-depth") {
+    if (!Integer(value, -1, 1024)) refuse("-1 (unbounded) or a depth in [0, 1024]");
+  } else if (axis == "filtered-vertices") {
+    if (!Integer(value, 1, kMaxFilteredVertices)) {
+      refuse("a count in [1, " + std::to_string(kMaxFilteredVertices) + "]");
+    }
+  } else if (axis == "continuation-depth") {
+    if (!Integer(value, 1, 1024)) refuse("a depth in [1, 1024]");
+  } else if (axis == "transport") {
+    refuse("the transport is the method's: method=nhpsf or anhpsf filter with it, hpsf without");
   } else if (axis == "method") {
-    if (value != "pt" && value != "hpsf" && value != "radius" && value != "screen") {
-      refuse("expected pt, hpsf, radius or screen");
+    if (value != "pt" && value != "hpsf" && value != "nhpsf" && value != "anhpsf" && value != "radius" &&
+        value != "screen") {
+      refuse("expected pt, hpsf, nhpsf, anhpsf, radius or screen");
     }
   } else if (axis == "backend") {
     const auto backends = RegisteredBackends();
@@ -52,6 +74,10 @@ std::vector<std::string> SweepConfig::FilterArguments() const {
   for (const auto& [name, value] : filter) words.insert(words.end(), {"--" + name, value});
   return words;
 }
+
+bool SweepConfig::Hashed() const { return method == "hpsf" || Transports(); }
+
+bool SweepConfig::Transports() const { return method == "nhpsf" || method == "anhpsf"; }
 
 std::vector<GridAxis> ParseGrid(const std::string& text) {
   std::vector<GridAxis> axes;
@@ -85,6 +111,14 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
       const std::string& value = axes[a].values[at[a]];
       if (axes[a].name == "spp") {
         c.spp = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "frames") {
+        c.frames = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "max-depth") {
+        c.max_depth = std::stoi(value);
+      } else if (axes[a].name == "filtered-vertices") {
+        c.filtered_vertices = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "continuation-depth") {
+        c.continuation_depth = std::uint32_t(std::stoul(value));
       } else if (axes[a].name == "method") {
         c.method = value;
       } else if (axes[a].name == "backend") {
@@ -94,9 +128,16 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
       }
     }
     // What the method ignores does not make another configuration.
-    if (c.method != "hpsf") c.backend = "-";
+    if (!c.Hashed()) c.backend = "-";
     if (c.method == "pt") c.filter.clear();
+    if (c.Transports()) c.max_depth.reset();  // their paths end where their filtered vertices say
+    if (!c.Transports()) c.filtered_vertices.reset();
+    if (c.method != "anhpsf") c.continuation_depth.reset();
     c.id = "method=" + c.method + " backend=" + c.backend + " spp=" + std::to_string(c.spp);
+    if (c.frames != 1) c.id += " frames=" + std::to_string(c.frames);
+    if (c.max_depth) c.id += " max-depth=" + std::to_string(*c.max_depth);
+    if (c.filtered_vertices) c.id += " filtered-vertices=" + std::to_string(*c.filtered_vertices);
+    if (c.continuation_depth) c.id += " continuation-depth=" + std::to_string(*c.continuation_depth);
     for (const auto& [name, value] : c.filter) c.id += " " + name + "=" + value;
     if (seen.insert(c.id).second) configs.push_back(std::move(c));
     std::size_t a = axes.size();

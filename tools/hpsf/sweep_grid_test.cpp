@@ -36,9 +36,45 @@ TEST(SweepGrid, WhatAMethodIgnoresIsOneConfiguration) {
   EXPECT_EQ(configs[0].FilterArguments(), (std::vector<std::string>{"--normal", "none", "--accum", "float32"}));
 }
 
+TEST(SweepGrid, FramesAndTraceAxesGoWhereTheMethodReadsThem) {
+  // frames applies to every method; max-depth to the methods tracing whole paths; filtered-vertices to the two with
+  // the transport; continuation-depth to anhpsf alone. What a method ignores merges: 2 x (2 + 2 + 2 + 2) = 16, not 32.
+  const std::vector<SweepConfig> configs = ExpandGrid(ParseGrid(
+      "frames=1,16; method=pt,hpsf,nhpsf,anhpsf; max-depth=2,8; filtered-vertices=1,2; continuation-depth=8"));
+  std::vector<std::string> ids;
+  for (const SweepConfig& c : configs) ids.push_back(c.id);
+  EXPECT_EQ(ids,
+            (std::vector<std::string>{
+                "method=pt backend=- spp=4 max-depth=2", "method=pt backend=- spp=4 max-depth=8",
+                "method=hpsf backend=reference spp=4 max-depth=2", "method=hpsf backend=reference spp=4 max-depth=8",
+                "method=nhpsf backend=reference spp=4 filtered-vertices=1",
+                "method=nhpsf backend=reference spp=4 filtered-vertices=2",
+                "method=anhpsf backend=reference spp=4 filtered-vertices=1 continuation-depth=8",
+                "method=anhpsf backend=reference spp=4 filtered-vertices=2 continuation-depth=8",
+                "method=pt backend=- spp=4 frames=16 max-depth=2", "method=pt backend=- spp=4 frames=16 max-depth=8",
+                "method=hpsf backend=reference spp=4 frames=16 max-depth=2",
+                "method=hpsf backend=reference spp=4 frames=16 max-depth=8",
+                "method=nhpsf backend=reference spp=4 frames=16 filtered-vertices=1",
+                "method=nhpsf backend=reference spp=4 frames=16 filtered-vertices=2",
+                "method=anhpsf backend=reference spp=4 frames=16 filtered-vertices=1 continuation-depth=8",
+                "method=anhpsf backend=reference spp=4 frames=16 filtered-vertices=2 continuation-depth=8"}));
+  EXPECT_EQ(configs[8].frames, 16u);
+  EXPECT_EQ(configs[0].max_depth, 2);
+  EXPECT_FALSE(configs[4].max_depth);
+  EXPECT_EQ(configs[7].filtered_vertices, 2u);
+  EXPECT_EQ(configs[7].continuation_depth, 8u);
+  EXPECT_TRUE(configs[4].Hashed() && configs[4].Transports());
+  EXPECT_TRUE(configs[2].Hashed() && !configs[2].Transports());
+  EXPECT_FALSE(configs[0].Hashed());
+  // No frames axis, or frames=1: the ids of before.
+  EXPECT_EQ(Ids("frames=1; method=pt"), (std::vector<std::string>{"method=pt backend=- spp=4"}));
+}
+
 TEST(SweepGrid, BadGridsNameTheGrid) {
   for (const char* grid :
-       {"", "spp", "spp=0", "spp=4,x", "method=kd", "backend=gpu", "spp=1; spp=2", "--jitter=1", "jitter=1,,2"}) {
+       {"", "spp", "spp=0", "spp=4,x", "method=kd", "backend=gpu", "spp=1; spp=2", "--jitter=1", "jitter=1,,2",
+        "frames=0", "frames=4097", "frames=2x", "max-depth=-2", "max-depth=1025", "filtered-vertices=0",
+        "filtered-vertices=9", "continuation-depth=0", "continuation-depth=1025", "transport=on"}) {
     SCOPED_TRACE(grid);
     try {
       ParseGrid(grid);

@@ -64,6 +64,7 @@ std::string RenderSweepHtml(const std::string& scene, const nlohmann::json& conf
     row->SetValue("ID", c.value("id", ""));
     row->SetValue("METHOD", c.value("method", ""));
     row->SetValue("SPP", Figure(c.value("spp", nlohmann::json())));
+    row->SetValue("FRAMES", Figure(c.value("frames", nlohmann::json(1))));
     row->SetValue("TOTAL_S", Figure(c.value("total_s", nlohmann::json())));
     row->SetValue("RELMSE", Figure(c.value("relmse", nlohmann::json())));
     row->SetValue("SSIM", Figure(c.value("ssim", nlohmann::json())));

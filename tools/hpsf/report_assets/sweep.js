@@ -12,7 +12,14 @@
   });
   var palette = ["#f78c29", "#59b3f2", "#73d966", "#e666bf", "#f2d94d", "#9980f2", "#4dd9c7", "#f26d6d",
                  "#b3b34d", "#c78cf2"];
-  function colourOf(method, index) { return method === "pt" ? "#d9d9d9" : palette[index % palette.length]; }
+  function colourOf(method, index) {
+    return method === "pt" || method.indexOf("pt,") === 0 ? "#d9d9d9" : palette[index % palette.length];
+  }
+  // What a frontier runs over: a method (a hashed one per backend) after a number of frames.
+  function frontierKey(c) {
+    return c.method + (c.backend === "-" ? "" : "/" + c.backend) +
+           (c.frames > 1 ? ", " + c.frames + " frames" : "");
+  }
 
   // Merges the series' x values (sorted, unique) and spreads each series' y over them.
   function aligned(seriesPoints) {
@@ -57,14 +64,13 @@
   var drawn = 0;
   var methods = [];
   configs.forEach(function (c) {
-    var key = c.method + (c.backend === "-" ? "" : "/" + c.backend);
+    var key = frontierKey(c);
     if (methods.indexOf(key) < 0) methods.push(key);
   });
   var series = [], points = [];
   methods.forEach(function (key, m) {
     var mine = configs.filter(function (c) {
-      return c.method + (c.backend === "-" ? "" : "/" + c.backend) === key &&
-             positive(c.total_s) && positive(c.relmse);
+      return frontierKey(c) === key && positive(c.total_s) && positive(c.relmse);
     });
     var colour = colourOf(key, m);
     series.push({ label: key, stroke: colour, paths: noLine, points: { show: true, size: 7, fill: colour } });
@@ -131,6 +137,26 @@
     ++drawn;
   } else {
     document.getElementById("no-width").hidden = false;
+  }
+  // relMSE after each frame, one line per configuration of more than one frame.
+  var sequences = configs.filter(function (c) { return Array.isArray(c.relmse_by_frame); });
+  if (sequences.length > 0) {
+    var frameSeries = [], framePoints = [];
+    var sharedWords = sequences[0].id.split(" ").filter(function (word) {
+      return sequences.every(function (c) { return c.id.split(" ").indexOf(word) >= 0; });
+    });
+    sequences.forEach(function (c, g) {
+      var colour = colourOf(c.method, g);
+      var label = c.id.split(" ").filter(function (word) {
+        return sharedWords.indexOf(word) < 0 && word !== "backend=-";
+      }).join(" ") || c.method;
+      frameSeries.push({ label: label, stroke: colour, width: 1.5, spanGaps: true, points: { show: false } });
+      framePoints.push(c.relmse_by_frame.map(function (e, f) { return [f + 1, positive(e) ? e : null]; }));
+    });
+    chart("frames", "frames", "relMSE", 2, frameSeries, framePoints);
+    ++drawn;
+  } else {
+    document.getElementById("no-frames").hidden = false;
   }
   document.body.setAttribute("data-charts", String(drawn));
   document.body.setAttribute("data-ready", "1");

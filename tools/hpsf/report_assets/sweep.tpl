@@ -39,11 +39,18 @@ the spp swept.</p>
 <div id="width"></div>
 <p id="no-width" hidden>The grid sweeps fewer than two filter widths.</p>
 </section>
+<section class="chart">
+<h2>relMSE against frames</h2>
+<p>One line per configuration of more than one frame: its relMSE after each frame (mean over the seeds). The
+methods of several filtered bounces gain a bounce a frame; path tracing and plain HPSF only average.</p>
+<div id="frames"></div>
+<p id="no-frames" hidden>The grid runs no configuration of more than one frame.</p>
+</section>
 <table class="configurations">
-<thead><tr><th>configuration</th><th>method</th><th>spp</th><th>s per frame</th><th>relMSE</th><th>SSIM</th><th>fireflies</th>
+<thead><tr><th>configuration</th><th>method</th><th>spp</th><th>frames</th><th>s per frame</th><th>relMSE</th><th>SSIM</th><th>fireflies</th>
 <th>bias^2</th><th>variance</th><th>on its frontier</th><th>pt's relMSE at equal time</th></tr></thead>
 <tbody>
-{{#CONFIG}}<tr><td>{{ID}}</td><td>{{METHOD}}</td><td>{{SPP}}</td><td>{{TOTAL_S}}</td><td>{{RELMSE}}</td>
+{{#CONFIG}}<tr><td>{{ID}}</td><td>{{METHOD}}</td><td>{{SPP}}</td><td>{{FRAMES}}</td><td>{{TOTAL_S}}</td><td>{{RELMSE}}</td>
 <td>{{SSIM}}</td><td>{{FIREFLIES}}</td><td>{{REL_BIAS2}}</td><td>{{REL_VARIANCE}}</td><td>{{FRONTIER}}</td><td>{{PT_AT_EQUAL_TIME}}</td></tr>
 {{/CONFIG}}
 </tbody>

@@ -1,0 +1,81 @@
+# `hpsf sweep`'s frames axis and the methods of several filtered bounces (docs/guide/accuracy-sweeps.md): a grid of
+# one and four frames over pt, hpsf, nhpsf and anhpsf. Each configuration of four frames reports its relMSE after
+# every frame: the first is that of the same method's one-frame configuration (frame 0 traced and filtered alike),
+# the last is its relMSE. Path tracing over frames is the mean of its frames' images, so four frames come out well
+# below one. nhpsf traces short paths (fewer rays per pixel than pt's deep ones), anhpsf continues them across frames
+# (more rays from the second frame on). Each configuration's frontier and path tracing's relMSE at equal time are
+# taken among the configurations after as many frames. frames.png is drawn.
+include(${CMAKE_CURRENT_LIST_DIR}/hpsf_run.cmake)
+set(dir ${OUT}/sweep_frames_cli)
+file(REMOVE_RECURSE ${dir})
+file(MAKE_DIRECTORY ${dir})
+execute_process(COMMAND ${HPSF} sweep cornell --grid "frames=1,4; method=pt,hpsf,nhpsf,anhpsf; temporal=ema:0.875"
+                        --size 24x24 --seeds 2 --reference-spp 32 --cache ${dir}/cache --out ${dir}/sweep --json
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "hpsf sweep: exit ${code}\n${out}${err}")
+endif()
+
+# The configuration of `method` after `frames` frames, as JSON, in `result`.
+function(config method frames result)
+  string(JSON count LENGTH "${out}" configurations)
+  math(EXPR last "${count} - 1")
+  foreach(i RANGE ${last})
+    string(JSON c GET "${out}" configurations ${i})
+    string(JSON m GET "${c}" method)
+    string(JSON f GET "${c}" frames)
+    if(m STREQUAL method AND f EQUAL frames)
+      set(${result} "${c}" PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  message(FATAL_ERROR "no configuration of ${method} after ${frames} frames:\n${out}")
+endfunction()
+
+foreach(method pt hpsf nhpsf anhpsf)
+  config(${method} 1 one)
+  config(${method} 4 four)
+  string(JSON one_relmse GET "${one}" relmse)
+  string(JSON four_relmse GET "${four}" relmse)
+  string(JSON first GET "${four}" relmse_by_frame 0)
+  string(JSON fourth GET "${four}" relmse_by_frame 3)
+  string(JSON frames LENGTH "${four}" relmse_by_frame)
+  if(NOT frames EQUAL 4 OR NOT first STREQUAL one_relmse OR NOT fourth STREQUAL four_relmse)
+    message(FATAL_ERROR "${method}: after frame 1 ${first} (one frame: ${one_relmse}), after frame 4 ${fourth} "
+                        "(the relMSE: ${four_relmse}), ${frames} frames reported")
+  endif()
+  string(JSON pt_at_equal_time_1 GET "${one}" pt_relmse_at_equal_time)
+  string(JSON pt_at_equal_time GET "${four}" pt_relmse_at_equal_time)
+  string(JSON rays_${method}_1 GET "${one}" rays_per_pixel)
+  string(JSON rays_${method}_4 GET "${four}" rays_per_pixel)
+  set(relmse_${method}_1 ${one_relmse})
+  set(relmse_${method}_4 ${four_relmse})
+  set(pt_at_equal_time_${method}_1 "${pt_at_equal_time_1}")
+  set(pt_at_equal_time_${method}_4 "${pt_at_equal_time}")
+endforeach()
+
+# Path tracing's mean of four frames (a quarter of the variance); nhpsf's short paths; anhpsf's continued ones.
+foreach(check "${relmse_pt_4} < 0.5 * ${relmse_pt_1}" "${rays_nhpsf_1} < ${rays_pt_1}"
+              "${rays_anhpsf_4} > ${rays_nhpsf_4}")
+  # CMake compares no floats with arithmetic: the check goes to a calculator that does.
+  execute_process(COMMAND awk "BEGIN { exit !(${check}) }" RESULT_VARIABLE failed)
+  if(failed)
+    message(FATAL_ERROR "expected ${check}")
+  endif()
+endforeach()
+# hpsf filters pt's batch (the same deep paths) and takes longer: pt's relMSE at equal time is that of pt after as
+# many frames, neither more (pt after four frames is as fast per frame and better than after one) nor fewer.
+foreach(frames 1 4)
+  if(NOT pt_at_equal_time_hpsf_${frames} STREQUAL relmse_pt_${frames})
+    message(FATAL_ERROR "hpsf after ${frames} frames: pt's relMSE at equal time ${pt_at_equal_time_hpsf_${frames}}, "
+                        "expected pt's after ${frames} frames, ${relmse_pt_${frames}}")
+  endif()
+endforeach()
+execute_process(COMMAND oiiotool --info ${dir}/sweep/frames.png OUTPUT_VARIABLE plot)
+if(NOT plot MATCHES "960 x +600, 3 channel")
+  message(FATAL_ERROR "no plot of relMSE against frames of 960x600: ${plot}")
+endif()
+file(READ ${dir}/sweep/sweep.csv csv)
+if(NOT csv MATCHES "^id,method,backend,spp,frames,temporal,")
+  message(FATAL_ERROR "sweep.csv's header: ${csv}")
+endif()
