@@ -632,7 +632,7 @@ hpsf_add_test(image_file_tests
   LABELS "unit;verdicts")
 
 hpsf_add_test(converged_reference_tests
-  SOURCES hpsf/converged_reference_test.cpp hpsf/sweep_grid_test.cpp
+  SOURCES hpsf/converged_reference_test.cpp hpsf/sweep_grid_test.cpp hpsf/frames_plot_test.cpp
   LIBRARIES hpsf_commands
   LABELS "unit;verdicts")
 # Whether a sequence's fed-back light settled (label bounces).

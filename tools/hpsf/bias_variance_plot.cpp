@@ -79,6 +79,7 @@ Rgb8Image RenderBiasVariancePlot(const std::string& title, const std::vector<Wid
   canvas.Text(12, 26, title + ": relMSE's bias^2 (filled) and variance (hollow)", 16, kText);
 
   std::vector<std::string> methods, labels;
+  std::vector<std::pair<std::string, Colour>> legend;
   for (const WidthSeries& s : series) labels.push_back(s.label);
   for (std::size_t i = 0; i < series.size(); ++i) {
     const WidthSeries& s = series[i];
@@ -92,10 +93,9 @@ Rgb8Image RenderBiasVariancePlot(const std::string& title, const std::vector<Wid
     for (float& c : colour.rgb) c *= float(std::pow(0.8, double(before)));
     DrawValues(canvas, x, y, s, s.bias2, colour, true);
     DrawValues(canvas, x, y, s, s.variance, colour, false);
-    const int ly = kMarginTop + 10 + int(i) * 20;
-    canvas.Box(kPlotWidth - kMarginRight + 20, ly - 4, kPlotWidth - kMarginRight + 28, ly + 4, colour, true);
-    canvas.Text(kPlotWidth - kMarginRight + 36, ly + 5, DistinguishingWords(s.label, labels, s.method), 12, kText);
+    legend.emplace_back(DistinguishingWords(s.label, labels, s.method), colour);
   }
+  canvas.Legend(kPlotWidth - kMarginRight + 20, kMarginTop + 10, kPlotHeight - kMarginBottom, 20, 12, legend);
   return canvas.Pixels();
 }
 

@@ -41,17 +41,22 @@ Rgb8Image RenderFramesPlot(const std::string& title, const std::vector<FrameSeri
   canvas.Text(kFramesLeft, 26, title + ": relMSE after each frame", 16, kText);
 
   std::vector<std::string> methods, labels;
+  std::vector<std::pair<std::string, Colour>> legend;
   for (const FrameSeries& s : series) labels.push_back(s.label);
   for (std::size_t i = 0; i < series.size(); ++i) {
     const FrameSeries& s = series[i];
     const auto known = std::find(methods.begin(), methods.end(), s.method);
     const std::size_t m = std::size_t(known - methods.begin());
     if (known == methods.end()) methods.push_back(s.method);
-    // A method's further series darker, as in the bias and variance plot.
-    std::size_t before = 0;
-    for (std::size_t j = 0; j < i; ++j) before += series[j].method == s.method;
+    // A method's series from its colour down to 45% of it, so that many stay apart from the background.
+    std::size_t before = 0, of_method = 0;
+    for (std::size_t j = 0; j < series.size(); ++j) {
+      of_method += series[j].method == s.method;
+      before += j < i && series[j].method == s.method;
+    }
     Colour colour = MethodColour(s.method, m);
-    for (float& c : colour.rgb) c *= float(std::pow(0.8, double(before)));
+    const double shade = of_method > 1 ? 1.0 - 0.55 * double(before) / double(of_method - 1) : 1.0;
+    for (float& c : colour.rgb) c *= float(shade);
     int last_x = -1, last_y = -1;
     for (std::size_t f = 0; f < s.relmse.size(); ++f) {
       if (!FramePlotted(s.relmse[f])) {
@@ -64,12 +69,10 @@ Rgb8Image RenderFramesPlot(const std::string& title, const std::vector<FrameSeri
       last_y = py;
     }
     if (last_x >= 0) canvas.Box(last_x - 3, last_y - 3, last_x + 3, last_y + 3, colour, true);
-    const int ly = kFramesTop + 10 + int(i) * 20;
-    canvas.Box(kFramesPlotWidth - kFramesRight + 20, ly - 4, kFramesPlotWidth - kFramesRight + 28, ly + 4, colour,
-               true);
-    canvas.Text(kFramesPlotWidth - kFramesRight + 36, ly + 5, DistinguishingWords(s.label, labels, s.method), 12,
-                kText);
+    legend.emplace_back(DistinguishingWords(s.label, labels, s.method), colour);
   }
+  canvas.Legend(kFramesPlotWidth - kFramesRight + 20, kFramesTop + 10, kFramesPlotHeight - kFramesBottom, 20, 12,
+                legend);
   return canvas.Pixels();
 }
 

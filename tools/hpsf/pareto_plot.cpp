@@ -41,6 +41,7 @@ Rgb8Image RenderParetoPlot(const std::string& title, const std::vector<TimedErro
   for (const TimedError& p : points) {
     if (std::find(methods.begin(), methods.end(), p.method) == methods.end()) methods.push_back(p.method);
   }
+  std::vector<std::pair<std::string, Colour>> legend;
   for (std::size_t m = 0; m < methods.size(); ++m) {
     const Colour colour = MethodColour(methods[m], m);
     std::vector<std::size_t> line;
@@ -61,11 +62,10 @@ Rgb8Image RenderParetoPlot(const std::string& title, const std::vector<TimedErro
       const int px = x.At(p.seconds), py = y.At(p.error), r = frontier[i] ? 4 : 2;
       canvas.Box(px - r, py - r, px + r, py + r, colour, true);
     }
-    const int ly = kTop + 10 + int(m) * 22;
-    canvas.Box(kWidth - kRight + 20, ly - 4, kWidth - kRight + 28, ly + 4, colour, true);
-    canvas.Text(kWidth - kRight + 36, ly + 5, methods[m], 14, kText);
+    legend.emplace_back(methods[m], colour);
   }
-  canvas.Text(kWidth - kRight + 20, kTop + 20 + int(methods.size()) * 22, "large: on the frontier", 12, kMuted);
+  const int below = canvas.Legend(kWidth - kRight + 20, kTop + 10, kHeight - kBottom - 22, 22, 14, legend);
+  canvas.Text(kWidth - kRight + 20, below + 10, "large: on the frontier", 12, kMuted);
   return canvas.Pixels();
 }
 

@@ -51,7 +51,25 @@ void Canvas::Box(int x0, int y0, int x1, int y1, const Colour& colour, bool fill
 
 void Canvas::Text(int x, int y, const std::string& text, int size, const Colour& colour,
                   OIIO::ImageBufAlgo::TextAlignX align) {
+  // Text wholly off the canvas is not drawn: OpenImageIO 2.4 aborts on it.
+  if (y <= 0 || y - size >= canvas_.spec().height || x < 0 || x >= canvas_.spec().width) return;
   Check(OIIO::ImageBufAlgo::render_text(canvas_, x, y, text, size, kPlotFont, {colour.rgb, 3}, align));
+}
+
+int Canvas::Legend(int x, int top, int bottom, int step, int size,
+                   const std::vector<std::pair<std::string, Colour>>& entries) {
+  const std::size_t room = std::size_t(std::max(1, (bottom - top) / step));
+  const std::size_t shown = entries.size() <= room ? entries.size() : room - 1;
+  int y = top;
+  for (std::size_t i = 0; i < shown; ++i, y += step) {
+    Box(x, y - 4, x + 8, y + 4, entries[i].second, true);
+    Text(x + 16, y + 5, entries[i].first, size, kText);
+  }
+  if (shown < entries.size()) {
+    Text(x, y + 5, "and " + std::to_string(entries.size() - shown) + " more", size, kMuted);
+    y += step;
+  }
+  return y;
 }
 
 void Canvas::DecadeGrid(const LogAxis& x, const LogAxis& y, int left, int right, int top, int bottom) {
@@ -103,7 +121,9 @@ std::string DistinguishingWords(const std::string& label, const std::vector<std:
       shared = shared && std::find(words.begin(), words.end(), word) != words.end();
     }
     if (shared || word == "backend=-") continue;
-    text += (text.empty() ? "" : " ") + word;
+    // The method and backend by their values alone ("hpsf emulated"), the rest as NAME=VALUE.
+    const bool bare = word.rfind("method=", 0) == 0 || word.rfind("backend=", 0) == 0;
+    text += (text.empty() ? "" : " ") + (bare ? word.substr(word.find('=') + 1) : word);
   }
   return text.empty() ? otherwise : text;
 }

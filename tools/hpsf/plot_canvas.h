@@ -5,6 +5,7 @@
 #define HPSF_TOOLS_HPSF_PLOT_CANVAS_H
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
@@ -41,6 +42,10 @@ class Canvas {
   void Box(int x0, int y0, int x1, int y1, const Colour& colour, bool fill);
   void Text(int x, int y, const std::string& text, int size, const Colour& colour,
             OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left);
+  // A legend at x from `top` down, a filled box in its colour and the label per entry, `step` pixels apart; the
+  // entries that do not fit above `bottom` are counted on a last line ("and 12 more"). Returns the y below it.
+  int Legend(int x, int top, int bottom, int step, int size,
+             const std::vector<std::pair<std::string, Colour>>& entries);
   // The grid line and label of each decade of x over [top, bottom], of y over [left, right].
   void DecadeGrid(const LogAxis& x, const LogAxis& y, int left, int right, int top, int bottom);
   Rgb8Image Pixels() const;
@@ -54,7 +59,8 @@ class Canvas {
 std::string Decade(int exponent);  // "1e-3"
 
 // A legend's label: `label`'s words without those every one of `labels` shares and without "backend=-" (a method
-// with no backend), so the legend names what tells the series apart; `otherwise` where nothing does.
+// with no backend), so the legend names what tells the series apart, the method and backend by their values alone;
+// `otherwise` where nothing does.
 std::string DistinguishingWords(const std::string& label, const std::vector<std::string>& labels,
                                 const std::string& otherwise);
 

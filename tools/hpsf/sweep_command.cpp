@@ -442,14 +442,24 @@ void PlotBiasAgainstWidth(const std::vector<json>& results, const std::string& s
   if (!series.empty()) WritePng((out / "bias-variance.png").string(), RenderBiasVariancePlot(scene, series));
 }
 
-// The third plot, OUT/frames.png: relMSE after each frame of every configuration of more than one frame; none, and
-// none left from before, without such a configuration.
+// The third plot, OUT/frames.png: relMSE after each frame, one line per group of configurations that differ only in
+// their frames, the longest (a shorter one's frames are its first: the same traces and tables); none, and none left
+// from before, without a configuration of more than one frame.
 void PlotFrames(const std::vector<json>& results, const std::string& scene, const fs::path& out) {
   std::vector<FrameSeries> series;
+  std::map<std::string, std::size_t> group_at;
   for (const json& r : results) {
     if (r.is_null() || !r.contains("relmse_by_frame")) continue;
-    series.push_back(
-        {r["id"].get<std::string>(), r["method"].get<std::string>(), r["relmse_by_frame"].get<std::vector<double>>()});
+    std::string label = r["id"].get<std::string>();
+    const std::string token = " frames=" + std::to_string(r["frames"].get<std::uint32_t>());
+    label.erase(label.find(token), token.size());
+    FrameSeries s{label, r["method"].get<std::string>(), r["relmse_by_frame"].get<std::vector<double>>()};
+    const auto [it, inserted] = group_at.try_emplace(label, series.size());
+    if (inserted) {
+      series.push_back(std::move(s));
+    } else if (s.relmse.size() > series[it->second].relmse.size()) {
+      series[it->second] = std::move(s);
+    }
   }
   std::error_code ignored;
   fs::remove(out / "frames.png", ignored);

@@ -138,8 +138,15 @@
   } else {
     document.getElementById("no-width").hidden = false;
   }
-  // relMSE after each frame, one line per configuration of more than one frame.
-  var sequences = configs.filter(function (c) { return Array.isArray(c.relmse_by_frame); });
+  // relMSE after each frame: one line per group of configurations that differ only in their frames, the longest
+  // (a shorter one's frames are its first).
+  var longest = {}, sequences = [];
+  configs.forEach(function (c) {
+    if (!Array.isArray(c.relmse_by_frame)) return;
+    var group = c.id.replace(" frames=" + c.frames, "");
+    if (longest[group] === undefined) { longest[group] = sequences.length; sequences.push(c); }
+    else if (c.frames > sequences[longest[group]].frames) sequences[longest[group]] = c;
+  });
   if (sequences.length > 0) {
     var frameSeries = [], framePoints = [];
     var sharedWords = sequences[0].id.split(" ").filter(function (word) {
@@ -148,7 +155,7 @@
     sequences.forEach(function (c, g) {
       var colour = colourOf(c.method, g);
       var label = c.id.split(" ").filter(function (word) {
-        return sharedWords.indexOf(word) < 0 && word !== "backend=-";
+        return sharedWords.indexOf(word) < 0 && word !== "backend=-" && word.indexOf("frames=") !== 0;
       }).join(" ") || c.method;
       frameSeries.push({ label: label, stroke: colour, width: 1.5, spanGaps: true, points: { show: false } });
       framePoints.push(c.relmse_by_frame.map(function (e, f) { return [f + 1, positive(e) ? e : null]; }));
