@@ -60,7 +60,8 @@ report(check 2 check gate.json --out gate-out --json)
 report(reference 0 reference cornell --size 16x16 --spp 32 --cache cache --json)
 report(reference 0 reference cornell --size 16x16 --spp 32 --cache cache --json)
 # The grid's semicolons would split report()'s arguments: the sweep runs here, its report checked the same way.
-execute_process(COMMAND ${HPSF} sweep cornell --grid "spp=1,2; method=pt,hpsf; backend=emulated,vulkan" --seeds 2
+execute_process(COMMAND ${HPSF} sweep cornell
+  --grid "spp=1,2; frames=1,2; method=pt,hpsf,nhpsf,anhpsf; filtered-vertices=2; backend=emulated,vulkan" --seeds 2
   --size 16x16 --reference-spp 32 --cache cache --out sweep --json OUTPUT_FILE ${OUT}/sweep.json ERROR_VARIABLE err
   RESULT_VARIABLE code WORKING_DIRECTORY ${OUT})
 execute_process(COMMAND ${CHECK} ${schemas}/sweep.schema.json ${OUT}/sweep.json OUTPUT_VARIABLE out ERROR_VARIABLE out
