@@ -1,11 +1,12 @@
 // fuzz_cli: the command line's option layer, without running a command (hpsf's commands do their work in their
 // CLI11 callbacks). The input is argv, one word per line, for an App whose subcommands render, replay,
 // crosscheck and stats register the real option groups (AddFilterOptions, AddEmulatorOptions: --mode, --warp-size,
-// --schedule, --vk-staging, --inject-defect ...) and the trace options as the commands do, and whose callbacks run the
-// real resolvers (ResolveFilterConfig, ResolveEmulatorOptions, ParseDefect, ParseSize, CheckVarianceSamples).
-// Success, CLI::ParseError (help included) and hpsf::InputError are the outcomes; anything else (another
-// exception, a crash, a sanitizer report) is a bug. Every command's own registration, diff, golden, fuzz and
-// device included, is run in options-only mode by command_options_tests (tools/hpsf/command_options_test.cpp),
+// --schedule, --vk-staging, --inject-defect ..., AddBounceOptions: --filtered-vertices, --continuation-depth) and the
+// trace options as the commands do, and whose callbacks run the real resolvers (ResolveFilterConfig,
+// ResolveEmulatorOptions, ParseDefect, ParseSize, CheckVarianceSamples, TraceScatteredVertices,
+// TraceOptions::Validate). Success, CLI::ParseError (help included) and hpsf::InputError are the outcomes; anything
+// else (another exception, a crash, a sanitizer report) is a bug. Every command's own registration, diff, golden, fuzz
+// and device included, is run in options-only mode by command_options_tests (tools/hpsf/command_options_test.cpp),
 // which needs the whole tool; this target keeps the fuzz build free of Vulkan, Embree and OpenImageIO.
 #include <cstdint>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "core/error.h"
 #include "emulated/defect_injection.h"
+#include "tools/hpsf/bounce_options.h"
 #include "tools/hpsf/emulator_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/image_size.h"
@@ -49,17 +51,20 @@ CLI::App* AddCommand(CLI::App& app, const char* name, CommandOptions& o, bool em
     c->add_option("--max-depth", o.trace.max_depth, "surface vertices per path");
     c->add_option("--filter-bounce", o.trace.filter_bounce, "filtered vertex");
     c->add_option("--threads", o.trace.threads, "tracing threads");
+    AddBounceOptions(*c, o.trace);
   }
   c->callback([&o, emulator, traced] {
     if (emulator) {
       ResolveEmulatorOptions(o.emulator);
       ParseDefect(o.emulator.defect);
     }
+    const FilterConfig config = ResolveFilterConfig(o.filter);
     if (traced) {
       ParseSize(o.size, o.trace);
       CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
+      TraceScatteredVertices(config, o.trace);
+      o.trace.Validate();
     }
-    ResolveFilterConfig(o.filter);
   });
   return c;
 }

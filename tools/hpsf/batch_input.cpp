@@ -20,10 +20,6 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
   trace.Validate();
 }
 
-void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace) {
-  trace.scattered = config.transport || trace.filtered_vertices > 1 || trace.continuation_depth > 0;
-}
-
 void CheckTransportInput(const std::string& input, std::span<const RecordBatch> frames, const FilterConfig& config) {
   if (!config.transport) return;
   for (const RecordBatch& batch : frames) {

@@ -21,17 +21,6 @@ void ResolveTraceOptions(const std::string& input, const std::string& size, Trac
 // `trace` as ResolveTraceOptions left it. A bad file or scene is an InputError naming it.
 RecordBatch LoadOrTraceBatch(const std::string& input, const TraceOptions& trace);
 
-// A scene traced for several filtered bounces (core/transport.h): with its scattered vertices where the filter
-// transports (--transport on), a path filters more than one vertex (--filtered-vertices) or continues across frames
-// (--continuation-depth).
-void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace);
-
-// --continuation-depth's help, the same on every command that traces sequences.
-inline constexpr const char* kContinuationDepthHelp =
-    "Amortized several filtered bounces (A-nHPSF): each sample also extends the path it kept from the frame before "
-    "by one filtered vertex, while the vertex's index stays below this depth; 0: off. Any change of the scene or "
-    "camera drops the kept paths";
-
 // --transport on over frames none of which carries scattered vertices (a record file made without them) would
 // transport nothing: a ConfigError naming --transport and the input.
 void CheckTransportInput(const std::string& input, std::span<const RecordBatch> frames, const FilterConfig& config);

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "tools/hpsf/backend_options.h"
 #include "tools/hpsf/batch_input.h"
+#include "tools/hpsf/bounce_options.h"
 #include "tools/hpsf/filter_options.h"
 #include "tools/hpsf/repro_bundle.h"
 #include "tracer/path_tracer.h"
@@ -132,10 +133,7 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
                 "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
       ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
-  c->add_option("--filtered-vertices", o->trace.filtered_vertices,
-                "Diffuse vertices filtered per path, from --filter-bounce on, 1..8 (several filtered bounces)")
-      ->capture_default_str();
-  c->add_option("--continuation-depth", o->trace.continuation_depth, kContinuationDepthHelp)->capture_default_str();
+  AddBounceOptions(*c, o->trace);
   c->add_option("--frames", o->frames,
                 "Check a sequence of this many frames through one table per backend (a scene: traced from --frame "
                 "on; a record file: must equal its frames; default every frame of a file, one of a scene)");

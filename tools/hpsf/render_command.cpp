@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/record_file.h"
 #include "tools/hpsf/batch_input.h"
+#include "tools/hpsf/bounce_options.h"
 #include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/filter_output.h"
 #include "tools/hpsf/frame_soundness.h"
@@ -255,13 +256,9 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--max-depth", o->trace.max_depth,
                 "Surface vertices per path, the series truncated after the last one's emission; -1: unbounded")
       ->capture_default_str();
-  c->add_option("--filtered-vertices", o->trace.filtered_vertices,
-                "Diffuse vertices filtered per path, from --filter-bounce on, 1..8: each further one a deeper record "
-                "in the table (several filtered bounces; the path then ends at the vertex the last one scatters to)")
-      ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")
       ->capture_default_str();
-  c->add_option("--continuation-depth", o->trace.continuation_depth, kContinuationDepthHelp)->capture_default_str();
+  AddBounceOptions(*c, o->trace);
   c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")
       ->capture_default_str();
   c->add_option("--frame", o->trace.frame,

@@ -1,0 +1,24 @@
+// The trace options of several filtered bounces, the same on every command that traces sequences (render,
+// crosscheck): how many vertices of a path are filtered and how deep a path is continued across frames, and the rule
+// that traces the scattered vertices the transport reads. Apart from the tracer, so that fuzz_cli reaches them.
+#ifndef HPSF_TOOLS_HPSF_BOUNCE_OPTIONS_H
+#define HPSF_TOOLS_HPSF_BOUNCE_OPTIONS_H
+
+#include <CLI/CLI.hpp>
+
+#include "core/filter_config.h"
+#include "tracer/trace_options.h"
+
+namespace hpsf {
+
+// --filtered-vertices and --continuation-depth, into `trace`.
+void AddBounceOptions(CLI::App& command, TraceOptions& trace);
+
+// A scene traced for several filtered bounces (core/transport.h): with its scattered vertices where the filter
+// transports (--transport on), a path filters more than one vertex (--filtered-vertices) or continues across frames
+// (--continuation-depth).
+void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace);
+
+}  // namespace hpsf
+
+#endif  // HPSF_TOOLS_HPSF_BOUNCE_OPTIONS_H
