@@ -42,8 +42,23 @@ Rgb8Image RenderParetoPlot(const std::string& title, const std::vector<TimedErro
     if (std::find(methods.begin(), methods.end(), p.method) == methods.end()) methods.push_back(p.method);
   }
   std::vector<std::pair<std::string, Colour>> legend;
+  // A method's colour by its name without the frames ("hpsf/emulated, 16 frames": "hpsf/emulated"), its frontiers
+  // after more frames in darker shades of it.
+  const auto base = [](const std::string& method) { return method.substr(0, method.find(", ")); };
+  std::vector<std::string> bases;
+  for (const std::string& method : methods) {
+    if (std::find(bases.begin(), bases.end(), base(method)) == bases.end()) bases.push_back(base(method));
+  }
   for (std::size_t m = 0; m < methods.size(); ++m) {
-    const Colour colour = MethodColour(methods[m], m);
+    const std::size_t b = std::size_t(std::find(bases.begin(), bases.end(), base(methods[m])) - bases.begin());
+    std::size_t before = 0, of_base = 0;
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      of_base += base(methods[k]) == bases[b];
+      before += k < m && base(methods[k]) == bases[b];
+    }
+    Colour colour = MethodColour(bases[b], b);
+    const double shade = of_base > 1 ? 1.0 - 0.55 * double(before) / double(of_base - 1) : 1.0;
+    for (float& c : colour.rgb) c *= float(shade);
     std::vector<std::size_t> line;
     for (std::size_t i = 0; i < points.size(); ++i) {
       if (frontier[i] && points[i].method == methods[m] && points[i].seconds > 0.0 && points[i].error > 0.0) {

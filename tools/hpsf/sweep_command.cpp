@@ -212,6 +212,8 @@ class Runner {
           const FrameTimings t = backend->backend->LastFrameTimings();
           if (t.keys_ms) phases["key_s"].push_back(*t.keys_ms / 1e3);  // Vulkan computes keys in its accumulate
           if (config.transport) phases["transport_s"].push_back(t.transport_ms / 1e3);
+          if (config.temporal.blends()) phases["temporal_s"].push_back(t.temporal_ms / 1e3);
+          if (config.eviction.enabled()) phases["eviction_s"].push_back(t.eviction_ms / 1e3);
           phases["accumulate_s"].push_back(t.accumulate_ms / 1e3);
           phases["resolve_s"].push_back(t.resolve_ms / 1e3);
           if (t.transfer_ms) phases["transfer_s"].push_back(*t.transfer_ms / 1e3);
