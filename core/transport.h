@@ -6,6 +6,7 @@
 #ifndef HPSF_CORE_TRANSPORT_H
 #define HPSF_CORE_TRANSPORT_H
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -50,11 +51,18 @@ using ScatteredKeyFn = KeyResult (*)(const KeyParams& params, const Record& scat
 // scattered nowhere); an InputError naming the counts otherwise.
 void CheckScatteredShape(const RecordBatch& batch);
 
-// The records and the deeper ones with their contributions transported from the cells `lookup` finds. A scattered
-// vertex is keyed like a record (its key path and jitter, from its own pixel, sample and bounce) at its own level; the
-// average is the resolve's of one cell (sums / count in double).
+// Runs body(begin, end) over ranges that cover [0, n), in any order and on any threads; empty: one range on the
+// calling thread. Each record's transport is a function of its own inputs and the table before the frame, so the
+// result is the same bits however the ranges run (the emulator passes its fast mode's ParallelFor; core itself links
+// no thread library).
+using RangeLoop = std::function<void(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body)>;
+
+// The records and the deeper ones with their contributions transported from the cells `lookup` finds (which `loop`
+// may call from several threads at once). A scattered vertex is keyed like a record (its key path and jitter, from its
+// own pixel, sample and bounce) at its own level; the average is the resolve's of one cell (sums / count in double).
 TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params, Accumulation accumulation,
-                               int fixed_point_bits, const TransportLookup& lookup, ScatteredKeyFn key = nullptr);
+                               int fixed_point_bits, const TransportLookup& lookup, ScatteredKeyFn key = nullptr,
+                               const RangeLoop& loop = {});
 
 }  // namespace hpsf
 

@@ -79,8 +79,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   EmulatorWorkspace& kept = workspace ? *workspace : scratch;
   EmulatedRun run;
   PhaseClock clock;
-  // Several filtered bounces: a host pass over the table before the frame, which no launch of the frame writes, so
-  // no schedule can change what it reads.
+  // Several filtered bounces: a host pass over the table before the frame on the fast mode's workers, which no launch
+  // of the frame writes, so no schedule can change what it reads.
   std::optional<TransportResult> transport;
   // Without a table before the frame (the first, where the transport is forced) every lookup misses.
   if (effects ? effects->transport : previous && PlanFrameEffects(config, kLaterFrame).transport) {
@@ -100,9 +100,16 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
       if (!slot) return std::nullopt;
       return FoundCell{*slot, StateOfSlot(*read, *slot)};
     };
-    transport = TransportBatch(defect == TransportDefect::kWeightTwice ? WithWeightTwice(given) : given, params,
-                               config.accumulation, read ? read->fixed_point_bits : 0, lookup,
-                               defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr);
+    // On the fast mode's workers: each record's lookup reads the dump alone.
+    const RangeLoop on_workers = [&](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
+      ParallelFor(count, 4096, body, options.threads);
+    };
+    // Bound by reference: a conditional of the copy and `given` would copy the whole batch for the correct pass too.
+    std::optional<RecordBatch> weighted_twice;
+    if (defect == TransportDefect::kWeightTwice) weighted_twice = WithWeightTwice(given);
+    transport = TransportBatch(
+        weighted_twice ? *weighted_twice : given, params, config.accumulation, read ? read->fixed_point_bits : 0,
+        lookup, defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr, on_workers);
     run.transport_read = std::move(transport->read);
     run.transport = transport->stats;
     run.timings.transport_ms = clock.LapMs();
