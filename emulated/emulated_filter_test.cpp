@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -147,6 +148,39 @@ TEST(EmulatedFilter, Float32OrderReplaysToTheSameBitsAndDiffersBetweenSeeds) {
   }
   // The emulator reproduces a GPU's order dependence: seeds that order the adds differently give other bits.
   EXPECT_GT(sums.size(), 1u);
+}
+
+// Several filtered bounces' transport runs on the fast mode's workers (core/transport.h, RangeLoop): each record's
+// lookup reads the table before the frame alone, so one worker and every core give the same transported light, reads
+// and counts, and the same frame bit for bit. Under ThreadSanitizer (scripts/run-sanitizers.sh) the workers are plain
+// threads it sees, so a lookup that wrote shared state would be a reported race.
+TEST(EmulatedFilter, TheTransportGivesTheSameBitsOnOneWorkerAndOnEveryCore) {
+  const Scene furnace = LoadScene("furnace");
+  TraceOptions trace;
+  trace.width = trace.height = 48;
+  trace.samples_per_pixel = 4;
+  trace.scattered = true;
+  trace.filtered_vertices = 2;
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 2;
+  config.capacity = 1u << 16;
+  EmulatorOptions one;
+  one.threads = 1;
+  EmulatorOptions every;  // threads 0: every core
+  const EmulatedRun first = EmulatedFilter(TraceRecords(furnace, trace).batch, config, one);
+  trace.frame = config.frame = 1;
+  const RecordBatch second = TraceRecords(furnace, trace).batch;
+  const EmulatedRun on_one = EmulatedFilter(second, config, one, AccumulateKernel, &first.table);
+  const EmulatedRun on_every = EmulatedFilter(second, config, every, AccumulateKernel, &first.table);
+  ASSERT_GT(on_one.transport.found, 1000u);
+  EXPECT_EQ(on_one.transport.found, on_every.transport.found);
+  EXPECT_EQ(on_one.transport.missed, on_every.transport.missed);
+  EXPECT_EQ(on_one.transport.scattered, on_every.transport.scattered);
+  EXPECT_EQ(on_one.transport_read, on_every.transport_read);
+  ASSERT_EQ(on_one.image.pixels.size(), on_every.image.pixels.size());
+  EXPECT_EQ(0, std::memcmp(on_one.image.pixels.data(), on_every.image.pixels.data(),
+                           on_one.image.pixels.size() * sizeof(glm::vec3)));
 }
 
 }  // namespace

@@ -555,6 +555,16 @@ int Run(SweepOptions& o, bool options_only) {
   if (options_only) return kExitOk;
 
   const Scene scene = LoadScene(o.scene);
+  // A sequence is measured against one converged image, which a scene that moves from frame to frame lacks.
+  if (!scene.animation.Static()) {
+    for (const SweepConfig& c : configs) {
+      if (c.frames > 1) {
+        throw ConfigError("--grid", c.id + ": " + o.scene +
+                                        " is animated, and a sequence's last frame is measured against the "
+                                        "converged image of frame 0; sweep its frames one at a time");
+      }
+    }
+  }
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
   const ReferenceImage reference =
       GetReferenceImage(scene, o.scene, reference_request, o.cache.empty() ? DefaultReferenceCache() : o.cache, false,
