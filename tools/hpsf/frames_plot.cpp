@@ -48,15 +48,12 @@ Rgb8Image RenderFramesPlot(const std::string& title, const std::vector<FrameSeri
     const auto known = std::find(methods.begin(), methods.end(), s.method);
     const std::size_t m = std::size_t(known - methods.begin());
     if (known == methods.end()) methods.push_back(s.method);
-    // A method's series from its colour down to 45% of it, so that many stay apart from the background.
     std::size_t before = 0, of_method = 0;
     for (std::size_t j = 0; j < series.size(); ++j) {
       of_method += series[j].method == s.method;
       before += j < i && series[j].method == s.method;
     }
-    Colour colour = MethodColour(s.method, m);
-    const double shade = of_method > 1 ? 1.0 - 0.55 * double(before) / double(of_method - 1) : 1.0;
-    for (float& c : colour.rgb) c *= float(shade);
+    const Colour colour = Shaded(MethodColour(s.method, m), before, of_method);
     int last_x = -1, last_y = -1;
     for (std::size_t f = 0; f < s.relmse.size(); ++f) {
       if (!FramePlotted(s.relmse[f])) {

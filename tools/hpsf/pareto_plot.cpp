@@ -56,9 +56,7 @@ Rgb8Image RenderParetoPlot(const std::string& title, const std::vector<TimedErro
       of_base += base(methods[k]) == bases[b];
       before += k < m && base(methods[k]) == bases[b];
     }
-    Colour colour = MethodColour(bases[b], b);
-    const double shade = of_base > 1 ? 1.0 - 0.55 * double(before) / double(of_base - 1) : 1.0;
-    for (float& c : colour.rgb) c *= float(shade);
+    const Colour colour = Shaded(MethodColour(bases[b], b), before, of_base);
     std::vector<std::size_t> line;
     for (std::size_t i = 0; i < points.size(); ++i) {
       if (frontier[i] && points[i].method == methods[m] && points[i].seconds > 0.0 && points[i].error > 0.0) {

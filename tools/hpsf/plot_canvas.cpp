@@ -22,6 +22,12 @@ Colour MethodColour(const std::string& method, std::size_t index) {
   return palette[index % (sizeof palette / sizeof palette[0])];
 }
 
+Colour Shaded(Colour colour, std::size_t index, std::size_t count) {
+  const double shade = count > 1 ? 1.0 - 0.55 * double(index) / double(count - 1) : 1.0;
+  for (float& c : colour.rgb) c *= float(shade);
+  return colour;
+}
+
 int LogAxis::At(double value) const {
   return from + int(std::lround((std::log10(value) - low) / (high - low) * (to - from)));
 }

@@ -4,6 +4,7 @@
 #ifndef HPSF_TOOLS_HPSF_PLOT_CANVAS_H
 #define HPSF_TOOLS_HPSF_PLOT_CANVAS_H
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,10 @@ inline constexpr Colour kBackground{{0.106f, 0.11f, 0.118f}}, kGrid{{0.23f, 0.24
 
 // Distinct on the dark page the HTML report uses; plain path tracing light grey, the line to beat.
 Colour MethodColour(const std::string& method, std::size_t index);
+
+// The index-th of `count` series of one colour: from the colour itself down to 45% of it, so that many stay apart
+// from the background.
+Colour Shaded(Colour colour, std::size_t index, std::size_t count);
 
 struct LogAxis {
   double low = 0.0, high = 1.0;  // decades, floor and ceiling of the data's log10
