@@ -6,7 +6,7 @@
 
 #include "core/backend_registry.h"
 #include "core/error.h"
-#include "tracer/path_tracer.h"
+#include "tracer/trace_options.h"
 
 namespace hpsf {
 namespace {
