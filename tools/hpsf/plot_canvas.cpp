@@ -16,7 +16,7 @@ constexpr const char* kPlotFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.t
 }  // namespace
 
 Colour MethodColour(const std::string& method, std::size_t index) {
-  if (method == "pt" || method.rfind("pt,", 0) == 0) return {{0.85f, 0.85f, 0.85f}};  // after some frames too
+  if (method == "pt") return {{0.85f, 0.85f, 0.85f}};
   static const Colour palette[] = {{{0.97f, 0.55f, 0.16f}}, {{0.35f, 0.70f, 0.95f}}, {{0.45f, 0.85f, 0.40f}},
                                    {{0.90f, 0.40f, 0.75f}}, {{0.95f, 0.85f, 0.30f}}, {{0.60f, 0.50f, 0.95f}}};
   return palette[index % (sizeof palette / sizeof palette[0])];
