@@ -156,6 +156,13 @@ void FilterConfig::Validate() const {
                       "chooses among a record's levels or starts a search, which needs --levels 2 or more or "
                       "--neighbour-search");
   }
+  if (second_moments && accumulation == Accumulation::kPackedDecimal) {
+    throw ConfigError("--second-moments", "needs fixed64 or float32 sums; packed-decimal keeps no room for squares");
+  }
+  if (second_moments && level_seed.enabled) {
+    throw ConfigError("--second-moments",
+                      "cannot be kept with --level-change seed: a seed carries sums and counts only");
+  }
   if (neighbour_search && min_count == 1) {
     throw ConfigError("--neighbour-search", "searches cells below --min-count, which needs --min-count 2 or more");
   }
@@ -184,6 +191,7 @@ std::string FilterConfig::ToString() const {
          (levels != 1 ? " levels: " + std::to_string(levels) : std::string()) +
          (min_count != 1 ? " min_count: " + std::to_string(min_count) : std::string()) +
          (neighbour_search ? " neighbour_search: on" : std::string()) + (transport ? " transport: on" : std::string()) +
+         (second_moments ? " second_moments: on" : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 

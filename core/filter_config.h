@@ -66,6 +66,9 @@ struct FilterConfig {
   // Several filtered bounces (core/transport.h): from a sequence's second frame on, each record with a scattered
   // vertex adds the previous frame's average at that vertex's cell, carried back by its transport weight
   bool transport = false;
+  // --second-moments: each slot also keeps the sum of its records' squared brightness, from which a cell's variance
+  // follows (core/shared/second_moment.h)
+  bool second_moments = false;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // Throws ConfigError for the first invalid option.

@@ -21,6 +21,9 @@ struct TableCell {
   std::array<std::uint32_t, 6> key;
   std::array<std::uint64_t, 3> fixed_sum{};  // fixed64: exact sums with F fraction bits; packed-decimal: at 1000
   std::array<float, 3> float_sum{};          // float32: sums in record order
+  // --second-moments (core/shared/second_moment.h): the sum of the records' squared brightness, fixed64 at 2^G
+  std::uint64_t fixed_square = 0;
+  float float_square = 0.0f;
   std::uint64_t count = 0;
   std::uint32_t last_seen = 0;  // the last frame a record was added to the cell (core/eviction.h)
   std::uint32_t frames = 0;     // packed-decimal: the frames the cell has lived, saturating (core/shared/packed_sums.h)
@@ -37,6 +40,7 @@ struct FilterStats {
   std::uint64_t max_records_per_cell = 0;
   double mean_records_per_cell = 0.0;
   int fixed_point_bits = 0;             // F of fixed64 for this batch
+  int square_bits = 0;                  // G of fixed64's square sums, with --second-moments
   std::uint64_t fixed_point_wraps = 0;  // integer adds whose cell sum wrapped (fixed64: a sequence outgrew its F)
   std::uint64_t count_wraps = 0;        // adds whose count wrapped (64-bit, D12; packed-decimal's 24 bits)
   std::uint64_t cells_halved = 0;       // packed-decimal cells the frame's settle halved

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/input_check.h"
 #include "core/shared/fixed_point.h"
+#include "core/shared/second_moment.h"
 
 namespace hpsf {
 namespace {
@@ -121,6 +122,87 @@ int ChooseFixedPointBitsOf(std::span<const glm::vec3> contributions, const Range
   while (f > shared::kFixedPointBitsMin && !fits(f)) --f;
   while (f < shared::kFixedPointBitsMax && fits(f + 1)) ++f;
   return f;
+}
+
+int ChooseSquareBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner, std::uint32_t frames) {
+  if (frames == 0) throw ConfigError("--frames", "must be at least 1");
+  const std::uint64_t limit = (std::uint64_t(1) << 63) / frames;
+  const RangeRunner run = runner ? runner : RangeRunner([](std::size_t n, const auto& work) { work(0, n); });
+  std::mutex merge;
+  // Exact test of one G: y^2 * 2^G is exact in double (y^2 < 2^260, G >= -126 keeps it normal), and so its ceiling.
+  auto fits = [&](int g) {
+    const double scale = std::ldexp(1.0, g);
+    std::atomic<bool> overflow{false};
+    unsigned __int128 total = 0;
+    run(contributions.size(), [&](std::size_t begin, std::size_t end) {
+      std::uint64_t part = 0;
+      for (std::size_t i = begin; i < end && !overflow; ++i) {
+        const double y = shared::Brightness(contributions[i]);
+        const double ceiling = std::ceil(y * y * scale);
+        if (ceiling >= 0x1p63) {
+          overflow = true;
+          return;
+        }
+        part += static_cast<std::uint64_t>(ceiling);  // both terms below 2^63: no wrap
+        if (part >= limit) {
+          overflow = true;
+          return;
+        }
+      }
+      const std::lock_guard lock(merge);
+      total += part;
+    });
+    return !overflow && total < limit;
+  };
+  // A binary search: fits is monotone in G (a larger scale never shrinks a ceiling).
+  if (!fits(shared::kFixedPointBitsMin)) return shared::kFixedPointBitsMin;
+  int low = shared::kFixedPointBitsMin, high = shared::kFixedPointBitsMax;
+  while (low < high) {
+    const int middle = low + (high - low + 1) / 2;
+    if (fits(middle)) {
+      low = middle;
+    } else {
+      high = middle - 1;
+    }
+  }
+  return low;
+}
+
+int ChooseSquareBits(std::span<const Record> records, std::uint32_t frames) {
+  std::vector<glm::vec3> contributions;
+  for (const Record& r : records) {
+    if (EntersTable(r)) contributions.push_back(glm::vec3(r.contribution));
+  }
+  return ChooseSquareBitsOf(contributions, {}, frames);
+}
+
+void RequireSquaresConvert(std::span<const glm::vec3> contributions, int square_bits) {
+  double largest = 0.0;
+  for (const glm::vec3& c : contributions) largest = std::max(largest, shared::Brightness(c));
+  // y^2 * 2^G rounds below 2^64 when it lies below 2^64 - 2^11, the largest double under 2^64.
+  if (std::ldexp(largest * largest, square_bits) < 0x1p64) return;
+  throw FixedPointRangeError("--second-moments", "G " + std::to_string(square_bits) +
+                                                     ", the square sums' scale the table keeps, is too large for a "
+                                                     "brightness of " +
+                                                     std::to_string(largest) +
+                                                     " in this frame: its square reaches 2^64, past fixed64's range; "
+                                                     "give more --frames, which leaves G more room");
+}
+
+void RequireSquaresConvert(std::span<const Record> records, int square_bits) {
+  std::vector<glm::vec3> contributions;
+  for (const Record& r : records) {
+    if (EntersTable(r)) contributions.push_back(glm::vec3(r.contribution));
+  }
+  RequireSquaresConvert(contributions, square_bits);
+}
+
+void RequireFloat32SquaresRange(int square_bits) {
+  if (square_bits >= kFloat32FixedPointBitsMin) return;
+  throw ConfigError("--second-moments", "float32 cannot hold this batch's squares: their total is about 2^" +
+                                            std::to_string(62 - square_bits) +
+                                            " or more, so a cell's float32 sum of squares could overflow to Inf; use "
+                                            "fixed64, or --second-moments off");
 }
 
 void RequireFloat32Range(int fixed_point_bits) {

@@ -55,6 +55,20 @@ inline constexpr int kFloat32FixedPointBitsMin = -64;
 // Throws ConfigError naming --accum when fixed_point_bits, the batch's F, is below kFloat32FixedPointBitsMin.
 void RequireFloat32Range(int fixed_point_bits);
 
+// --second-moments: G, the fraction bits of fixed64's square sums (core/shared/second_moment.h), chosen as F is: the
+// largest G in [-126, 126] such that the sum of ceil(y^2 * 2^G) over the batch, y = r + g + b in double, stays below
+// 2^63 / frames. float32 keeps the same G for its range check. Kept for a sequence's later frames like F.
+int ChooseSquareBitsOf(std::span<const glm::vec3> contributions, const RangeRunner& runner = {},
+                       std::uint32_t frames = 1);
+int ChooseSquareBits(std::span<const Record> records, std::uint32_t frames = 1);
+// Every square converts at G: round(y^2 * 2^G) lies below 2^64. A FixedPointRangeError naming --second-moments
+// otherwise (a later frame much brighter than the one that chose G; the first always fits).
+void RequireSquaresConvert(std::span<const glm::vec3> contributions, int square_bits);
+void RequireSquaresConvert(std::span<const Record> records, int square_bits);
+// float32 squares: a ConfigError naming --second-moments when G is below kFloat32FixedPointBitsMin, where a cell's
+// float sum of squares could reach Inf.
+void RequireFloat32SquaresRange(int square_bits);
+
 // Back to a real number: value * 2^-F in double (exact below 2^53).
 double FromFixedPoint(std::uint64_t value, int fraction_bits);
 

@@ -39,6 +39,12 @@ struct HashTableDump {
   std::vector<std::array<std::uint64_t, 3>> fixed_sums;  // fixed64, and packed-decimal's 32-bit words
   std::vector<std::array<float, 3>> float_sums;          // float32
   std::vector<std::uint64_t> counts;                     // packed-decimal: the count word's 24-bit count
+  // --second-moments (core/shared/second_moment.h): per slot, the sum of its records' squared brightness, fixed64
+  // at 2^G or float32. Empty otherwise.
+  bool second_moments = false;
+  int square_bits = 0;
+  std::vector<std::uint64_t> fixed_squares;
+  std::vector<float> float_squares;
   // packed-decimal (core/shared/packed_sums.h): the frame counter of each slot's count word. Empty otherwise.
   std::vector<std::uint32_t> frame_counters;
   // With eviction (core/eviction.h): the last frame a record was added to each slot. A slot whose tag is set

@@ -73,6 +73,14 @@ CellState BlendCellState(const shared::TemporalParams& params, Accumulation sums
   if (blend.integrated) return accumulated;
   CellState blended;
   blended.count = blend.count & count_mask;
+  const double square =
+      shared::BlendSquare(blend, integer ? double(before.fixed_square) : double(before.float_square), before.count,
+                          integer ? double(accumulated.fixed_square - before.fixed_square)
+                                  : double(accumulated.float_square - before.float_square),
+                          (accumulated.count - before.count) & count_mask);
+  const double rounded_square = shared::RoundHalfEvenNonNegative(square);
+  blended.fixed_square = integer ? (rounded_square < 0x1p64 ? std::uint64_t(rounded_square) : ~std::uint64_t(0)) : 0;
+  blended.float_square = integer ? 0.0f : float(square);
   for (int c = 0; c < 3; ++c) {
     if (integer) {
       // Saturated: a broken kernel's table (D10) can ask for sums beyond 2^64, whose conversion would be undefined.

@@ -45,6 +45,9 @@ struct CellState {
   std::array<std::uint64_t, 3> fixed_sum{};
   std::array<float, 3> float_sum{};
   std::uint64_t count = 0;
+  // --second-moments: the square sum (core/shared/second_moment.h), blended as the sums are
+  std::uint64_t fixed_square = 0;
+  float float_square = 0.0f;
 };
 
 // The cell after the frame's blend, from the cell before the frame (count >= 1) and after the frame's accumulate

@@ -6,6 +6,7 @@
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/levels.h"
+#include "core/shared/second_moment.h"
 
 namespace hpsf {
 
@@ -75,6 +76,14 @@ simt::KernelTask AccumulateLevels(simt::ThreadContext& ctx, const AccumulateArgs
         co_await ctx.AtomicAddFloat(b.sums, std::uint64_t(slot) * 3 + c,
                                     std::bit_cast<std::uint32_t>(r.contribution[c]));
       }
+    }
+    if (b.keeps_squares && IntegerSums(args.accumulation)) {
+      const std::uint64_t add = shared::SquareToFixedPoint(glm::vec3(r.contribution), args.square_scale);
+      const std::uint64_t old = co_await ctx.AtomicAdd(b.squares, slot, add);
+      if (SumAddWrapped(args.accumulation, old, add)) co_await ctx.AtomicAdd(b.wraps, 0, 1);
+    } else if (b.keeps_squares) {
+      co_await ctx.AtomicAddFloat(b.squares, slot,
+                                  std::bit_cast<std::uint32_t>(shared::SquareAsFloat(glm::vec3(r.contribution))));
     }
     // A count of 2^64 - 1 wraps to 0 (D12): no frame sequence gets there, but a table loaded with one can.
     // packed-decimal's count word adds 1 too; its 24-bit count carries into the frame counter at 2^24.

@@ -28,6 +28,10 @@ struct TableBuffers {
   std::uint32_t placements;  // 32-bit, one per record and level, level-major (core/shared/levels.h)
   std::uint32_t wraps;       // 64-bit, two words: fixed64 adds whose sum wrapped, adds whose count wrapped
   std::uint32_t last_seen;   // 32-bit per slot, with eviction only: the last frame a record was added
+  // With --second-moments (core/shared/second_moment.h): per slot, the sum of squared brightness, 64-bit (fixed64,
+  // at 2^G) or 32-bit float bits (float32).
+  bool keeps_squares = false;
+  std::uint32_t squares = 0;
 };
 
 struct TemporalArgs;  // emulated/temporal_kernel.h
@@ -45,6 +49,7 @@ struct AccumulateArgs {
   std::uint32_t fingerprint_bits = 32;  // the keys' fingerprints are reduced already; broken kernels reduce their own
   Accumulation accumulation = Accumulation::kFixed64;
   float fixed_point_scale = 1.0f;  // 2^F, or 1000 for packed-decimal (SumScale)
+  double square_scale = 1.0;       // 2^G, with --second-moments and fixed64
   bool track_last_seen = false;    // with eviction: store `frame` into buffers.last_seen of every slot added to
   std::uint32_t frame = 0;
   bool claim_tombstones = false;  // with priority eviction (core/shared/table_params.h)

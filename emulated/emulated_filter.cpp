@@ -152,6 +152,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(table.fixed_point_bits);
   if (wide_sums) RequireFixedPointConverts(entering, table.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(entering);
+  table.second_moments = config.second_moments;
+  if (config.second_moments) {
+    table.square_bits = previous ? previous->square_bits : ChooseSquareBitsOf(entering, AllCores, config.frames);
+    if (wide_sums) RequireSquaresConvert(entering, table.square_bits);
+    if (!fixed) RequireFloat32SquaresRange(table.square_bits);
+  }
 
   run.timings.fixed_point_ms = clock.LapMs();
   simt::DeviceMemory memory;
@@ -180,6 +186,12 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   // Level-major: record i's level k placement at k n + i (core/shared/levels.h).
   b.placements = memory.Allocate32("placements", std::size_t(n) * config.levels, std::move(kept.placements));
   b.wraps = memory.Allocate64("wraps", 2);
+  if (config.second_moments) {
+    b.keeps_squares = true;
+    b.squares =
+        wide_sums ? memory.Allocate64("squares", config.capacity) : memory.Allocate32("squares", config.capacity);
+    args.square_scale = std::ldexp(1.0, table.square_bits);
+  }
   const FrameEffects planned = effects ? *effects : PlanFrameEffects(config, previous ? kLaterFrame : 0);
   // Last-seen frames are tracked whenever eviction is asked for; the pass runs where the plan says.
   const bool tracking = config.eviction.enabled();
@@ -198,6 +210,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
                                        : memory.Allocate32("previous_sums", std::size_t(config.capacity) * 3);
     temporal.previous_counts = packed ? memory.Allocate32("previous_counts", config.capacity)
                                       : memory.Allocate64("previous_counts", config.capacity);
+    if (config.second_moments) {
+      temporal.previous_squares = wide_sums ? memory.Allocate64("previous_squares", config.capacity)
+                                            : memory.Allocate32("previous_squares", config.capacity);
+    }
     args.temporal = &temporal;
   }
   if (previous) {
@@ -206,6 +222,23 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     }
     if (previous->key_identity != config.key_identity) {
       throw ConfigError("--key-identity", "the previous frame's table stores other identities; start a new sequence");
+    }
+    if (previous->second_moments != config.second_moments) {
+      throw ConfigError("--second-moments", "the previous frame's table keeps other moments; start a new sequence");
+    }
+    if (config.second_moments &&
+        (wide_sums ? previous->fixed_squares.size() : previous->float_squares.size()) != config.capacity) {
+      throw InputError("the previous frame's table has no square sum per slot");
+    }
+    if (config.second_moments && wide_sums) {
+      const std::span<std::uint64_t> squares = memory.Words64(b.squares);
+      std::copy(previous->fixed_squares.begin(), previous->fixed_squares.end(), squares.begin());
+      if (blending) std::copy(squares.begin(), squares.end(), memory.Words64(temporal.previous_squares).begin());
+    } else if (config.second_moments) {
+      const std::span<std::uint32_t> squares = memory.Words32(b.squares);
+      for (std::size_t s = 0; s < config.capacity; ++s)
+        squares[s] = std::bit_cast<std::uint32_t>(previous->float_squares[s]);
+      if (blending) std::copy(squares.begin(), squares.end(), memory.Words32(temporal.previous_squares).begin());
     }
     if (full_keys) {
       std::copy(previous->tags.begin(), previous->tags.end(), memory.Words64(b.tags).begin());
@@ -474,6 +507,15 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
       }
     }
   });
+  table.fixed_squares.clear();
+  table.float_squares.clear();
+  if (config.second_moments && wide_sums) {
+    table.fixed_squares = memory.TakeWords64(b.squares);
+  } else if (config.second_moments) {
+    const std::span<const std::uint32_t> words = std::as_const(memory).Words32(b.squares);
+    table.float_squares.resize(config.capacity);
+    for (std::size_t s = 0; s < config.capacity; ++s) table.float_squares[s] = std::bit_cast<float>(words[s]);
+  }
   if (wide_sums) {
     kept.device_sums64 = memory.TakeWords64(b.sums);
   } else {

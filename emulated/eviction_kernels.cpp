@@ -54,6 +54,7 @@ simt::KernelTask EvictKernel(simt::ThreadContext& ctx, const EvictionArgs& args)
     if (!args.eviction.Evicts(args.frame, last_seen)) co_return;
   }
   for (int c = 0; c < 3; ++c) co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c, 0);
+  if (b.keeps_squares) co_await ctx.Store(b.squares, slot, 0);
   co_await ctx.Store(b.counts, slot, 0);
   if (args.eviction.by_priority()) co_await ctx.Store(b.tags, slot, shared::kTombstoneTag);
   co_await ctx.AtomicAdd(args.evicted, 0, 1);

@@ -37,7 +37,19 @@ simt::KernelTask TemporalKernel(simt::ThreadContext& ctx, const TemporalArgs& ar
     before.float_sum[c] = std::bit_cast<float>(std::uint32_t(old_sum));
     accumulated.float_sum[c] = std::bit_cast<float>(std::uint32_t(new_sum));
   }
+  if (b.keeps_squares) {
+    const std::uint64_t old_square = co_await ctx.Load(args.previous_squares, slot);
+    const std::uint64_t new_square = co_await ctx.Load(b.squares, slot);
+    before.fixed_square = old_square;
+    accumulated.fixed_square = new_square;
+    before.float_square = std::bit_cast<float>(std::uint32_t(old_square));
+    accumulated.float_square = std::bit_cast<float>(std::uint32_t(new_square));
+  }
   const CellState blended = BlendCellState(args.params, args.accumulation, before, accumulated);
+  if (b.keeps_squares) {
+    co_await ctx.Store(b.squares, slot,
+                       integer ? blended.fixed_square : std::bit_cast<std::uint32_t>(blended.float_square));
+  }
   for (int c = 0; c < 3; ++c) {
     const std::uint64_t word = integer ? blended.fixed_sum[c] : std::bit_cast<std::uint32_t>(blended.float_sum[c]);
     co_await ctx.Store(b.sums, std::uint64_t(slot) * 3 + c, word);

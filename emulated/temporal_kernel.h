@@ -21,10 +21,11 @@ struct TemporalArgs {
   std::uint32_t capacity = 0;
   Accumulation accumulation = Accumulation::kFixed64;
   shared::TemporalParams params{};
-  TableBuffers buffers{};             // the current table: sums and counts
-  std::uint32_t previous_sums = 0;    // the table before the frame, laid out as buffers.sums
-  std::uint32_t previous_counts = 0;  // and buffers.counts
-  OccupiedList list{};                // with compaction: one thread per entry
+  TableBuffers buffers{};              // the current table: sums and counts
+  std::uint32_t previous_sums = 0;     // the table before the frame, laid out as buffers.sums
+  std::uint32_t previous_counts = 0;   // and buffers.counts
+  std::uint32_t previous_squares = 0;  // and buffers.squares, where it keeps them
+  OccupiedList list{};                 // with compaction: one thread per entry
 };
 
 simt::KernelTask TemporalKernel(simt::ThreadContext& ctx, const TemporalArgs& args);

@@ -1,6 +1,7 @@
 #include "reference/reference_filter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <utility>
@@ -17,6 +18,7 @@
 #include "core/shared/fixed_point.h"
 #include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
+#include "core/shared/second_moment.h"
 #include "core/temporal.h"
 #include "core/transport.h"
 
@@ -49,11 +51,14 @@ void BlendCells(const FilterConfig& config, const std::vector<TableCell>& before
     const TableCell& old = before[c];
     TableCell& cell = result.cells[c];
     if (old.count == 0 || cell.count == old.count) continue;
-    const CellState blended = BlendCellState(params, config.accumulation, {old.fixed_sum, old.float_sum, old.count},
-                                             {cell.fixed_sum, cell.float_sum, cell.count});
+    const CellState blended = BlendCellState(
+        params, config.accumulation, {old.fixed_sum, old.float_sum, old.count, old.fixed_square, old.float_square},
+        {cell.fixed_sum, cell.float_sum, cell.count, cell.fixed_square, cell.float_square});
     cell.fixed_sum = blended.fixed_sum;
     cell.float_sum = blended.float_sum;
     cell.count = blended.count;
+    cell.fixed_square = blended.fixed_square;
+    cell.float_square = blended.float_square;
   }
 }
 
@@ -108,7 +113,8 @@ void SettleCells(FilterResult& result) {
 
 // Adds record r to the cell of `key` (new or not), as the device adds it; returns the cell's index.
 std::uint32_t AddToCell(const KeyResult& key, const Record& r, const FilterConfig& config, float scale,
-                        std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key, FilterResult& result) {
+                        double square_scale, std::map<std::array<std::uint32_t, 6>, std::uint32_t>& cell_of_key,
+                        FilterResult& result) {
   const bool fixed = IntegerSums(config.accumulation);
   const bool packed = config.accumulation == Accumulation::kPackedDecimal;
   FilterStats& stats = result.stats;
@@ -127,6 +133,12 @@ std::uint32_t AddToCell(const KeyResult& key, const Record& r, const FilterConfi
       cell.float_sum[c] += r.contribution[c];
     }
   }
+  if (config.second_moments && fixed) {
+    const std::uint64_t add = shared::SquareToFixedPoint(glm::vec3(r.contribution), square_scale);
+    cell.fixed_square += add;
+    stats.fixed_point_wraps += cell.fixed_square < add;
+  }
+  if (config.second_moments && !fixed) cell.float_square += shared::SquareAsFloat(glm::vec3(r.contribution));
   if (packed) {  // the count's 24 bits carry into the frame counter, as the device's add of 1 to the word
     const std::uint32_t word = shared::PackCountWord(std::uint32_t(cell.count), cell.frames) + 1u;
     cell.count = shared::PackedCount(word);
@@ -205,6 +217,12 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(stats.fixed_point_bits);
   if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(all, stats.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(all);
+  if (config.second_moments) {
+    stats.square_bits = previous ? previous->stats.square_bits : ChooseSquareBits(all, config.frames);
+    if (fixed) RequireSquaresConvert(all, stats.square_bits);
+    if (!fixed) RequireFloat32SquaresRange(stats.square_bits);
+  }
+  const double square_scale = std::ldexp(1.0, stats.square_bits);
 
   result.placement.assign(all.size(), kNoCell);
   result.coarser_placement.assign(std::size_t(config.levels - 1) * all.size(), kNoCell);
@@ -227,7 +245,7 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     }
     for (std::uint32_t k = 0; k < config.levels; ++k) {
       const std::uint32_t cell =
-          AddToCell(shared::KeyAtLevel(params, keys[i], k), r, config, scale, cell_of_key, result);
+          AddToCell(shared::KeyAtLevel(params, keys[i], k), r, config, scale, square_scale, cell_of_key, result);
       (k == 0 ? result.placement[i] : result.coarser_placement[std::size_t(k - 1) * all.size() + i]) = cell;
     }
   }

@@ -32,6 +32,8 @@ struct TemporalBlend {
   dvec3 sum;        // the cell's new sums, to be rounded to the table's type (unless integrated)
   uint64_t count;   // the cell's new count
   bool integrated;  // alpha is the integration's: the cell keeps its exact sums, S_old + S_new
+  double alpha;     // the history's weight, and the count as a double: what BlendSquare blends with
+  double weight;
 };
 
 // The largest relative change of a channel between the history's average h and the frame's f, in [0, 1]: 0 when
@@ -61,6 +63,8 @@ HPSF_FN TemporalBlend BlendCell(TemporalParams p, dvec3 old_sum, uint64_t old_co
   if (p.mode == kTemporalEma && p.alpha < integration) alpha = p.alpha;
   if (p.mode == kTemporalAdaptive) alpha = integration * (double(1.0) - TemporalChange(h, f));
   TemporalBlend b;
+  b.alpha = alpha;
+  b.weight = w + n;
   if (alpha == integration && capped == old_count) {
     b.sum = old_sum + frame_sum;
     b.count = old_count + frame_count;
@@ -78,7 +82,20 @@ HPSF_FN TemporalBlend BlendCell(TemporalParams p, dvec3 old_sum, uint64_t old_co
   b.sum = blended * weight;
   b.count = uint64_t(weight);
   b.integrated = false;
+  b.weight = weight;
   return b;
+}
+
+// --second-moments: a cell's square sum (core/shared/second_moment.h) blended as its sums were by b: the mean square
+// alpha E_old[y^2] + (1 - alpha) E_frame[y^2] over b's count, or the exact S2_old + S2_new when b integrated.
+HPSF_FN double BlendSquare(TemporalBlend b, double old_square, uint64_t old_count, double frame_square,
+                           uint64_t frame_count) {
+  if (b.integrated) return old_square + frame_square;
+  HPSF_PRECISE double h = old_square / double(old_count);
+  HPSF_PRECISE double f = frame_square / double(frame_count);
+  HPSF_PRECISE double blended = b.alpha * h + (double(1.0) - b.alpha) * f;
+  HPSF_PRECISE double square = blended * b.weight;
+  return square;
 }
 
 HPSF_SHARED_END

@@ -98,6 +98,11 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "vertex's cell, times its transport weight, so K frames hold up to K + 1 bounces (a scene is "
                   "traced with its scattered vertices; a record file must carry them)")
       ->capture_default_str();
+  command
+      .add_option("--second-moments", o.second_moments,
+                  "on or off: each slot also keeps the sum of its records' squared brightness (r + g + b)^2, so the "
+                  "table holds each cell's variance (fixed64 at a scale 2^G of its own, exact; float32 as floats)")
+      ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction, neighbour-search, transport; repeatable): the same bits, at the pass's cost");
@@ -117,6 +122,10 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     throw ConfigError("--transport", "expected on or off; got '" + o.transport + "'");
   }
   config.transport = o.transport == "on";
+  if (o.second_moments != "on" && o.second_moments != "off") {
+    throw ConfigError("--second-moments", "expected on or off; got '" + o.second_moments + "'");
+  }
+  config.second_moments = o.second_moments == "on";
   if (o.fixed_point_bits != "auto") {
     int bits = 0;
     const char* end = o.fixed_point_bits.data() + o.fixed_point_bits.size();
@@ -190,6 +199,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"min_count", c.min_count},
           {"neighbour_search", c.neighbour_search},
           {"transport", c.transport},
+          {"second_moments", c.second_moments},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

@@ -21,6 +21,7 @@ struct FilterOptions {
   std::string lod = "on";
   std::string neighbour_search = "off";  // --neighbour-search: on or off
   std::string transport = "off";         // --transport: on or off
+  std::string second_moments = "off";    // --second-moments: on or off
   std::string accumulation = "fixed64";
   std::string fixed_point_bits = "auto";
   std::string eviction = "none";

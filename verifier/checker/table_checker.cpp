@@ -12,6 +12,7 @@
 #include "core/shared/fixed_point.h"
 #include "core/shared/levels.h"
 #include "core/shared/packed_sums.h"
+#include "core/shared/second_moment.h"
 
 namespace hpsf {
 namespace {
@@ -60,11 +61,18 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
   CellState accumulated = before;
   accumulated.count += here.size();
   std::array<double, 3> frame_exact{};
+  double frame_square_exact = 0.0;
+  const double square_scale = std::ldexp(1.0, t.square_bits);
   for (std::uint32_t i : here) {
+    const glm::vec3 contribution(RecordOf(in, i).contribution);
     for (int c = 0; c < 3; ++c) {
-      const float v = RecordOf(in, i).contribution[c];
+      const float v = contribution[c];
       accumulated.fixed_sum[c] += shared::ToFixedPoint(v, scale);
       frame_exact[c] += double(v);
+    }
+    if (t.second_moments) {
+      accumulated.fixed_square += shared::SquareToFixedPoint(contribution, square_scale);
+      frame_square_exact += double(shared::SquareAsFloat(contribution));
     }
   }
   if (fixed) {
@@ -73,6 +81,12 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
       fail("count " + std::to_string(t.counts[s]) + ", sums " + SumsText(t.fixed_sums[s]) + "; the blend of count " +
            std::to_string(before.count) + " + " + std::to_string(here.size()) + " gives count " +
            std::to_string(expected.count) + ", sums " + SumsText(expected.fixed_sum));
+    }
+    if (t.second_moments && t.fixed_squares[s] != expected.fixed_square) {
+      violations.push_back({TableInvariant::kSquareSumMismatch, s, RecordsOf(in, here),
+                            "square sum " + std::to_string(t.fixed_squares[s]) + "; the blend of count " +
+                                std::to_string(before.count) + " + " + std::to_string(here.size()) + " gives " +
+                                std::to_string(expected.fixed_square)});
     }
     return;
   }
@@ -104,6 +118,18 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
       fail("channel " + std::to_string(c) + ": average " + std::to_string(average) + " outside [" +
            std::to_string(low) + ", " + std::to_string(high) + "], the history's and the frame's");
     }
+  }
+  if (!t.second_moments) return;
+  // The mean square, held as the averages are: between the history's and the frame's.
+  const double history = double(before.float_square) / double(before.count);
+  const double error = gamma * (double(before.float_square) + frame_square_exact);
+  const double low = std::min(history, (frame_square_exact - error) / double(n)) * (1.0 - 4 * u);
+  const double high = std::max(history, (frame_square_exact + error) / double(n)) * (1.0 + 4 * u);
+  const double mean_square = t.counts[s] ? double(t.float_squares[s]) / double(t.counts[s]) : 0.0;
+  if (!(mean_square >= low && mean_square <= high)) {
+    violations.push_back({TableInvariant::kSquareSumMismatch, s, RecordsOf(in, here),
+                          "mean square " + std::to_string(mean_square) + " outside [" + std::to_string(low) + ", " +
+                              std::to_string(high) + "], the history's and the frame's"});
   }
 }
 
@@ -304,6 +330,8 @@ const char* ToString(TableInvariant invariant) {
       return "packed-decimal slot differs from the settle of its exact sums";
     case TableInvariant::kLevelNesting:
       return "coarser cell differs from the children that reach it";
+    case TableInvariant::kSquareSumMismatch:
+      return "square sum differs from the records placed";
   }
   return "?";
 }
@@ -328,6 +356,16 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   const bool packed = t.accumulation == Accumulation::kPackedDecimal;
   const float scale = SumScale(t.accumulation, t.fixed_point_bits);
   std::vector<TableViolation> violations;
+  const bool squares = t.second_moments;
+  if (squares &&
+      ((fixed ? t.fixed_squares.size() : t.float_squares.size()) != t.capacity ||
+       (in.before && (!in.before->second_moments ||
+                      (fixed ? in.before->fixed_squares.size() : in.before->float_squares.size()) != t.capacity)))) {
+    violations.push_back(
+        {TableInvariant::kSquareSumMismatch, 0xFFFFFFFFu, {}, "a table without a square sum per slot"});
+    return violations;
+  }
+  const double square_scale = std::ldexp(1.0, t.square_bits);
   if (packed &&
       (t.frame_counters.size() != t.capacity || (in.before && in.before->frame_counters.size() != t.capacity))) {
     violations.push_back({TableInvariant::kPackedSettle, 0xFFFFFFFFu, {}, "a table without a frame counter per slot"});
@@ -340,6 +378,12 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // A dump holds the sums of its own mode only.
   auto fixed_before = [&](std::uint32_t s, int c) { return before && fixed ? before->fixed_sums[s][c] : 0; };
   auto float_before = [&](std::uint32_t s, int c) { return before && !fixed ? before->float_sums[s][c] : 0.0f; };
+  auto fixed_square_before = [&](std::uint32_t s) -> std::uint64_t {
+    return squares && before && fixed ? before->fixed_squares[s] : 0;
+  };
+  auto float_square_before = [&](std::uint32_t s) {
+    return squares && before && !fixed ? before->float_squares[s] : 0.0f;
+  };
   auto violate = [&](TableInvariant invariant, std::uint32_t slot, std::vector<std::uint32_t> records,
                      std::string detail) {
     violations.push_back({invariant, slot, RecordsOf(in, std::move(records)), std::move(detail)});
@@ -509,11 +553,13 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
   // Per slot: counts, sums, empty slots, orphan tags; and the table totals. A slot's expected count and sums are
   // what it held before the frame (nothing, if the policy evicts it now) plus what the frame placed there.
   std::array<unsigned __int128, 3> table_total{}, placed_total{};
+  unsigned __int128 table_square_total = 0, placed_square_total = 0;
   std::vector<CellState> seeds(t.levels > 1 ? t.capacity : 0);  // for the level nesting
   // Counts in 128 bits: a 64-bit count that wrapped (D12) must not look right because the checker's sum wrapped too.
   unsigned __int128 total_count = 0, expected_total_count = 0;
   auto sums_are_zero = [&](std::uint32_t s) {
     if (packed && t.frame_counters[s] != 0) return false;
+    if (squares && (fixed ? t.fixed_squares[s] != 0 : t.float_squares[s] != 0.0f)) return false;
     return fixed ? (t.fixed_sums[s] == std::array<std::uint64_t, 3>{}) : (t.float_sums[s] == std::array<float, 3>{});
   };
   for (std::uint32_t s = 0; s < t.capacity; ++s) {
@@ -580,6 +626,11 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
         placed_total[c] += fixed_base(c);
         for (std::uint32_t i : here) placed_total[c] += shared::ToFixedPoint(RecordOf(in, i).contribution[c], scale);
       }
+      if (squares && fixed) {
+        placed_square_total += evicted_by_policy ? 0 : fixed_square_before(s);
+        for (std::uint32_t i : here)
+          placed_square_total += shared::SquareToFixedPoint(glm::vec3(RecordOf(in, i).contribution), square_scale);
+      }
       continue;
     }
     if (here.empty() && tag_before(s) == kEmptyTag)
@@ -589,8 +640,13 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (blended && !packed) {
       CheckBlend(in, s, here,
                  {fixed ? before->fixed_sums[s] : std::array<std::uint64_t, 3>{},
-                  fixed ? std::array<float, 3>{} : before->float_sums[s], base_count - seed.count},
+                  fixed ? std::array<float, 3>{} : before->float_sums[s], base_count - seed.count,
+                  fixed_square_before(s), float_square_before(s)},
                  violations);
+      if (squares && fixed) {
+        table_square_total += t.fixed_squares[s];
+        placed_square_total += t.fixed_squares[s];  // judged by the blend check, taken as it is
+      }
       // The blend check is this slot's whole check: the totals take it as it is.
       expected_total_count += t.counts[s];
       continue;
@@ -652,6 +708,34 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
                   std::to_string(base_count) + " + placed " + std::to_string(here.size()) +
                   (expected_count >> 64 ? ": more than a 64-bit count holds (D12)" : ""));
     }
+    if (squares) {
+      unsigned __int128 exact = evicted_by_policy ? 0 : fixed_square_before(s);
+      double exact_float = evicted_by_policy ? 0.0 : double(float_square_before(s)), magnitude = exact_float;
+      for (std::uint32_t i : here) {
+        const glm::vec3 contribution(RecordOf(in, i).contribution);
+        exact += shared::SquareToFixedPoint(contribution, square_scale);
+        exact_float += double(shared::SquareAsFloat(contribution));
+        magnitude += double(shared::SquareAsFloat(contribution));
+      }
+      if (fixed) {
+        table_square_total += t.fixed_squares[s];
+        placed_square_total += exact;
+        if (exact != t.fixed_squares[s]) {
+          violate(TableInvariant::kSquareSumMismatch, s, here,
+                  "square sum " + std::to_string(t.fixed_squares[s]) + ", exact " + Decimal(exact) +
+                      (exact >> 64 ? ": the sum wrapped" : ""));
+        }
+      } else {
+        const std::size_t terms = here.size() + (base_count > 0 ? 1 : 0);
+        const double k = double(terms > 0 ? terms - 1 : 0), u = 0x1p-23;
+        const double bound = k * u / (1.0 - k * u) * magnitude;
+        if (!(std::abs(double(t.float_squares[s]) - exact_float) <= bound)) {
+          violate(TableInvariant::kSquareSumMismatch, s, here,
+                  "square sum " + std::to_string(t.float_squares[s]) + ", exact " + std::to_string(exact_float) +
+                      ", bound " + std::to_string(bound));
+        }
+      }
+    }
     for (int c = 0; c < 3; ++c) {
       unsigned __int128 exact = fixed_base(c);
       double exact_float = double(float_base(c)), magnitude = std::abs(exact_float);
@@ -696,6 +780,9 @@ std::vector<TableViolation> CheckTable(const TableCheckInput& in) {
     if (fixed && table_total[c] != placed_total[c]) {
       violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {}, "channel " + std::to_string(c) + " total differs");
     }
+  }
+  if (squares && fixed && table_square_total != placed_square_total) {
+    violate(TableInvariant::kTotalMismatch, 0xFFFFFFFFu, {}, "square total differs");
   }
   return violations;
 }

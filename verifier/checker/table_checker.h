@@ -55,6 +55,7 @@ enum class TableInvariant {
   kOccupiedList,                // with compaction: the list misses an occupied slot, lists one twice, or an empty one
   kPackedSettle,                // packed-decimal: a slot is not the settle (halving, frame counter) of its exact sums
   kLevelNesting,                // --levels: a coarser cell's frame adds differ from those of its children that reach it
+  kSquareSumMismatch,           // --second-moments: a slot's square sum is not its records' (as kSumMismatch's sums)
 };
 const char* ToString(TableInvariant invariant);
 

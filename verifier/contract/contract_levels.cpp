@@ -117,6 +117,11 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
                  std::to_string(run.table.counts[slot]) + ", reference " + std::to_string(c.count));
     } else if (fixed && run.table.fixed_sums[slot] != c.fixed_sum) {
       ideal.Fail(prefix + record + " at slot " + std::to_string(slot) + ": sums differ from the reference cell's");
+    } else if (fixed && config.second_moments &&
+               (!run.table.second_moments || run.table.fixed_squares.size() <= slot ||
+                run.table.fixed_squares[slot] != c.fixed_square)) {
+      ideal.Fail(prefix + record + " at slot " + std::to_string(slot) +
+                 ": square sum differs from the reference cell's");
     } else if (!run.table.frame_counters.empty() && run.table.frame_counters[slot] != c.frames) {
       ideal.Fail(prefix + record + " at slot " + std::to_string(slot) + ": frame counter " +
                  std::to_string(run.table.frame_counters[slot]) + ", reference " + std::to_string(c.frames));

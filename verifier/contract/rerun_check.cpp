@@ -10,7 +10,8 @@ namespace {
 constexpr std::size_t kDifferencesShown = 20;
 
 // Float sums bitwise, as core/image.h compares images; no memcmp on an empty vector's null data.
-bool SameBits(const std::vector<std::array<float, 3>>& a, const std::vector<std::array<float, 3>>& b) {
+template <typename Floats>
+bool SameBits(const std::vector<Floats>& a, const std::vector<Floats>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
@@ -42,6 +43,10 @@ void CompareSlotsOfEachRecord(const HashedRun& first, const HashedRun& second, b
     } else if (sums && fixed && first.table.fixed_sums[a] != second.table.fixed_sums[b]) {
       out.push_back(record + "its slot's fixed-point sums differ between the runs (slots " + std::to_string(a) +
                     " and " + std::to_string(b) + ")");
+    } else if (sums && fixed && first.table.second_moments &&
+               first.table.fixed_squares[a] != second.table.fixed_squares[b]) {
+      out.push_back(record + "its slot's square sums differ between the runs (slots " + std::to_string(a) + " and " +
+                    std::to_string(b) + ")");
     }
   }
 }
@@ -53,6 +58,8 @@ void CompareWholeTables(const HashedRun& first, const HashedRun& second, std::ve
   if (first.table.counts != second.table.counts) out.push_back("the counts differ");
   if (first.table.fixed_sums != second.table.fixed_sums) out.push_back("the fixed-point sums differ");
   if (!SameBits(first.table.float_sums, second.table.float_sums)) out.push_back("the float sums differ");
+  if (first.table.fixed_squares != second.table.fixed_squares) out.push_back("the fixed-point square sums differ");
+  if (!SameBits(first.table.float_squares, second.table.float_squares)) out.push_back("the float square sums differ");
 }
 
 }  // namespace
