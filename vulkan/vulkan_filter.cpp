@@ -85,8 +85,10 @@ struct EvictionPush {
   std::uint32_t packed_counts;  // 1: packed-decimal's 32-bit count words
   std::uint32_t levels;         // --levels: the select pass runs per record and level
   std::uint32_t normal_in_index;
+  std::uint32_t square_words_per_slot;  // --second-moments: 2 (fixed64) or 1 (float32); 0 without
+  std::uint32_t reserved;
 };
-static_assert(sizeof(EvictionPush) == 56, "push constants of eviction.comp");
+static_assert(sizeof(EvictionPush) == 64, "push constants of eviction.comp");
 constexpr std::uint32_t kEvictionSlotsPerWorkgroup = 64;
 
 struct TemporalPush {
@@ -95,8 +97,10 @@ struct TemporalPush {
   std::uint32_t fixed64;
   std::uint32_t compacted;  // 1: one invocation per entry of the occupied list, dispatched indirectly
   std::uint32_t packed;     // 1 with packed-decimal: 32-bit sums and count words (core/shared/packed_sums.h)
+  std::uint32_t squares;    // 1 with --second-moments: the square sums blend too
+  std::uint32_t reserved;
 };
-static_assert(sizeof(TemporalPush) == 40, "push constants of temporal.comp");
+static_assert(sizeof(TemporalPush) == 48, "push constants of temporal.comp");
 constexpr std::uint32_t kTemporalSlotsPerWorkgroup = 64;
 
 struct SettlePush {
@@ -155,11 +159,12 @@ constexpr BindingKind kAccumulateBindings[] = {
     BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer};
 constexpr BindingKind kEvictionBindings[] = {
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kCompactionBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                                BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                                BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
@@ -167,9 +172,9 @@ constexpr BindingKind kLevelSeedBindings[] = {
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
-constexpr BindingKind kTemporalBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-                                             BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+constexpr BindingKind kTemporalBindings[] = {
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 constexpr BindingKind kSettleBindings[] = {BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                            BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
                                            BindingKind::kStorageBuffer};
@@ -287,7 +292,9 @@ struct VulkanFilter::Impl {
   std::optional<ComputeProgram> temporal;
   std::optional<ComputeProgram> level_seed;
   DeviceBuffer records, keys, tags, sums, counts, placements, stats, accepted, pixels, last_seen, evicted, victims;
-  DeviceBuffer previous_sums, previous_counts;          // the double buffer of temporal.comp and level_seed.comp
+  DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp and level_seed.comp
+  // --second-moments: the square sums, their double buffer for temporal.comp, and the accumulate's binding 12
+  DeviceBuffer squares, previous_squares, square_params;
   DeviceBuffer previous_tags, seeded, seeded_count;     // level_seed.comp's
   DeviceBuffer deferred_pixels, deferred_header;        // the search's list of pixels (resolve.glsl)
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
@@ -297,6 +304,8 @@ struct VulkanFilter::Impl {
     KeyIdentity key_identity;
     int fixed_point_bits;
     bool compacted;  // the occupied list and its flags are the table's
+    bool second_moments = false;
+    int square_bits = 0;
   };
   std::optional<TableShape> table;  // what the device table holds after a Run
 
@@ -446,6 +455,9 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {},
                      {},
                      {},
+                     {},
+                     {},
+                     {},
                      {}}) {
   if (!impl_->custom_accumulate.empty()) {
     impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
@@ -493,6 +505,15 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
     std::memcpy(upload.Upload(p.sums, sum_bytes), sums, sum_bytes);
     std::memcpy(upload.Upload(p.counts, count_bytes), table.counts.data(), count_bytes);
   }
+  const std::size_t square_bytes = table.second_moments ? slots * (fixed ? 8 : 4) : 8;
+  p.Ensure(p.squares, vk::DeviceSize(square_bytes));
+  if (table.second_moments) {
+    if ((fixed ? table.fixed_squares.size() : table.float_squares.size()) != slots)
+      throw InputError("the table keeps second moments but has no square sum per slot");
+    const void* squares = fixed ? static_cast<const void*>(table.fixed_squares.data())
+                                : static_cast<const void*>(table.float_squares.data());
+    std::memcpy(upload.Upload(p.squares, square_bytes), squares, square_bytes);
+  }
   void* last_seen = upload.Upload(p.last_seen, slots * 4);
   if (table.last_seen.size() == slots) {
     std::memcpy(last_seen, table.last_seen.data(), slots * 4);
@@ -517,8 +538,8 @@ void VulkanFilter::LoadTable(const HashTableDump& table) {
     std::memcpy(upload.Upload(p.occupied_header, kOccupiedHeaderBytes), header, kOccupiedHeaderBytes);
   }
   upload.Submit();
-  p.table =
-      Impl::TableShape{table.capacity, table.accumulation, table.key_identity, table.fixed_point_bits, table.compacted};
+  p.table = Impl::TableShape{table.capacity,  table.accumulation,   table.key_identity, table.fixed_point_bits,
+                             table.compacted, table.second_moments, table.square_bits};
 }
 
 VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config, bool keep_table,
@@ -561,6 +582,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     throw ConfigError("--capacity", "no device table of this shape to carry on from; start a new sequence");
   }
   const int kept_fixed_point_bits = keep_table ? p.table->fixed_point_bits : 0;
+  if (keep_table && p.table->second_moments != config.second_moments) {
+    throw ConfigError("--second-moments", "the device table keeps other moments; start a new sequence");
+  }
+  const int kept_square_bits = keep_table ? p.table->square_bits : 0;
   const bool compacting = config.compaction == Compaction::kOccupiedList;
   if (keep_table && compacting && !p.table->compacted) {
     throw ConfigError("--compaction", "the device table has no occupied list; start a new sequence");
@@ -693,6 +718,17 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(table.fixed_point_bits);
   if (fixed) RequireFixedPointConverts(entering, table.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(entering);
+  table.second_moments = config.second_moments;
+  if (config.second_moments) {
+    table.square_bits = keep_table ? kept_square_bits : ChooseSquareBitsOf(entering, AllCores, config.frames);
+    if (fixed) RequireSquaresConvert(entering, table.square_bits);
+    if (!fixed) RequireFloat32SquaresRange(table.square_bits);
+  }
+  // Bound always (bindings 11 and 12), sized for the table with --second-moments.
+  const std::size_t square_bytes = config.second_moments ? std::size_t(config.capacity) * (fixed ? 8 : 4) : 8;
+  p.Ensure(p.squares, vk::DeviceSize(square_bytes));
+  p.Ensure(p.previous_squares, config.second_moments && planned.temporal ? vk::DeviceSize(square_bytes) : 8);
+  p.Ensure(p.square_params, 8);
 
   // The double buffer of the temporal blend and the level seed: the table as the previous frame left it, copied
   // before the accumulate (the seed needs its tags too); on a first frame where a pass is forced, an empty table.
@@ -711,17 +747,26 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
 
   // Accumulate: clear the table, then 16 records per invocation.
   ComputeProgram& accumulate = p.Accumulate(config.accumulation);
-  DeviceBuffer* const accumulate_buffers[] = {&p.records,   &p.keys,          &p.tags,           &p.sums,
-                                              &p.counts,    &p.placements,    &p.stats,          &p.accepted,
-                                              &p.last_seen, &p.previous_sums, &p.previous_counts};
+  DeviceBuffer* const accumulate_buffers[] = {
+      &p.records,         &p.keys,    &p.tags,         &p.sums,      &p.counts,
+      &p.placements,      &p.stats,   &p.accepted,     &p.last_seen, &p.previous_sums,
+      &p.previous_counts, &p.squares, &p.square_params};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
   AccumulatePush push{key_params,
                       {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
                        AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
                        by_priority ? 1u : 0u, SharedProbeKind(config.probing), config.levels},
                       MakeTemporalParams(config.temporal)};
+  const std::array<std::int32_t, 2> square_params{config.second_moments ? 1 : 0, table.square_bits};
+  const bool double_squares = config.second_moments && blending;
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
     cb.fillBuffer(*p.stats.buffer, 0, VK_WHOLE_SIZE, 0);
+    cb.updateBuffer<std::int32_t>(*p.square_params.buffer, 0, square_params);
+    if (double_squares && keep_table) {
+      cb.copyBuffer(*p.squares.buffer, *p.previous_squares.buffer, vk::BufferCopy(0, 0, square_bytes));
+    } else if (double_squares) {
+      cb.fillBuffer(*p.previous_squares.buffer, 0, VK_WHOLE_SIZE, 0);
+    }
     if (seeding) {
       if (keep_table) {
         cb.copyBuffer(*p.tags.buffer, *p.previous_tags.buffer, vk::BufferCopy(0, 0, tag_bytes));
@@ -739,7 +784,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
         cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
     }
     if (!keep_table) {
-      for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts}) cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
+      for (DeviceBuffer* cleared : {&p.tags, &p.sums, &p.counts, &p.squares})
+        cb.fillBuffer(*cleared->buffer, 0, VK_WHOLE_SIZE, 0);
       if (tracking) cb.fillBuffer(*p.last_seen.buffer, 0, VK_WHOLE_SIZE, 0);
       if (compacting) {  // the lists too, so that an entry a broken count exposes is the same on every run
         for (DeviceBuffer* cleared : {&p.listed, &p.occupied_header, &p.occupied, &p.next_occupied})
@@ -835,11 +881,16 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // each slot the frame added to that held samples before is blended. The first frame has nothing to blend.
   if (blending) {
     ComputeProgram& temporal = p.Temporal();
-    DeviceBuffer* const temporal_buffers[] = {&p.sums,     &p.counts,         &p.previous_sums, &p.previous_counts,
-                                              &p.occupied, &p.occupied_header};
+    DeviceBuffer* const temporal_buffers[] = {&p.sums,     &p.counts,          &p.previous_sums, &p.previous_counts,
+                                              &p.occupied, &p.occupied_header, &p.squares,       &p.previous_squares};
     vulkan_internal::BindBuffers(p.device, temporal, temporal_buffers);
-    const TemporalPush temporal_push{MakeTemporalParams(config.temporal), config.capacity, fixed ? 1u : 0u,
-                                     compacting ? 1u : 0u, packed ? 1u : 0u};
+    const TemporalPush temporal_push{MakeTemporalParams(config.temporal),
+                                     config.capacity,
+                                     fixed ? 1u : 0u,
+                                     compacting ? 1u : 0u,
+                                     packed ? 1u : 0u,
+                                     config.second_moments ? 1u : 0u,
+                                     0};
     run.timings.temporal_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -871,8 +922,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // it may follow.
   if (evicting) {
     ComputeProgram& eviction = p.Eviction();
-    DeviceBuffer* const eviction_buffers[] = {&p.tags, &p.sums,       &p.counts,  &p.last_seen, &p.evicted,
-                                              &p.keys, &p.placements, &p.victims, &p.occupied,  &p.occupied_header};
+    DeviceBuffer* const eviction_buffers[] = {&p.tags,   &p.sums,       &p.counts,  &p.last_seen, &p.evicted,
+                                              &p.keys,   &p.placements, &p.victims, &p.occupied,  &p.occupied_header,
+                                              &p.squares};
     vulkan_internal::BindBuffers(p.device, eviction, eviction_buffers);
     EvictionPush eviction_push{config.capacity,
                                config.probe_limit,
@@ -887,7 +939,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                config.key_identity == KeyIdentity::kFull ? 1u : 0u,
                                packed ? 1u : 0u,
                                config.levels,
-                               config.normal_in_index ? 1u : 0u};
+                               config.normal_in_index ? 1u : 0u,
+                               config.second_moments ? (fixed ? 2u : 1u) : 0u,
+                               0};
     run.timings.eviction_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       cb.fillBuffer(*p.evicted.buffer, 0, VK_WHOLE_SIZE, 0);
       cb.fillBuffer(*p.victims.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -992,6 +1046,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   const void* from_counts = download.Download(p.counts, count_bytes);
   const void* from_sums = download.Download(p.sums, sum_bytes);
   const void* from_stats = download.Download(p.stats, 16);
+  const void* from_squares = config.second_moments ? download.Download(p.squares, square_bytes) : nullptr;
   const void* from_last_seen = tracking ? download.Download(p.last_seen, std::size_t(config.capacity) * 4) : nullptr;
   const void* from_evicted = evicting ? download.Download(p.evicted, 8) : nullptr;
   const void* from_seeded = seeding ? download.Download(p.seeded_count, 8) : nullptr;
@@ -1041,6 +1096,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                   from_sums, sum_bytes});
   }
   CopyTagsOut(table.tags, from_tags, config.key_identity);
+  table.fixed_squares.clear();
+  table.float_squares.clear();
+  if (config.second_moments) {
+    fixed ? table.fixed_squares.resize(config.capacity) : table.float_squares.resize(config.capacity);
+    ParallelCopy(
+        {fixed ? static_cast<void*>(table.fixed_squares.data()) : static_cast<void*>(table.float_squares.data()),
+         from_squares, square_bytes});
+  }
   if (seeding) std::memcpy(&run.seeded, from_seeded, 8);
   if (evicting) std::memcpy(&run.evicted, from_evicted, 8);
   if (compacting) {
@@ -1064,8 +1127,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.key_params = push.key;
   CountResolvedLevels(run);
   CountSearches(run, batch);
-  p.table =
-      Impl::TableShape{config.capacity, config.accumulation, config.key_identity, table.fixed_point_bits, compacting};
+  p.table = Impl::TableShape{config.capacity, config.accumulation,   config.key_identity, table.fixed_point_bits,
+                             compacting,      config.second_moments, table.square_bits};
   return run;
 }
 

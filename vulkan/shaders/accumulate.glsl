@@ -15,9 +15,12 @@
 #include "../../core/shared/packed_sums.h"
 #include "../../core/shared/table_params.h"
 #include "../../core/shared/eviction_priority.h"
+#if defined(HPSF_FIXED64) || defined(HPSF_DEFECT_D10)  // fixed64's squares are formed in double
+#include "float_controls_fp64.glsl"
+#endif
+#include "../../core/shared/second_moment.h"
 #if defined(HPSF_DEFECT_D10)
 #define HPSF_TABLE_INTERFACE_TEMPORAL
-#include "float_controls_fp64.glsl"
 #include "../../core/shared/temporal_blend.h"
 #endif
 #include "subgroup_runs.glsl"
@@ -110,6 +113,16 @@ void AddToSlot(uint slot, Record r, float fixed_point_scale, bool claimed) {
     atomicAdd(sums[slot * 3u + c], r.contribution[c]);
 #endif
   }
+  // --second-moments (core/shared/second_moment.h): the record's squared brightness, before its count.
+#if defined(HPSF_FIXED64)
+  if (keeps_squares != 0u) {
+    uint64_t add = SquareToFixedPoint(r.contribution.xyz, double(PowerOfTwo(square_bits)));
+    uint64_t old = atomicAdd(squares[slot], add);
+    if (old + add < old) atomicAdd(wraps, uint64_t(1));
+  }
+#elif !defined(HPSF_PACKED_DECIMAL)
+  if (keeps_squares != 0u) atomicAdd(squares[slot], SquareAsFloat(r.contribution.xyz));
+#endif
 #if defined(HPSF_PACKED_DECIMAL)  // the count word: a 24-bit count carries into the frame counter at 2^24
   if ((atomicAdd(counts[slot], 1u) & kPackedCountMask) == kPackedCountMask) atomicAdd(count_wraps, uint64_t(1));
 #elif defined(HPSF_DEFECT_D9)

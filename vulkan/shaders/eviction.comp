@@ -35,6 +35,8 @@ layout(std430, binding = 7) buffer Victims { uint victims[]; };  // per slot, ze
 // Bindings 8 and 9, with --compaction occupied-list (compacted): passes 0 and 1 step the list's entries.
 layout(std430, binding = 8) readonly buffer Occupied { uint occupied[]; };
 layout(std430, binding = 9) readonly buffer OccupiedHeader { uint occupied_count; };
+// Binding 10, with --second-moments: the square sums (core/shared/second_moment.h), as 32-bit words.
+layout(std430, binding = 10) buffer SquareWords { uint square_words[]; };
 layout(push_constant) uniform Params {
   uint capacity;
   uint probe_limit;
@@ -50,6 +52,8 @@ layout(push_constant) uniform Params {
   uint packed_counts;       // 1 with packed-decimal: 32-bit count words (core/shared/packed_sums.h)
   uint levels;              // --levels: the select pass runs per record and level (core/shared/levels.h)
   uint normal_in_index;     // the key's, for a coarser level's slot0
+  uint square_words_per_slot;  // --second-moments: 2 (fixed64) or 1 (float32); 0 without
+  uint reserved;
 };
 
 // packed-decimal's whole count word, as the emulator's eviction kernels read it: a live cell's is never 0 (its count
@@ -118,6 +122,7 @@ void Evict(uint slot) {
     return;
   }
   for (uint w = 0u; w < sum_words_per_slot; ++w) sum_words[slot * sum_words_per_slot + w] = 0u;
+  for (uint w = 0u; w < square_words_per_slot; ++w) square_words[slot * square_words_per_slot + w] = 0u;
   ClearCount(slot);
   if (by_priority != 0u) StoreTag(slot, uint64_t(kTombstoneTag), full_keys != 0u);
   atomicAdd(evicted, 1ul);

@@ -14,6 +14,9 @@
 //   8 last_seen   uint[capacity]: with table.track_last_seen, the frame a record was last added    write
 //   9 previous_sums    as sums: with table.blending, the table before the frame (for reading only;   -
 //  10 previous_counts  as counts           the blend pass after the accumulate reads them)        -
+//  11 squares     as sums, one per slot: with --second-moments, the sum of squared brightness     atomics
+//                 (core/shared/second_moment.h; fixed64 at 2^G), zeroed
+//  12 square_params  uint keeps_squares (1 with --second-moments), int square_bits (G)          read
 // Push constants: KeyParams (64 bytes), then TableParams (32 bytes: the table's shape, F, the frame state, and
 // claim_tombstones: with priority eviction, slots tagged kTombstoneTag may be claimed), then
 // TemporalParams (24 bytes, core/shared/temporal_blend.h: the blend's mode, with table.blending).
@@ -21,7 +24,8 @@
 // declares nothing past TableParams runs with every option. Bindings 9 and 10 and TemporalParams are declared
 // for an includer that defines HPSF_TABLE_INTERFACE_TEMPORAL (its shader then needs 64-bit floats).
 // The includer defines HPSF_SUMS_TYPE (uint64_t, float or uint) and, for packed-decimal's count word, HPSF_COUNT_TYPE
-// uint (uint64_t otherwise).
+// uint (uint64_t otherwise). A shader that declares neither binding 11 nor 12 runs without --second-moments (with it,
+// the checker finds its square sums zero).
 #ifndef HPSF_COUNT_TYPE
 #define HPSF_COUNT_TYPE uint64_t
 #endif
@@ -41,6 +45,11 @@ layout(std430, binding = 6) buffer Stats {
 };
 layout(std430, binding = 7) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 8) writeonly buffer LastSeen { uint last_seen[]; };
+layout(std430, binding = 11) buffer Squares { HPSF_SUMS_TYPE squares[]; };
+layout(std430, binding = 12) readonly buffer SquareParams {
+  uint keeps_squares;
+  int square_bits;
+};
 #if defined(HPSF_TABLE_INTERFACE_TEMPORAL)
 layout(std430, binding = 9) readonly buffer PreviousSums { HPSF_SUMS_TYPE previous_sums[]; };
 layout(std430, binding = 10) readonly buffer PreviousCounts { HPSF_COUNT_TYPE previous_counts[]; };

@@ -27,13 +27,39 @@ layout(std430, binding = 3) readonly buffer PreviousCountWords { uint previous_c
 // Bindings 4 and 5, with --compaction occupied-list (compacted): one invocation per entry of the list.
 layout(std430, binding = 4) readonly buffer Occupied { uint occupied[]; };
 layout(std430, binding = 5) readonly buffer OccupiedHeader { uint occupied_count; };
+// Bindings 6 and 7, with --second-moments: the square sums (core/shared/second_moment.h) and their double buffer, as
+// 32-bit words: two per slot (fixed64) or one (float32).
+layout(std430, binding = 6) buffer SquareWords { uint square_words[]; };
+layout(std430, binding = 7) readonly buffer PreviousSquareWords { uint previous_square_words[]; };
 layout(push_constant) uniform Params {  // vulkan_filter.cpp's TemporalPush
   TemporalParams temporal;
   uint capacity;
   uint fixed64;    // 1: sums are 64-bit fixed point (two words per channel); 0: float32 or packed-decimal
   uint compacted;  // 1: dispatched indirectly, one invocation per entry of the occupied list (core/compaction.h)
   uint packed;     // 1: packed-decimal, 32-bit integer sums and count words
+  uint squares;    // 1 with --second-moments: the square sums blend with the sums
+  uint reserved;
 };
+
+// A slot's square sum as a double, and the frame's part of it: an exact integer difference in fixed64, a float
+// subtraction in float32, as core's BlendCellState.
+double SquareAt(uint slot, bool previous) {
+  if (fixed64 != 0u) {
+    uvec2 words = previous ? uvec2(previous_square_words[slot * 2u], previous_square_words[slot * 2u + 1u])
+                           : uvec2(square_words[slot * 2u], square_words[slot * 2u + 1u]);
+    return double(packUint2x32(words));
+  }
+  return double(uintBitsToFloat(previous ? previous_square_words[slot] : square_words[slot]));
+}
+double FrameSquare(uint slot) {
+  if (fixed64 != 0u) {
+    uint64_t now = packUint2x32(uvec2(square_words[slot * 2u], square_words[slot * 2u + 1u]));
+    uint64_t before = packUint2x32(uvec2(previous_square_words[slot * 2u], previous_square_words[slot * 2u + 1u]));
+    return double(now - before);
+  }
+  float difference = uintBitsToFloat(square_words[slot]) - uintBitsToFloat(previous_square_words[slot]);
+  return double(difference);
+}
 
 // A slot's count word (packed-decimal) or count, as 64 bits: compared whole to see whether the frame touched it.
 uint64_t CountWordAt(uint slot, bool previous) {
@@ -84,6 +110,16 @@ void Blend(uint slot) {
   uint64_t frame_count = packed != 0u ? uint64_t((uint(word) - uint(old_word)) & kPackedCountMask) : word - old_word;
   TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, frame_count);
   if (b.integrated) return;
+  if (squares != 0u) {
+    double square = BlendSquare(b, SquareAt(slot, true), old_count, FrameSquare(slot), frame_count);
+    if (fixed64 != 0u) {
+      uvec2 words = unpackUint2x32(uint64_t(RoundHalfEvenNonNegative(square)));
+      square_words[slot * 2u] = words.x;
+      square_words[slot * 2u + 1u] = words.y;
+    } else {
+      square_words[slot] = floatBitsToUint(float(square));
+    }
+  }
   for (int c = 0; c < 3; ++c) {
     if (fixed64 != 0u) {
 #if defined(HPSF_DEFECT_TRUNCATED_BLEND)
