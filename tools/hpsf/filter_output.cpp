@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tools/hpsf/cell_variance_map.h"
 #include "tools/hpsf/frame_soundness.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/version.h"
+#include "verifier/metrics/cell_variance.h"
 #include "verifier/metrics/pixel_variance.h"
 
 namespace hpsf {
@@ -83,6 +85,14 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
   std::vector<ImageLayer> layers;
   if (variance) layers = {{"variance", &variance->variance}, {"tile_variance", &tile_variance}};
   const std::string preview = WriteImageFiles(request.output, image, metadata, layers);
+  // With second moments, the debug image of the table's variance per cell (tools/hpsf/cell_variance_map.h).
+  if (config.second_moments && !options.no_filter) {
+    const std::vector<float> cell_variance = exact ? CellVariancePerPixel(batch, *exact, config.accumulation)
+                                                   : CellVariancePerPixel(batch, *backend.backend->LastHashedRun());
+    report["cell_variance_image"] = CellVarianceMapPath(request.output);
+    WritePng(CellVarianceMapPath(request.output),
+             RenderCellVarianceMap(cell_variance, int(batch.width), int(batch.height)));
+  }
 
   report["filtered"] = !options.no_filter;
   report["backend"] = request.backend;
@@ -107,6 +117,9 @@ void PrintReport(const nlohmann::json& report, bool as_json) {
             << (report["filtered"].get<bool>() ? "filtered, " + report["backend"].get<std::string>()
                                                : std::string("unfiltered"))
             << ")\n";
+  if (report.contains("cell_variance_image")) {
+    std::cout << "wrote " << report["cell_variance_image"].get<std::string>() << " (the variance per cell)\n";
+  }
   if (s.contains("cells")) {
     std::cout << "records " << s["records"] << ", without vertex " << s["records_without_vertex"] << ", unkeyable "
               << s["unkeyable"] << ", rejected "

@@ -60,18 +60,29 @@ Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b, HeatmapSca
   if (scale_out) *scale_out = HeatmapScale{scale, largest};
   for (float& e : errors) e = std::isfinite(e) ? (scale > 0.0f ? std::min(e / scale, 1.0f) : 0.0f) : 1.0f;
 
-  // Small images are enlarged by whole pixels (no filtering) so that a one-pixel error stays visible.
-  const int zoom = std::clamp(kMinimumWidth / a.width, 1, 8);
-  const int shown_width = a.width * zoom, shown_height = a.height * zoom;
+  char top[96];
+  if (largest > scale) {
+    std::snprintf(top, sizeof top, ">= %.3g (max %.3g)", double(scale), double(largest));
+  } else {
+    std::snprintf(top, sizeof top, "%.3g", double(scale));
+  }
+  return RenderColourMap(errors, a.width, a.height, {"0", "max |A-B| per pixel", top});
+}
+
+Rgb8Image RenderColourMap(std::span<const float> unit_values, int image_width, int image_height,
+                          const ColourMapLegend& legend) {
+  // Small images are enlarged by whole pixels (no filtering) so that a one-pixel value stays visible.
+  const int zoom = std::clamp(kMinimumWidth / image_width, 1, 8);
+  const int shown_width = image_width * zoom, shown_height = image_height * zoom;
   std::vector<float> zoomed(std::size_t(shown_width) * std::size_t(shown_height));
   for (int y = 0; y < shown_height; ++y) {
     for (int x = 0; x < shown_width; ++x) {
       zoomed[std::size_t(y) * shown_width + x] =
-          errors[std::size_t(y / zoom) * std::size_t(a.width) + std::size_t(x / zoom)];
+          unit_values[std::size_t(y / zoom) * std::size_t(image_width) + std::size_t(x / zoom)];
     }
   }
-  OIIO::ImageBuf error_image(OIIO::ImageSpec(shown_width, shown_height, 1, OIIO::TypeDesc::FLOAT), zoomed.data());
-  const OIIO::ImageBuf heat = OIIO::ImageBufAlgo::color_map(error_image, 0, "inferno");
+  OIIO::ImageBuf value_image(OIIO::ImageSpec(shown_width, shown_height, 1, OIIO::TypeDesc::FLOAT), zoomed.data());
+  const OIIO::ImageBuf heat = OIIO::ImageBufAlgo::color_map(value_image, 0, "inferno");
   Check(!heat.has_error(), heat, "colour map");
 
   const int width = std::max(shown_width, kMinimumWidth);
@@ -89,21 +100,16 @@ Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b, HeatmapSca
   const OIIO::ImageBuf bar = OIIO::ImageBufAlgo::color_map(ramp_image, 0, "inferno");
   Check(OIIO::ImageBufAlgo::paste(canvas, 10, shown_height + 6, 0, 0, bar), canvas, "legend");
 
-  char top[96];
-  if (largest > scale) {
-    std::snprintf(top, sizeof top, ">= %.3g (max %.3g)", double(scale), double(largest));
-  } else {
-    std::snprintf(top, sizeof top, "%.3g", double(scale));
-  }
   const float white[3] = {1.0f, 1.0f, 1.0f};
   const int baseline = shown_height + kLegendHeight - 8;
   using Align = OIIO::ImageBufAlgo::TextAlignX;
-  Check(OIIO::ImageBufAlgo::render_text(canvas, 10, baseline, "0", 13, kFont, white, Align::Left), canvas, "text");
-  Check(OIIO::ImageBufAlgo::render_text(canvas, width / 3, baseline, "max |A-B| per pixel", 13, kFont, white,
-                                        Align::Center),
-        canvas, "text");
-  Check(OIIO::ImageBufAlgo::render_text(canvas, width - 10, baseline, top, 13, kFont, white, Align::Right), canvas,
+  Check(OIIO::ImageBufAlgo::render_text(canvas, 10, baseline, legend.low, 13, kFont, white, Align::Left), canvas,
         "text");
+  Check(OIIO::ImageBufAlgo::render_text(canvas, int(width * legend.quantity_at), baseline, legend.quantity, 13, kFont,
+                                        white, Align::Center),
+        canvas, "text");
+  Check(OIIO::ImageBufAlgo::render_text(canvas, width - 10, baseline, legend.top, 13, kFont, white, Align::Right),
+        canvas, "text");
 
   Rgb8Image out;
   out.width = width;

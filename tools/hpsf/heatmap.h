@@ -6,6 +6,7 @@
 #define HPSF_TOOLS_HPSF_HEATMAP_H
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,16 @@ struct HeatmapScale {
 };
 
 Rgb8Image RenderHeatmap(const ChannelImage& a, const ChannelImage& b, HeatmapScale* scale_out = nullptr);
+
+// The legend strip's three texts: the colour map's low end, what it shows, its top.
+struct ColourMapLegend {
+  std::string low, quantity, top;
+  double quantity_at = 1.0 / 3.0;  // where the quantity's text is centred, as a fraction of the width
+};
+// Values scaled to [0, 1] already (image_width x image_height, row-major) through the same colour map and legend: the
+// heatmap's, and other debug images' (tools/hpsf/cell_variance_map.h).
+Rgb8Image RenderColourMap(std::span<const float> unit_values, int image_width, int image_height,
+                          const ColourMapLegend& legend);
 
 // The image as PNG file bytes, for a data URI.
 std::string EncodePng(const Rgb8Image& image);

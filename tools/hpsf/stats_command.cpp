@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "core/capture_file.h"
 #include "core/error.h"
@@ -16,6 +17,7 @@
 #include "tracer/path_tracer.h"
 #include "verifier/contract/capture_judgement.h"
 #include "verifier/gate/table_declaration.h"
+#include "verifier/metrics/cell_variance.h"
 #include "verifier/theory/table_statistics.h"
 
 namespace hpsf {
@@ -102,9 +104,25 @@ void PrintText(const TableStatistics& s, const std::string& input) {
 
 bool IsCapture(const std::string& input) { return std::filesystem::path(input).extension() == ".hpsfc"; }
 
-void PrintReport(const TableStatistics& s, const StatsOptions& o, const FilterConfig& config, double seconds) {
+// --second-moments: the variance of the exact map's cells.
+void PrintCellVariance(const CellVarianceSummary& v) {
+  std::printf(
+      "cell variance (cells of 2+ samples, the exact map's): %llu cells, %llu resolved (above their rounding "
+      "bound); median %.3g, 90%% %.3g, max %.3g; median relative error of a cell's mean %.3g\n ",
+      (unsigned long long)v.cells, (unsigned long long)v.resolved, v.median_variance, v.p90_variance, v.max_variance,
+      v.median_relative_error);
+  for (std::size_t k = 0; k < v.decades.size(); ++k) {
+    if (v.decades[k] == 0) continue;
+    std::printf(" 1e%d: %llu", CellVarianceSummary::kLowestDecade + int(k), (unsigned long long)v.decades[k]);
+  }
+  std::printf("\n");
+}
+
+void PrintReport(const TableStatistics& s, const StatsOptions& o, const FilterConfig& config, double seconds,
+                 const std::optional<CellVarianceSummary>& variance = std::nullopt) {
   if (o.json) {
     nlohmann::json report = s.ToJson();
+    if (variance) report["cell_variance"] = variance->ToJson();
     report["version"] = 1;
     report["command"] = "stats";
     report["input"] = o.input;
@@ -113,6 +131,7 @@ void PrintReport(const TableStatistics& s, const StatsOptions& o, const FilterCo
     std::cout << report.dump(2) << "\n";
   } else {
     PrintText(s, o.input);
+    if (variance) PrintCellVariance(*variance);
   }
 }
 
@@ -152,13 +171,15 @@ int Run(StatsOptions& o, bool options_only) {
   const std::vector<KeyResult> keys = ComputeKeys(batch.records, params);
   TableStatistics s = MeasureTableStatistics(batch.records, keys, config);
   s.records_per_coarser_cell = RecordsPerCoarserCell(keys, params, config.levels);
-  if (config.levels > 1 || config.neighbour_search) {
+  std::optional<CellVarianceSummary> variance;
+  if (config.levels > 1 || config.neighbour_search || config.second_moments) {
     const FilterResult exact = ReferenceFilter(batch, config);
     s.resolved_at_level = exact.stats.resolved_at_level;
     s.records_searched = exact.stats.records_searched;
     s.neighbours_read = exact.stats.neighbours_read;
+    if (config.second_moments) variance = SummarizeCellVariance(exact, config.accumulation);
   }
-  PrintReport(s, o, config, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  PrintReport(s, o, config, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), variance);
   return s.ExceedsTheory() ? kExitWarn : kExitOk;
 }
 
