@@ -73,6 +73,9 @@ FilterConfig DecodeConfig(FuzzedDataProvider& input, bool packed_sums, bool& con
                    : sums == 2 && packed_sums ? Accumulation::kPackedDecimal
                                               : Accumulation::kFixed64;
   c.seed = input.ConsumeIntegral<std::uint32_t>();
+  // One input in four keeps second moments (core/shared/second_moment.h), where the sums can: decided by the seed
+  // word, so that inputs saved before decode as they did.
+  c.second_moments = c.accumulation != Accumulation::kPackedDecimal && c.seed % 4u == 0u;
   const std::uint8_t normal = input.ConsumeIntegralInRange<std::uint8_t>(0, 3);
   c.normal = normal == 0   ? NormalKey{NormalMode::kNone, 0}
              : normal == 1 ? NormalKey{NormalMode::kSign, 0}

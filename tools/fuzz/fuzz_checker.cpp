@@ -1,11 +1,11 @@
 // fuzz_checker: the table checker's teeth. A correct table comes from a generated batch (fuzz_batch.h, the
 // emulator in fast mode, which the checker must pass); then the input corrupts it once: flips or sets a tag,
-// changes a count or one channel's sum, moves a record's placement (to another slot, a probe failure, "not
-// placed" or past the end), zeroes a slot or swaps two slots; or changes a key word, which only must not crash.
-// A bug: the checker crashes, or misses a corruption that changes what the invariants describe. Those are all
-// changes to the dump's bits, except a float32 sum moved within the bound gamma(n - 1) * sum|c| of its slot's
-// exact sum (atomics may round anywhere inside it; docs/design/contract.md), or an empty slot's sum turned to -0.0,
-// which is still zero. A corruption that leaves the dump as it was is none.
+// changes a count, one channel's sum or (with second moments) the square sum, moves a record's placement (to another
+// slot, a probe failure, "not placed" or past the end), zeroes a slot or swaps two slots; or changes a key word, which
+// only must not crash. A bug: the checker crashes, or misses a corruption that changes what the invariants describe.
+// Those are all changes to the dump's bits, except a float32 sum moved within the bound gamma(n - 1) * sum|c| of its
+// slot's exact sum (atomics may round anywhere inside it; docs/design/contract.md), or an empty slot's sum turned to
+// -0.0, which is still zero. A corruption that leaves the dump as it was is none.
 #include <array>
 #include <bit>
 #include <cmath>
@@ -19,6 +19,7 @@
 
 #include "core/hash_table.h"
 #include "core/input_check.h"
+#include "core/shared/second_moment.h"
 #include "emulated/emulated_filter.h"
 #include "tools/fuzz/fuzz_batch.h"
 #include "verifier/checker/table_checker.h"
@@ -35,7 +36,8 @@ enum class Corruption {
   kZeroSlot,
   kSwapSlots,
   kChangeKey,
-  kMaxValue = kChangeKey
+  kChangeSquare,  // with second moments: one slot's square sum
+  kMaxValue = kChangeSquare
 };
 
 struct Slot {
@@ -43,14 +45,19 @@ struct Slot {
   std::uint64_t count;
   std::array<std::uint64_t, 3> fixed_sum;
   std::array<std::uint32_t, 3> float_bits;
+  std::uint64_t square;  // with second moments: the fixed64 square sum, or the float32 one's bits
   bool operator==(const Slot&) const = default;
 };
 
 Slot SlotAt(const HashTableDump& t, std::uint32_t s) {
-  Slot slot{t.tags[s], t.counts[s], {}, {}};
+  Slot slot{t.tags[s], t.counts[s], {}, {}, 0};
   if (t.accumulation == Accumulation::kFixed64) slot.fixed_sum = t.fixed_sums[s];
   if (t.accumulation == Accumulation::kFloat32) {
     for (int c = 0; c < 3; ++c) slot.float_bits[c] = std::bit_cast<std::uint32_t>(t.float_sums[s][c]);
+  }
+  if (t.second_moments) {
+    slot.square = t.accumulation == Accumulation::kFixed64 ? t.fixed_squares[s]
+                                                           : std::bit_cast<std::uint32_t>(t.float_squares[s]);
   }
   return slot;
 }
@@ -61,6 +68,10 @@ void SetSlot(HashTableDump& t, std::uint32_t s, const Slot& slot) {
   if (t.accumulation == Accumulation::kFixed64) t.fixed_sums[s] = slot.fixed_sum;
   if (t.accumulation == Accumulation::kFloat32) {
     for (int c = 0; c < 3; ++c) t.float_sums[s][c] = std::bit_cast<float>(slot.float_bits[c]);
+  }
+  if (t.second_moments && t.accumulation == Accumulation::kFixed64) t.fixed_squares[s] = slot.square;
+  if (t.second_moments && t.accumulation == Accumulation::kFloat32) {
+    t.float_squares[s] = std::bit_cast<float>(std::uint32_t(slot.square));
   }
 }
 
@@ -81,6 +92,21 @@ bool MayBeWithinFloatBound(const EmulatedRun& run, const RecordBatch& batch, std
   if (!std::isfinite(value)) return false;
   const long double k = n - 1, u = 0x1p-23L;
   return std::fabs((long double)value - exact) <= k * u / (1 - k * u) * magnitude + std::fabs(exact) * 0x1p-40L;
+}
+
+// The same for a float32 square sum: its terms are the records' float squares (core/shared/second_moment.h).
+bool MayBeWithinSquareBound(const EmulatedRun& run, const RecordBatch& batch, std::uint32_t slot, float value) {
+  long double exact = 0;
+  std::uint64_t n = 0;
+  for (std::size_t i = 0; i < batch.records.size(); ++i) {
+    if (run.placements[i] != slot) continue;
+    exact += shared::SquareAsFloat(glm::vec3(batch.records[i].contribution));
+    ++n;
+  }
+  if (n == 0) return value == 0.0f;
+  if (!std::isfinite(value)) return false;
+  const long double k = n - 1, u = 0x1p-23L;
+  return std::fabs((long double)value - exact) <= k * u / (1 - k * u) * exact + exact * 0x1p-40L;
 }
 
 struct Corrupted {
@@ -171,6 +197,19 @@ Corrupted Corrupt(FuzzedDataProvider& input, const RecordBatch& batch, EmulatedR
           break;
       }
       return {"record " + std::to_string(record) + "'s key changed", false};
+    }
+    case Corruption::kChangeSquare: {
+      if (!t.second_moments) return {"none", false};
+      if (fixed) {
+        const std::uint64_t delta = input.ConsumeIntegral<std::uint64_t>();
+        t.fixed_squares[s] += delta;
+        return {"square sum + " + std::to_string(delta) + at, delta != 0};
+      }
+      const std::uint32_t mask = input.ConsumeIntegral<std::uint32_t>();
+      const float value = std::bit_cast<float>(std::bit_cast<std::uint32_t>(t.float_squares[s]) ^ mask);
+      t.float_squares[s] = value;
+      return {"square sum bits xor " + std::to_string(mask) + at,
+              mask != 0 && !MayBeWithinSquareBound(run, batch, s, value)};
     }
   }
   return {"none", false};

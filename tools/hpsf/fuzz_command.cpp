@@ -234,13 +234,16 @@ int Run(FuzzOptions& o, bool options_only) {
   // Level seeding where hpsf's own kernels run, and no team's shader.
   const bool level_change = defect == Defect::kNone && accumulate.empty() && eviction.empty() && compaction.empty() &&
                             temporal.empty() && o.vulkan.resolve_spv.empty();
+  // Second moments where hpsf's own accumulate, temporal and eviction passes keep the squares.
+  const bool second_moments = defect == Defect::kNone && accumulate.empty() && eviction.empty() && temporal.empty();
   const AdversarialOptions generate{
       o.max_records, defect == Defect::kNone || search_defect || defect == Defect::kLevelWrongCount,
       accumulation,  backend.on_device,
       probing,       full_keys,
       fingerprints,  packed_sums,
       levels,        search,
-      level_change,  !backend.on_device || level_change};  // the transport: Vulkan's with hpsf's own shaders
+      level_change,  !backend.on_device || level_change,  // the transport: Vulkan's with hpsf's own shaders
+      second_moments};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

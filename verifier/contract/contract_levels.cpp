@@ -330,6 +330,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
   CrosscheckReport report;
   report.fixed_point_bits = frames.empty() ? 0 : reference.result().stats.fixed_point_bits;
   report.accumulation = config.accumulation;
+  if (config.second_moments && !frames.empty()) report.square_bits = reference.result().stats.square_bits;
   for (std::size_t b = 0; b < hashed.size(); ++b) {
     const JudgedBackend& judged = hashed[b];
     const SequenceState& s = states[b];
@@ -402,6 +403,7 @@ nlohmann::json CrosscheckReport::ToJson() const {
                       {"accumulation", ToString(accumulation)},
                       {"fixed_point_bits", fixed_point_bits}};
   if (!vulkan_device.empty()) j["vulkan_device"] = vulkan_device;
+  if (square_bits) j["square_bits"] = *square_bits;
   for (const LevelVerdict& v : levels) {
     j["levels"].push_back({{"level", v.level},
                            {"name", v.name},
@@ -432,7 +434,8 @@ std::string CrosscheckReport::ToText() const {
     for (const std::string& f : v.failures) out << "  " << f << "\n";
   }
   if (frames > 1) out << "frames: " << frames << ", each judged from the table before it\n";
-  out << "accumulation: " << ToString(accumulation) << ", F " << fixed_point_bits << " fraction bits\n";
+  out << "accumulation: " << ToString(accumulation) << ", F " << fixed_point_bits << " fraction bits"
+      << (square_bits ? ", second moments at G " + std::to_string(*square_bits) : std::string()) << "\n";
   if (!vulkan_device.empty()) out << "vulkan device: " << vulkan_device << "\n";
   for (const QualityFigures& q : quality) {
     out << q.backend << ": probe failures " << q.probe_failures << ", aliased slots " << q.aliased_slots

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -61,6 +62,8 @@ struct CrosscheckReport {
   // --fixed-point-bits); in float32 the bits its range check assumed.
   int fixed_point_bits = 0;
   Accumulation accumulation = Accumulation::kFixed64;
+  // With --second-moments: G, the square sums' fraction bits (core/shared/second_moment.h).
+  std::optional<int> square_bits;
   bool Passed() const;
   // "level N NAME: " and the first failure of the first failed level (its note when it lists none); "" if passed.
   std::string FirstFailure() const;

@@ -512,6 +512,14 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
       }
     }
   }
+  // Second moments in a quarter of the cases that can keep them (not packed-decimal's sums, no level seeding), from a
+  // generator of their own.
+  RecordGenerator moment_draws(
+      shared::RandomBits({seed, std::uint32_t(run), std::uint32_t(run >> 32), 6u, 0u}, 0xADF6u));
+  if (options.second_moments && a.config.accumulation != Accumulation::kPackedDecimal && !a.config.level_seed.enabled &&
+      moment_draws.Bits() % 4u == 0u) {
+    a.config.second_moments = true;
+  }
   a.config.Validate();
   return a;
 }

@@ -77,6 +77,9 @@ struct AdversarialOptions {
   // Whether a sequence may transport its scattered vertices' light (--transport, core/transport.h): false on Vulkan
   // where a broken kernel or a team's shader runs, so that what the fuzzer finds there stays the shader's.
   bool transport = true;
+  // Whether a case may keep second moments (--second-moments, core/shared/second_moment.h): false where a broken
+  // kernel or a team's accumulate, temporal or eviction shader runs, which need not keep the squares.
+  bool second_moments = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

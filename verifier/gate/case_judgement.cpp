@@ -117,7 +117,22 @@ namespace {
 std::string FixedPoint(const std::string& family, const json& report) {
   if (family == "crosscheck" && report.contains("fixed_point_bits") && report.contains("accumulation")) {
     const std::string mode = report["accumulation"].get<std::string>();
-    return mode == "fixed64" ? mode + ", F " + std::to_string(report["fixed_point_bits"].get<int>()) : mode;
+    const std::string moments =
+        report.contains("square_bits")
+            ? ", second moments" +
+                  (mode == "fixed64" ? " at G " + std::to_string(report["square_bits"].get<int>()) : "")
+            : "";
+    return (mode == "fixed64" ? mode + ", F " + std::to_string(report["fixed_point_bits"].get<int>()) : mode) + moments;
+  }
+  // A statistics case with --second-moments: the variance of its cells in one line.
+  if (family == "statistics" && report.contains("cell_variance")) {
+    const json& v = report["cell_variance"];
+    char line[160];
+    std::snprintf(
+        line, sizeof line, "second moments: cell variance median %.3g, 90%% %.3g; %llu of %llu cells resolved",
+        v["median_variance"].get<double>(), v["p90_variance"].get<double>(),
+        (unsigned long long)v["resolved"].get<std::uint64_t>(), (unsigned long long)v["cells"].get<std::uint64_t>());
+    return line;
   }
   if (family == "captures" && report.contains("captures") && !report["captures"].empty()) {
     return FixedPoint("crosscheck", report["captures"][0]["report"]);  // the first frame's: a folder is one table

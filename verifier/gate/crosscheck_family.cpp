@@ -32,33 +32,44 @@ void ExpandCrosscheck(const json& c, const std::string& folder, const GateError&
       error.At(b.pointer + "/backend", "expected the backend checked beside the reference: " + BackendNames(true));
     }
   }
-  // A sequence's "gate-backends": the family's backends it runs on (names, comma-separated), where a pass is not built
-  // on every backend; the others skip it. Not a command-line option.
-  std::map<std::string, std::set<std::string>> runs_on;
-  for (const Named& sequence : sequences) {
-    if (!sequence.options.contains("gate-backends")) continue;
-    const json& value = sequence.options["gate-backends"];
-    const std::string pointer = sequence.pointer + "/gate-backends";
-    if (!value.is_string()) error.At(pointer, "expected a comma-separated string of this family's backend names");
-    std::set<std::string>& names = runs_on[sequence.name];
-    std::string list = value.get<std::string>() + ",";
-    for (std::size_t start = 0, comma; (comma = list.find(',', start)) != std::string::npos; start = comma + 1) {
-      const std::string name = list.substr(start, comma - start);
-      if (std::none_of(backends.begin(), backends.end(), [&](const Named& b) { return b.name == name; })) {
-        error.At(pointer, "'" + name + "' names none of this family's backends");
+  // A sequence's "gate-backends" and "gate-configs": the family's backend and config sets it runs on (names,
+  // comma-separated), where a pass is not built on every backend or cannot run with every config; the others skip
+  // it. Not command-line options.
+  std::map<std::string, std::set<std::string>> runs_on_backends, runs_on_configs;
+  const auto limit = [&](const std::string& key, const std::vector<Named>& sets, const std::string& what,
+                         std::map<std::string, std::set<std::string>>& runs_on) {
+    for (const Named& sequence : sequences) {
+      if (!sequence.options.contains(key)) continue;
+      const json& value = sequence.options[key];
+      const std::string pointer = sequence.pointer + "/" + key;
+      if (!value.is_string())
+        error.At(pointer, "expected a comma-separated string of this family's " + what + " names");
+      std::set<std::string>& names = runs_on[sequence.name];
+      std::string list = value.get<std::string>() + ",";
+      for (std::size_t start = 0, comma; (comma = list.find(',', start)) != std::string::npos; start = comma + 1) {
+        const std::string name = list.substr(start, comma - start);
+        if (std::none_of(sets.begin(), sets.end(), [&](const Named& set) { return set.name == name; })) {
+          error.At(pointer, "'" + name + "' names none of this family's " + what + "s");
+        }
+        names.insert(name);
       }
-      names.insert(name);
     }
-  }
+  };
+  limit("gate-backends", backends, "backend", runs_on_backends);
+  limit("gate-configs", configs, "config", runs_on_configs);
+  const auto skips = [](const std::map<std::string, std::set<std::string>>& runs_on, const Named& sequence,
+                        const Named& set) {
+    const auto only = runs_on.find(sequence.name);
+    return only != runs_on.end() && !only->second.contains(set.name);
+  };
   for (const SceneEntry& scene : scenes) {
     // A recorded sequence holds its own frames.
     std::set<std::string> skipped = scene.recorded ? std::set<std::string>{"frames", "frame"} : std::set<std::string>{};
-    skipped.insert("gate-backends");
+    skipped.insert({"gate-backends", "gate-configs"});
     for (const Named& config : configs) {
       for (const Named& backend : backends) {
         for (const Named& sequence : sequences) {
-          const auto only = runs_on.find(sequence.name);
-          if (only != runs_on.end() && !only->second.contains(backend.name)) continue;
+          if (skips(runs_on_backends, sequence, backend) || skips(runs_on_configs, sequence, config)) continue;
           for (const std::uint32_t seed : seeds) {
             GateCase gc;
             gc.family = "crosscheck";

@@ -96,5 +96,31 @@ TEST(GateFile, ASequenceRunsOnTheBackendsItNames) {
   }
 }
 
+// A sequence's "gate-configs" names the config sets it runs with (a pass some configs refuse, as second moments
+// refuse packed-decimal sums): the other configs skip it, and an unknown name is refused with its place.
+TEST(GateFile, ASequenceRunsWithTheConfigsItNames) {
+  const std::string family = R"({"hpsf_gate": 1, "crosscheck": {"scenes": ["cornell"], "configs": {"a": {}, "p": )"
+                             R"({"accum": "packed-decimal"}}, "backends": {"e": {"backend": "emulated"}}, )"
+                             R"("sequences": {"one-frame": {}, "m": {"second-moments": "on", "gate-configs": "a"}}}})";
+  EXPECT_EQ(SchemaViolations(Schema(), json::parse(family)), std::vector<std::string>{});
+  const Gate gate = ExpandGate(family, "gate.json", "");
+  std::vector<std::string> ids;
+  for (const GateCase& c : gate.cases) {
+    ids.push_back(c.id);
+    for (const std::string& a : c.arguments) EXPECT_EQ(a.find("gate-configs"), std::string::npos) << c.id;
+  }
+  EXPECT_EQ(ids, (std::vector<std::string>{"crosscheck/cornell/a/e/m/seed1", "crosscheck/cornell/a/e/one-frame/seed1",
+                                           "crosscheck/cornell/p/e/one-frame/seed1"}));
+  std::string unknown = family;
+  unknown.replace(unknown.find(R"("gate-configs": "a")"), 19, R"("gate-configs": "x")");
+  try {
+    ExpandGate(unknown, "gate.json", "");
+    ADD_FAILURE() << "the loader accepts an unknown config name";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/crosscheck/sequences/m/gate-configs"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'x' names none of this family's configs"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hpsf
