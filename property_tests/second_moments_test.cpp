@@ -4,6 +4,7 @@
 //   its theoretical 1/3 within five standard errors;
 // - a bright, nearly constant cell (mean 1000, spread 0.01) is resolved in fixed64, where the same difference of
 //   means taken in float32 (the broken variant: a variance from float sums) cancels to nonsense;
+// - on the Cornell box every cell's variance is its records' within the bound, on every backend;
 // - the squares hold the cross-check contract on all three backends over sequences, under every temporal mode and
 //   eviction policy, with several levels and compaction.
 
@@ -156,6 +157,63 @@ TEST(SecondMoments, AVarianceFromFloatMeansCancelsAndIsCaught) {
   EXPECT_LE(std::abs(right.variance - exact), right.variance_bound);
   EXPECT_GT(std::abs(double(cancelled) - exact), 100.0 * right.variance_bound)
       << "float " << cancelled << ", exact " << exact;
+}
+
+// On the Cornell box (fireflies and all), every cell's variance is within its bound of the two-pass variance of the
+// records the reference placed there, on the reference and (where the slot holds the same records: nothing aliased or
+// failed in this roomy table) on the emulator and Vulkan, in fixed64 and float32.
+TEST(SecondMoments, EveryCellOfASceneHoldsItsRecordsVariance) {
+  const RecordBatch batch = TracedBatch(HPSF_SCENES_DIR "/cornell.json", 48, 4);
+  for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
+    FilterConfig config;
+    config.capacity = 1u << 14;
+    config.accumulation = accumulation;
+    config.second_moments = true;
+    const FilterResult reference = ReferenceFilter(batch, config);
+    std::vector<std::vector<std::size_t>> records(reference.cells.size());
+    for (std::size_t i = 0; i < batch.records.size(); ++i) {
+      const std::uint32_t cell = reference.placement[i];
+      if (cell == kNoCell) continue;
+      records[cell].push_back(i);
+    }
+    EmulatedBackend emulated(EmulatorOptions{});
+    VulkanBackend vulkan(TestDevice(StagingPolicy::kAuto));
+    emulated.FilterFrame(batch, config);
+    vulkan.FilterFrame(batch, config);
+    std::size_t judged = 0;
+    for (std::size_t c = 0; c < reference.cells.size(); ++c) {
+      if (records[c].size() < 2) continue;
+      long double mean = 0.0L, squares = 0.0L;
+      for (const std::size_t i : records[c])
+        mean += shared::Brightness(glm::vec3(batch.records[i].contribution)) / 3.0L;
+      mean /= records[c].size();
+      for (const std::size_t i : records[c]) {
+        const long double d = shared::Brightness(glm::vec3(batch.records[i].contribution)) / 3.0L - mean;
+        squares += d * d;
+      }
+      const double exact = double(squares / records[c].size());
+      const CellMoments own =
+          MomentsOf(accumulation, reference.cells[c].fixed_sum, reference.cells[c].float_sum,
+                    reference.cells[c].fixed_square, reference.cells[c].float_square, reference.cells[c].count,
+                    reference.stats.fixed_point_bits, reference.stats.square_bits);
+      EXPECT_LE(std::abs(own.variance - exact), own.variance_bound) << "reference cell " << c;
+      for (const Backend* backend : std::initializer_list<const Backend*>{&emulated, &vulkan}) {
+        const HashedRun& run = *backend->LastHashedRun();
+        const HashTableDump& t = run.table;
+        const std::uint32_t slot = run.placements[records[c].front()];
+        ASSERT_LT(slot, t.capacity);
+        ASSERT_EQ(t.counts[slot], records[c].size()) << backend->Name() << ": the roomy table aliased a cell";
+        const bool fixed = accumulation == Accumulation::kFixed64;
+        const CellMoments m =
+            MomentsOf(accumulation, fixed ? t.fixed_sums[slot] : std::array<std::uint64_t, 3>{},
+                      fixed ? std::array<float, 3>{} : t.float_sums[slot], fixed ? t.fixed_squares[slot] : 0,
+                      fixed ? 0.0f : t.float_squares[slot], t.counts[slot], t.fixed_point_bits, t.square_bits);
+        EXPECT_LE(std::abs(m.variance - exact), m.variance_bound) << backend->Name() << ", cell " << c;
+      }
+      ++judged;
+    }
+    EXPECT_GT(judged, 500u) << ToString(accumulation);
+  }
 }
 
 // Three frames of the Cornell box through one table per backend: the checker holds every slot's square sum (exactly
