@@ -305,6 +305,20 @@ void PlantFixedSumMovedBetweenSlots(Fixture& f) {
   f.run.table.fixed_sums[to][1] += 1;
 }
 
+// With second moments: one unit of a square sum moved to another live slot (the square total kept), in a table run
+// again with them kept.
+void PlantSquareSumMovedBetweenSlots(Fixture& f) {
+  f.config.second_moments = true;
+  f.run = EmulatedFilter(f.batch, f.config, EmulatorOptions{});
+  ASSERT_TRUE(f.Invariants().empty()) << f.Reported();
+  const std::uint32_t from = f.FindSlot([&](std::uint32_t s) { return f.run.table.fixed_squares[s] > 0; });
+  ASSERT_NE(from, kNotPlaced);
+  const std::uint32_t to = f.FindSlot([&](std::uint32_t s) { return s != from && f.run.table.tags[s] != kEmptyTag; });
+  ASSERT_NE(to, kNotPlaced);
+  f.run.table.fixed_squares[from] -= 1;
+  f.run.table.fixed_squares[to] += 1;
+}
+
 // float32: a slot of n >= 2 records whose sum lies a few ulps past gamma(n-1) * sum|c| from the exact sum.
 // float32 has no total of sums to keep.
 void PlantFloatSumOutsideTheBound(Fixture& f) {
@@ -559,6 +573,8 @@ const IsolatedCase kIsolatedCases[] = {
     {"CountMovedBetweenSlots", TableInvariant::kCountMismatch, kCrowded, kFixed64, PlantCountMovedBetweenSlots},
     {"FixedSumMovedBetweenSlots", TableInvariant::kSumMismatch, kCrowded, kFixed64, PlantFixedSumMovedBetweenSlots},
     {"FloatSumOutsideTheBound", TableInvariant::kSumMismatch, kRoomy, kFloat32, PlantFloatSumOutsideTheBound},
+    {"SquareSumMovedBetweenSlots", TableInvariant::kSquareSumMismatch, kCrowded, kFixed64,
+     PlantSquareSumMovedBetweenSlots},
     {"FloatSumOfOneRecordOffByAnUlp", TableInvariant::kSumMismatch, kCrowded, kFloat32,
      PlantFloatSumOfOneRecordOffByAnUlp},
     {"EmptySlotWithACount", TableInvariant::kEmptySlotNotZero, kRoomy, kFixed64, PlantEmptySlotWithACount},
