@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <vector>
@@ -84,14 +85,25 @@ nlohmann::json FilterAndWrite(BackendInstance& backend, const RecordBatch& batch
   const Image tile_variance = variance ? TileVarianceLayer(*variance) : Image();
   std::vector<ImageLayer> layers;
   if (variance) layers = {{"variance", &variance->variance}, {"tile_variance", &tile_variance}};
-  const std::string preview = WriteImageFiles(request.output, image, metadata, layers);
-  // With second moments, the debug image of the table's variance per cell (tools/hpsf/cell_variance_map.h).
+  // With second moments, the debug image of the table's variance per cell (tools/hpsf/cell_variance_map.h), made before
+  // anything is written and written after the image: all or nothing.
+  std::optional<Rgb8Image> variance_map;
   if (config.second_moments && !options.no_filter) {
     const std::vector<float> cell_variance = exact ? CellVariancePerPixel(batch, *exact, config.accumulation)
                                                    : CellVariancePerPixel(batch, *backend.backend->LastHashedRun());
+    variance_map = RenderCellVarianceMap(cell_variance, int(batch.width), int(batch.height));
+  }
+  const std::string preview = WriteImageFiles(request.output, image, metadata, layers);
+  if (variance_map) {
+    try {
+      WritePng(CellVarianceMapPath(request.output), *variance_map);
+    } catch (const InputError&) {
+      std::error_code ignored;
+      std::filesystem::remove(request.output, ignored);
+      std::filesystem::remove(preview, ignored);
+      throw;
+    }
     report["cell_variance_image"] = CellVarianceMapPath(request.output);
-    WritePng(CellVarianceMapPath(request.output),
-             RenderCellVarianceMap(cell_variance, int(batch.width), int(batch.height)));
   }
 
   report["filtered"] = !options.no_filter;

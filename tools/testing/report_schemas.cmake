@@ -31,6 +31,18 @@ report(render 0 render cornell ${small} --backend emulated --mode faithful --war
   --temporal ema:0.5 --variance --capacity 4096 --compaction occupied-list --fixed-point-bits 40 -o r1.exr --json)
 report(render 0 render cornell ${small} --backend vulkan --level-change seed --frames 2 -o r2.exr --json)
 report(render 0 render cornell ${small} --seed 2 --no-filter -o r3.exr --json)
+report(render 0 render cornell ${small} --backend vulkan --accum float32 --second-moments on --frames 2
+  --temporal ema:0.5 -o r4.exr --json)
+if(NOT EXISTS ${OUT}/r4.cell-variance.png)
+  set(failures "${failures}render --second-moments on wrote no r4.cell-variance.png\n")
+endif()
+# All or nothing: where the debug image cannot be written, the image and its preview are not left behind either.
+file(MAKE_DIRECTORY ${OUT}/r5.cell-variance.png)
+execute_process(COMMAND ${HPSF} render cornell ${small} --second-moments on -o r5.exr OUTPUT_QUIET ERROR_QUIET
+  RESULT_VARIABLE code WORKING_DIRECTORY ${OUT})
+if(NOT code EQUAL 3 OR EXISTS ${OUT}/r5.exr OR EXISTS ${OUT}/r5.png)
+  set(failures "${failures}render --second-moments on, its debug image unwritable: exit ${code}, or files left\n")
+endif()
 report(replay 0 replay ${SOURCE}/tools/testing/data/seed_lookup_alias.hpsfv --backend vulkan -o p.exr --json)
 report(crosscheck 0 crosscheck cornell ${small} --backends reference,emulated,vulkan --frames 2 --eviction priority
   --fingerprint-bits 24 --capacity 4096 --json)
@@ -38,6 +50,8 @@ report(crosscheck 2 crosscheck cornell ${small} --backends reference,emulated --
   --capacity 4096 --repro-dir bundle --json)
 report(stats 0 stats cornell ${small} --json)
 report(stats 0 stats cornell ${small} --capacity 64 --probe-limit 2 --fingerprint-bits 8 --json)
+report(stats 0 stats cornell ${small} --second-moments on --json)
+report(crosscheck 0 crosscheck cornell ${small} --backends reference,emulated --second-moments on --frames 2 --json)
 execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference,emulated --capacity 4096 --frames 2
   --eviction strict --capture captures OUTPUT_QUIET RESULT_VARIABLE code WORKING_DIRECTORY ${OUT})
 execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference,emulated --inject-defect D9
