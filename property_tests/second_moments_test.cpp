@@ -27,6 +27,7 @@
 #include "reference/reference_filter.h"
 #include "tracer/scene_file.h"
 #include "verifier/contract/crosscheck.h"
+#include "verifier/metrics/cell_variance.h"
 #include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {
@@ -54,16 +55,21 @@ RecordBatch OneCellBatch(const std::vector<float>& values) {
 }
 
 // The samples' own variance of the channel mean m = y / 3 (two passes, in long double): what the cell should report.
-double ExactVariance(const std::vector<float>& values) {
+double ExactVariance(const std::vector<glm::vec3>& contributions) {
   long double mean = 0.0L;
-  for (const float v : values) mean += shared::Brightness(glm::vec3(v)) / 3.0L;
-  mean /= values.size();
+  for (const glm::vec3& c : contributions) mean += shared::Brightness(c) / 3.0L;
+  mean /= contributions.size();
   long double squares = 0.0L;
-  for (const float v : values) {
-    const long double d = shared::Brightness(glm::vec3(v)) / 3.0L - mean;
+  for (const glm::vec3& c : contributions) {
+    const long double d = shared::Brightness(c) / 3.0L - mean;
     squares += d * d;
   }
-  return double(squares / values.size());
+  return double(squares / contributions.size());
+}
+double ExactVariance(const std::vector<float>& grey) {
+  std::vector<glm::vec3> contributions;
+  for (const float v : grey) contributions.emplace_back(v);
+  return ExactVariance(contributions);
 }
 
 // Counter-RNG uniforms in [0, 1), by seed.
@@ -92,22 +98,14 @@ std::vector<BackendMoments> MomentsOnEveryBackend(const std::vector<float>& valu
   std::vector<BackendMoments> out;
   const FilterResult reference = ReferenceFilter(batch, config);
   EXPECT_EQ(reference.cells.size(), 1u);
-  const TableCell& cell = reference.cells.at(0);
-  out.push_back(
-      {"reference", MomentsOf(accumulation, cell.fixed_sum, cell.float_sum, cell.fixed_square, cell.float_square,
-                              cell.count, reference.stats.fixed_point_bits, reference.stats.square_bits)});
+  out.push_back({"reference", MomentsOfCell(reference.cells.at(0), accumulation, reference.stats)});
   EmulatedBackend emulated(EmulatorOptions{});
   VulkanBackend vulkan(TestDevice(StagingPolicy::kAuto));
   for (Backend* backend : std::initializer_list<Backend*>{&emulated, &vulkan}) {
     backend->Reset();
     backend->FilterFrame(batch, config);
-    const HashTableDump& t = backend->LastHashedRun()->table;
-    const std::uint32_t slot = backend->LastHashedRun()->placements.at(0);
-    const bool fixed = accumulation == Accumulation::kFixed64;
-    out.push_back({backend->Name(),
-                   MomentsOf(accumulation, fixed ? t.fixed_sums[slot] : std::array<std::uint64_t, 3>{},
-                             fixed ? std::array<float, 3>{} : t.float_sums[slot], fixed ? t.fixed_squares[slot] : 0,
-                             fixed ? 0.0f : t.float_squares[slot], t.counts[slot], t.fixed_point_bits, t.square_bits)});
+    const HashedRun& run = *backend->LastHashedRun();
+    out.push_back({backend->Name(), MomentsOfSlot(run.table, run.placements.at(0))});
   }
   return out;
 }
@@ -183,19 +181,10 @@ TEST(SecondMoments, EveryCellOfASceneHoldsItsRecordsVariance) {
     std::size_t judged = 0;
     for (std::size_t c = 0; c < reference.cells.size(); ++c) {
       if (records[c].size() < 2) continue;
-      long double mean = 0.0L, squares = 0.0L;
-      for (const std::size_t i : records[c])
-        mean += shared::Brightness(glm::vec3(batch.records[i].contribution)) / 3.0L;
-      mean /= records[c].size();
-      for (const std::size_t i : records[c]) {
-        const long double d = shared::Brightness(glm::vec3(batch.records[i].contribution)) / 3.0L - mean;
-        squares += d * d;
-      }
-      const double exact = double(squares / records[c].size());
-      const CellMoments own =
-          MomentsOf(accumulation, reference.cells[c].fixed_sum, reference.cells[c].float_sum,
-                    reference.cells[c].fixed_square, reference.cells[c].float_square, reference.cells[c].count,
-                    reference.stats.fixed_point_bits, reference.stats.square_bits);
+      std::vector<glm::vec3> contributions;
+      for (const std::size_t i : records[c]) contributions.emplace_back(batch.records[i].contribution);
+      const double exact = ExactVariance(contributions);
+      const CellMoments own = MomentsOfCell(reference.cells[c], accumulation, reference.stats);
       EXPECT_LE(std::abs(own.variance - exact), own.variance_bound) << "reference cell " << c;
       for (const Backend* backend : std::initializer_list<const Backend*>{&emulated, &vulkan}) {
         const HashedRun& run = *backend->LastHashedRun();
@@ -203,11 +192,7 @@ TEST(SecondMoments, EveryCellOfASceneHoldsItsRecordsVariance) {
         const std::uint32_t slot = run.placements[records[c].front()];
         ASSERT_LT(slot, t.capacity);
         ASSERT_EQ(t.counts[slot], records[c].size()) << backend->Name() << ": the roomy table aliased a cell";
-        const bool fixed = accumulation == Accumulation::kFixed64;
-        const CellMoments m =
-            MomentsOf(accumulation, fixed ? t.fixed_sums[slot] : std::array<std::uint64_t, 3>{},
-                      fixed ? std::array<float, 3>{} : t.float_sums[slot], fixed ? t.fixed_squares[slot] : 0,
-                      fixed ? 0.0f : t.float_squares[slot], t.counts[slot], t.fixed_point_bits, t.square_bits);
+        const CellMoments m = MomentsOfSlot(t, slot);
         EXPECT_LE(std::abs(m.variance - exact), m.variance_bound) << backend->Name() << ", cell " << c;
       }
       ++judged;

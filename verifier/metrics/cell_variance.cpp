@@ -41,6 +41,13 @@ CellMoments MomentsOfCell(const TableCell& cell, Accumulation accumulation, cons
                    stats.fixed_point_bits, stats.square_bits);
 }
 
+CellMoments MomentsOfSlot(const HashTableDump& t, std::uint32_t slot) {
+  const bool fixed = t.accumulation == Accumulation::kFixed64;
+  return MomentsOf(t.accumulation, fixed ? t.fixed_sums[slot] : std::array<std::uint64_t, 3>{},
+                   fixed ? std::array<float, 3>{} : t.float_sums[slot], fixed ? t.fixed_squares[slot] : 0,
+                   fixed ? 0.0f : t.float_squares[slot], t.counts[slot], t.fixed_point_bits, t.square_bits);
+}
+
 CellVarianceSummary SummarizeCellVariance(const FilterResult& exact, Accumulation accumulation) {
   CellVarianceSummary s;
   s.decades.assign(kDecades, 0);
@@ -91,15 +98,10 @@ std::vector<float> CellVariancePerPixel(const RecordBatch& batch, const FilterRe
 
 std::vector<float> CellVariancePerPixel(const RecordBatch& batch, const HashedRun& run) {
   const HashTableDump& t = run.table;
-  const bool fixed = t.accumulation == Accumulation::kFixed64;
   if (!t.second_moments) return std::vector<float>(std::size_t(batch.width) * batch.height, 0.0f);
   return PerPixel(batch, [&](std::size_t i) {
     const std::uint32_t slot = run.placements[i];
-    if (slot >= t.capacity || t.counts[slot] == 0) return -1.0;
-    return MomentsOf(t.accumulation, fixed ? t.fixed_sums[slot] : std::array<std::uint64_t, 3>{},
-                     fixed ? std::array<float, 3>{} : t.float_sums[slot], fixed ? t.fixed_squares[slot] : 0,
-                     fixed ? 0.0f : t.float_squares[slot], t.counts[slot], t.fixed_point_bits, t.square_bits)
-        .variance;
+    return slot < t.capacity && t.counts[slot] > 0 ? MomentsOfSlot(t, slot).variance : -1.0;
   });
 }
 

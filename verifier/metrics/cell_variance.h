@@ -32,6 +32,8 @@ struct CellVarianceSummary {
 };
 
 CellMoments MomentsOfCell(const TableCell& cell, Accumulation accumulation, const FilterStats& stats);
+// A hashed table's slot (one that keeps second moments), read as MomentsOfCell reads an exact cell.
+CellMoments MomentsOfSlot(const HashTableDump& table, std::uint32_t slot);
 
 // The exact map of a run with second moments (ReferenceFilter with config.second_moments).
 CellVarianceSummary SummarizeCellVariance(const FilterResult& exact, Accumulation accumulation);
