@@ -34,8 +34,9 @@ struct TableBuffers {
   std::uint32_t squares = 0;
 };
 
-struct TemporalArgs;  // emulated/temporal_kernel.h
-struct EvictionArgs;  // emulated/eviction_kernels.h
+struct TemporalArgs;        // emulated/temporal_kernel.h
+struct EvictionArgs;        // emulated/eviction_kernels.h
+struct TransportInPassArgs;  // emulated/broken_transport.h
 
 struct AccumulateArgs {
   std::span<const Record> records;
@@ -61,6 +62,9 @@ struct AccumulateArgs {
   // With eviction: the eviction pass's arguments. The correct kernel never reads them (eviction is a pass of its
   // own, after this one); the variant that evicts while records are inserted does.
   const EvictionArgs* eviction = nullptr;
+  // Several filtered bounces' reads-current-table variant: the transport's arguments. The correct kernel never reads
+  // them (the transport runs before this pass, from the table before the frame).
+  const TransportInPassArgs* transport = nullptr;
 };
 
 // Whether an integer add of `add` to a sum word that held `old` wrapped: at 64 bits, or packed-decimal's 32.

@@ -4,8 +4,11 @@
 #ifndef HPSF_EMULATED_BROKEN_TRANSPORT_H
 #define HPSF_EMULATED_BROKEN_TRANSPORT_H
 
+#include <cstdint>
+#include <span>
 #include <string>
 
+#include "core/key_batch.h"
 #include "core/record.h"
 #include "core/transport.h"
 
@@ -18,9 +21,20 @@ enum class TransportDefect {
   // The scattered vertex's cell keyed at the level of the vertex it scattered from (under level of detail, the
   // primary's path length chooses the cell size): a lookup of the wrong cell size.
   kScatteredAtRecordLevel,
-  // The lookup reads the table being accumulated, not the one before the frame (D10's cousin): it sees the frame's
-  // own adds, and cells new in the frame.
+  // The lookup reads the table being accumulated, not the one before the frame (D10's cousin): each record looks up
+  // its scattered vertex's cell inside the accumulate's launch (TransportDuringAccumulate, emulated/defect_injection.h),
+  // so it sees whichever of the frame's adds came first, and cells new in the frame: a race the schedules explore.
   kReadsCurrentTable,
+};
+
+// What kReadsCurrentTable's accumulate reads besides its own arguments, per record of records then deeper.
+struct TransportInPassArgs {
+  // The scattered vertex's key (shared::ComputeKey), or a kKeyNoVertex key where the record transports nothing
+  // (it or its scattered vertex has no vertex or failed the input checks).
+  std::span<const KeyResult> scattered_keys;
+  std::span<const Record> scattered;  // their throughputs carry the light back
+  int fixed_point_bits = 0;           // the table's F
+  std::uint32_t reads = 0;            // 32-bit buffer: the slot each record read, or kNothingTransported
 };
 
 // "none", "weight-twice", "scattered-at-record-level", "reads-current-table"

@@ -8,22 +8,74 @@
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/levels.h"
+#include "core/neighbour_search.h"
+#include "core/shared/lookup.h"
 #include "core/shared/packed_sums.h"
+#include "core/shared/second_moment.h"
+#include "core/shared/transport.h"
 #include "core/temporal.h"
+#include "core/transport.h"
+#include "emulated/broken_transport.h"
 #include "emulated/temporal_kernel.h"
 
 namespace hpsf {
 namespace {
 
-// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect switched in, in both modes; count32
-// is D12's, which needs a sequence of frames (D12Count32Bit).
-// blend_in_pass is D10's (D10BlendDuringAccumulate); evict_in_pass EvictDuringAccumulate's; weak_claim the correct
-// claim by a weak compare-and-swap (AccumulateWithWeakCas).
-simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, bool count32 = false,
-                        bool blend_in_pass = false, bool evict_in_pass = false, bool weak_claim = false) {
+// Changes of the correct kernel that are not Defect values: count32 is D12's, which needs a sequence of frames
+// (D12Count32Bit); blend_in_pass D10's (D10BlendDuringAccumulate); evict_in_pass EvictDuringAccumulate's; weak_claim
+// the correct claim by a weak compare-and-swap (AccumulateWithWeakCas); transport_in_pass TransportDuringAccumulate's.
+struct Switches {
+  bool count32 = false;
+  bool blend_in_pass = false;
+  bool evict_in_pass = false;
+  bool weak_claim = false;
+  bool transport_in_pass = false;
+};
+
+// The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect or switch in, in both modes.
+simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, Switches switches = {}) {
+  const auto [count32, blend_in_pass, evict_in_pass, weak_claim, transport_in_pass] = switches;
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
   const TableBuffers& b = args.buffers;
+  const bool packed = args.accumulation == Accumulation::kPackedDecimal;
+  glm::vec3 contribution(args.records[i].contribution);
+  if (transport_in_pass && args.transport) {
+    // The record's transport (core/transport.h) looked up in the table this pass is adding to, not the one before
+    // the frame: what it reads depends on which adds of the frame came first.
+    const TransportInPassArgs& t = *args.transport;
+    const KeyResult& scattered = t.scattered_keys[i];
+    std::uint32_t read = kNothingTransported;
+    std::uint64_t count = 0;
+    if (scattered.status == shared::kKeyed) {
+      const shared::ProbeScheme scheme = args.scheme();
+      for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+        const std::uint32_t s = shared::CandidateSlot(scheme, scattered.slot0, probe);
+        const std::uint64_t tag = co_await ctx.Load(b.tags, s);
+        const std::uint64_t word = co_await ctx.Load(b.counts, s);
+        count = packed ? shared::PackedCount(std::uint32_t(word)) : word;
+        const std::uint32_t step = shared::LookupStep(tag, StoredIdentity(scattered), count);
+        if (step == shared::kLookupEnd) break;
+        if (step == shared::kLookupFound) {
+          read = s;
+          break;
+        }
+      }
+    }
+    if (read != kNothingTransported) {
+      std::array<std::uint64_t, 3> fixed_sum{};
+      std::array<float, 3> float_sum{};
+      for (int c = 0; c < 3; ++c) {
+        fixed_sum[c] = co_await ctx.Load(b.sums, std::uint64_t(read) * 3 + c);
+        float_sum[c] = std::bit_cast<float>(std::uint32_t(fixed_sum[c]));
+      }
+      StencilTotal cell;
+      cell.Add(fixed_sum, float_sum, count);
+      contribution = shared::TransportedContribution(contribution, glm::vec3(t.scattered[i].throughput),
+                                                     cell.Average(args.accumulation, t.fixed_point_bits));
+    }
+    co_await ctx.Store(t.reads, i, read);
+  }
   if (evict_in_pass && args.eviction && i < args.capacity) {
     // Evict slot i as the eviction pass would, but while other threads insert: a slot they touch this frame may
     // still show its old last-seen frame, or hold only part of their adds, when it is zeroed.
@@ -43,9 +95,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
   const SlotTag fingerprint = defect == Defect::kD3ZeroFingerprint
                                   ? shared::FullFingerprint(key.words) >> (32u - args.fingerprint_bits)
                                   : StoredIdentity(key);
-  const Record& r = args.records[i];
   const bool fixed = IntegerSums(args.accumulation);
-  const bool packed = args.accumulation == Accumulation::kPackedDecimal;
   bool placed = false;
   const shared::ProbeScheme scheme = args.scheme();
   // SHaRC #4: a record whose candidates are all taken is given the "invalid" index masked into a slot, and adds
@@ -92,19 +142,28 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
       if (defect == Defect::kD9NonAtomicAdd) {  // D9: read-modify-write without an atomic
         const std::uint64_t old = co_await ctx.Load(b.sums, index);
         const std::uint64_t sum =
-            fixed ? old + shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale)
-                  : std::bit_cast<std::uint32_t>(std::bit_cast<float>(std::uint32_t(old)) + r.contribution[c]);
+            fixed ? old + shared::ToFixedPoint(contribution[c], args.fixed_point_scale)
+                  : std::bit_cast<std::uint32_t>(std::bit_cast<float>(std::uint32_t(old)) + contribution[c]);
         co_await ctx.Store(b.sums, index, sum);
       } else if (fixed) {
         // D11: truncated, not rounded half to even.
         const std::uint64_t add = defect == Defect::kD11TruncatedFixedPoint
-                                      ? std::uint64_t(r.contribution[c] * args.fixed_point_scale)
-                                      : shared::ToFixedPoint(r.contribution[c], args.fixed_point_scale);
+                                      ? std::uint64_t(contribution[c] * args.fixed_point_scale)
+                                      : shared::ToFixedPoint(contribution[c], args.fixed_point_scale);
         const std::uint64_t old = co_await ctx.AtomicAdd(b.sums, index, add);
         if (SumAddWrapped(args.accumulation, old, add)) co_await ctx.AtomicAdd(b.wraps, 0, 1);
       } else {
-        co_await ctx.AtomicAddFloat(b.sums, index, std::bit_cast<std::uint32_t>(r.contribution[c]));
+        co_await ctx.AtomicAddFloat(b.sums, index, std::bit_cast<std::uint32_t>(contribution[c]));
       }
+    }
+    // --second-moments: the record's square, as the correct kernel adds it.
+    if (b.keeps_squares && fixed) {
+      const std::uint64_t add = shared::SquareToFixedPoint(contribution, args.square_scale);
+      if (SumAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.squares, slot, add), add))
+        co_await ctx.AtomicAdd(b.wraps, 0, 1);
+    } else if (b.keeps_squares) {
+      co_await ctx.AtomicAddFloat(b.squares, slot,
+                                  std::bit_cast<std::uint32_t>(shared::SquareAsFloat(contribution)));
     }
     if (defect == Defect::kD9NonAtomicAdd) {
       const std::uint64_t count = co_await ctx.Load(b.counts, slot);
@@ -294,19 +353,23 @@ simt::KernelTask FullKeyLowWord(simt::ThreadContext& c, const AccumulateArgs& a)
 }  // namespace
 
 simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
-  return Mutant(ctx, args, Defect::kNone, false, true);
+  return Mutant(ctx, args, Defect::kNone, {.blend_in_pass = true});
 }
 
 simt::KernelTask EvictDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
-  return Mutant(ctx, args, Defect::kNone, false, false, true);
+  return Mutant(ctx, args, Defect::kNone, {.evict_in_pass = true});
+}
+
+simt::KernelTask TransportDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return Mutant(ctx, args, Defect::kNone, {.transport_in_pass = true});
 }
 
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args) {
-  return Mutant(ctx, args, Defect::kNone, true);
+  return Mutant(ctx, args, Defect::kNone, {.count32 = true});
 }
 
 simt::KernelTask AccumulateWithWeakCas(simt::ThreadContext& ctx, const AccumulateArgs& args) {
-  return Mutant(ctx, args, Defect::kNone, false, false, false, true);
+  return Mutant(ctx, args, Defect::kNone, {.weak_claim = true});
 }
 
 simt::KernelTask D7ReclaimEveryTombstone(simt::ThreadContext& ctx, const EvictionArgs& args) {

@@ -75,6 +75,11 @@ simt::KernelTask SelectVictimsWrongSign(simt::ThreadContext& ctx, const Eviction
 // slot blended once per record. Not a Defect value: only a frame after the first blends.
 simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
+// Several filtered bounces' transport inside the accumulate (TransportDefect::kReadsCurrentTable, D10's cousin): each
+// record looks up its scattered vertex's cell in the table this launch is adding to (args.transport), reading
+// whichever adds of the frame came first, then adds its transported contribution. One level.
+simt::KernelTask TransportDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
 // An eviction racing an insertion: the accumulate whose thread i first evicts slot i by the policy, as
 // the eviction pass would, then inserts its record, saving the pass's launch. Another thread may be inserting
 // into slot i meanwhile: its last-seen store may come after the eviction's read, or its adds before the zeroing,

@@ -22,6 +22,7 @@
 #include "core/temporal.h"
 #include "core/transport.h"
 #include "emulated/compaction_kernels.h"
+#include "emulated/defect_injection.h"
 #include "emulated/level_seed_kernel.h"
 #include "emulated/packed_settle_kernel.h"
 #include "emulated/temporal_kernel.h"
@@ -80,25 +81,19 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   EmulatedRun run;
   PhaseClock clock;
   // Several filtered bounces: a host pass over the table before the frame on the fast mode's workers, which no launch
-  // of the frame writes, so no schedule can change what it reads.
+  // of the frame writes, so no schedule can change what it reads. reads-current-table instead transports inside the
+  // accumulate's launch (TransportDuringAccumulate), racing the frame's adds.
   std::optional<TransportResult> transport;
   // Without a table before the frame (the first, where the transport is forced) every lookup misses.
-  if (effects ? effects->transport : previous && PlanFrameEffects(config, kLaterFrame).transport) {
-    const TransportDefect defect = options.transport_defect;
-    // reads-current-table: the table this frame accumulates, as the frame without its transport leaves it.
-    std::optional<EmulatedRun> current;
-    if (defect == TransportDefect::kReadsCurrentTable) {
-      FilterConfig untransported = config;
-      untransported.transport = false;
-      EmulatorOptions correct = options;
-      correct.transport_defect = TransportDefect::kNone;
-      current = EmulatedFilter(given, untransported, correct, accumulate, previous, eviction_kernels);
-    }
-    const HashTableDump* read = current ? &current->table : previous;
+  const bool transporting = effects ? effects->transport : previous && PlanFrameEffects(config, kLaterFrame).transport;
+  const TransportDefect defect = options.transport_defect;
+  const bool transport_in_pass = transporting && defect == TransportDefect::kReadsCurrentTable;
+  if (transporting && !transport_in_pass) {
     const TransportLookup lookup = [&](const shared::KeyWords& w) -> std::optional<FoundCell> {
-      const std::optional<std::uint32_t> slot = read ? FindSlotInTable(*read, w, config.normal_in_index) : std::nullopt;
+      const std::optional<std::uint32_t> slot =
+          previous ? FindSlotInTable(*previous, w, config.normal_in_index) : std::nullopt;
       if (!slot) return std::nullopt;
-      return FoundCell{*slot, StateOfSlot(*read, *slot)};
+      return FoundCell{*slot, StateOfSlot(*previous, *slot)};
     };
     // On the fast mode's workers: each record's lookup reads the dump alone.
     const RangeLoop on_workers = [&](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
@@ -108,7 +103,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     std::optional<RecordBatch> weighted_twice;
     if (defect == TransportDefect::kWeightTwice) weighted_twice = WithWeightTwice(given);
     transport = TransportBatch(
-        weighted_twice ? *weighted_twice : given, params, config.accumulation, read ? read->fixed_point_bits : 0,
+        weighted_twice ? *weighted_twice : given, params, config.accumulation, previous ? previous->fixed_point_bits : 0,
         lookup, defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr, on_workers);
     run.transport_read = std::move(transport->read);
     run.transport = transport->stats;
@@ -320,8 +315,27 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     args.eviction = &eviction;
   }
 
+  // reads-current-table: each record's scattered vertex keyed as the transport keys it, looked up by the kernel.
+  std::vector<KeyResult> scattered_keys;
+  TransportInPassArgs transport_args;
+  if (transport_in_pass) {
+    scattered_keys.resize(n);
+    ParallelFor(n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const bool transports = !given.scattered.empty() && accepted[i] && shared::RecordHasVertex(all[i]) &&
+                                shared::RecordHasVertex(given.scattered[i]) &&
+                                CheckRecordInputs(given.scattered[i]) == InputVerdict::kAccepted;
+        scattered_keys[i] = transports ? shared::ComputeKey(params, given.scattered[i])
+                                       : shared::EmptyKeyResult(shared::kKeyNoVertex);
+      }
+    });
+    transport_args = {scattered_keys, given.scattered, table.fixed_point_bits, memory.Allocate32("transport_reads", n)};
+    args.transport = &transport_args;
+  }
+  const AccumulateKernelFn accumulate_kernel = transport_in_pass ? TransportDuringAccumulate : accumulate;
+
   run.timings.clear_ms = clock.LapMs();
-  const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate(ctx, args); };
+  const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate_kernel(ctx, args); };
   if (options.mode == simt::Mode::kFast) {
     simt::LaunchFast(memory, n, kernel, options.threads,
                      [&](std::uint32_t i) { PrefetchAccumulate(std::as_const(memory), args, i); });
@@ -345,6 +359,21 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     run.trace_hash = run.launch.trace_hash;
   }
 
+  if (transport_in_pass) {
+    const std::span<const std::uint32_t> reads = std::as_const(memory).Words32(transport_args.reads);
+    run.transport_read.assign(reads.begin(), reads.end());
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (scattered_keys[i].status == shared::kKeyNoVertex) continue;
+      ++run.transport.scattered;
+      if (scattered_keys[i].status == shared::kKeyUnkeyable) {
+        ++run.transport.unkeyable;
+      } else if (reads[i] == kNothingTransported) {
+        ++run.transport.missed;
+      } else {
+        ++run.transport.found;
+      }
+    }
+  }
   run.timings.accumulate_ms = clock.LapMs();
   // The passes after the accumulate run one thread per slot. Faithful mode schedules them by the run's policy; an
   // exhaustive search drives only the accumulate launch, so they then take round-robin.

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "emulated/defect_injection.h"
+#include "emulated/simt/schedule.h"
+#include "property_tests/constructed_cells.h"
 #include "property_tests/transport_furnace.h"
 #include "verifier/contract/contract_levels.h"
 #include "verifier/fuzzing/adversarial_case.h"
@@ -96,7 +98,8 @@ TEST(TransportContract, HoldsInFloat32UnderPressureWithDeeperRecords) {
   EXPECT_GT(report.quality[0].probe_failures, 0u);
 }
 
-// Each broken transport fails the contract over the traced furnace's frames, at the level named.
+// Each broken transport fails the contract over the traced furnace's frames, at the level named (reads-current-table in
+// fast mode's serial order; the schedules' race is the next test).
 TEST(TransportContract, CatchesEachBrokenTransport) {
   const std::vector<RecordBatch> frames = TracedFurnaceFrames(2, 3, 16, 2);
   FilterConfig config;
@@ -114,12 +117,99 @@ TEST(TransportContract, CatchesEachBrokenTransport) {
   for (const auto& c : cases) {
     EmulatorOptions emulator;
     emulator.transport_defect = c.defect;
+    emulator.threads = 1;  // reads-current-table races the frame's adds: fast mode's serial order, the same every run
     const CrosscheckReport report = Judge(frames, config, emulator);
     EXPECT_FALSE(report.Passed()) << ToString(c.defect);
     EXPECT_EQ(report.FirstFailure().rfind("level " + std::to_string(c.level), 0), 0u)
         << ToString(c.defect) << ": " << report.FirstFailure();
     std::printf("%s: %s\n", ToString(c.defect).c_str(), report.FirstFailure().c_str());
   }
+}
+
+// reads-current-table looks each record's scattered vertex up inside the accumulate's launch, in the table it adds to
+// (TransportDuringAccumulate): what it reads depends on which of the frame's adds came first. Over the traced
+// furnace's 3 frames at 8 x 8 pixels, the faithful emulator explores 40 schedules (random and PCT of depth 3, warps
+// of 4) and fast mode's serial order; the correct transport passes under every one, the race is caught under some.
+TEST(TransportContract, AReadOfTheCurrentTableIsARaceTheSchedulesFind) {
+  const std::vector<RecordBatch> frames = TracedFurnaceFrames(2, 3, 8, 2);
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 3;
+  config.capacity = 1u << 12;
+  std::vector<EmulatorOptions> schedules;
+  for (int seed = 1; seed <= 20; ++seed) {
+    for (const std::string& policy : {"random:" + std::to_string(seed), "pct:" + std::to_string(seed) + ":3"}) {
+      EmulatorOptions faithful;
+      faithful.mode = simt::Mode::kFaithful;
+      faithful.warp_size = 4;
+      faithful.schedule = policy;
+      schedules.push_back(faithful);
+    }
+  }
+  EmulatorOptions serial;
+  serial.threads = 1;
+  schedules.push_back(serial);
+  int caught = 0;
+  for (EmulatorOptions options : schedules) {
+    const std::string name = options.mode == simt::Mode::kFast ? "fast, one thread" : options.schedule;
+    const CrosscheckReport correct = Judge(frames, config, options);
+    EXPECT_TRUE(correct.Passed()) << name << ": " << correct.FirstFailure();
+    options.transport_defect = TransportDefect::kReadsCurrentTable;
+    const CrosscheckReport racing = Judge(frames, config, options);
+    if (!racing.Passed() && caught++ == 0) std::printf("%s: %s\n", name.c_str(), racing.FirstFailure().c_str());
+  }
+  std::printf("a transport reading the current table: caught under %d of %zu schedules\n", caught, schedules.size());
+  EXPECT_GT(caught, 0);
+}
+
+// Every order of one record's read of cell A and another record's add to A, enumerated. Frame 0 places A (one
+// record, 1.0); in frame 1, thread 0 (a record of cell B) scatters into A and thread 1 adds a record of 1.25 to A.
+// The exhaustive schedule (warps of one lane) runs every order of the two threads' operations. The race reads A's
+// history only where all of thread 1's adds to A come after thread 0's reads of them; any other order carries the
+// frame's own light (or a torn sum and count) into B. The oracle is the correct transport's table, the same bits
+// under every schedule; it passes every order.
+TEST(TransportContract, EveryOrderOfAReadAndAnAddToItsCellIsExplored) {
+  FilterConfig config = ConstructedConfig(8, 4);
+  config.transport = true;
+  config.frames = 2;
+  const glm::ivec3 a = FindCell(config, [](const KeyResult& k) { return k.slot0 == 0u; });
+  const glm::ivec3 b = FindCell(config, [](const KeyResult& k) { return k.slot0 == 4u; });
+  const RecordBatch frame0 = BatchOfCells({a});
+  RecordBatch frame1 = BatchOfCells({b, a});  // contributions 1.0 and 1.25
+  frame1.frame = 1;
+  frame1.scattered = {frame1.records[1], frame1.records[1]};
+  frame1.scattered[1].path.z &= ~shared::kRecordHasVertex;  // thread 1's path scattered nowhere
+  const EmulatedRun first = EmulatedFilter(frame0, config, EmulatorOptions{});
+  config.frame = 1;
+  const EmulatedRun expected = EmulatedFilter(frame1, config, EmulatorOptions{}, AccumulateKernel, &first.table);
+  ASSERT_EQ(expected.transport.found, 1u);
+  struct Exploration {
+    std::uint64_t schedules = 0, caught = 0;
+  };
+  auto explore = [&](TransportDefect defect) {
+    simt::ExhaustiveSchedule schedule;
+    EmulatorOptions options;
+    options.mode = simt::Mode::kFaithful;
+    options.warp_size = 1;
+    options.schedule_instance = &schedule;
+    options.transport_defect = defect;
+    Exploration e;
+    do {
+      ++e.schedules;  // every schedule runs: the search learns the next one from this run's decisions
+      const EmulatedRun run = EmulatedFilter(frame1, config, options, AccumulateKernel, &first.table);
+      e.caught += run.table.fixed_sums != expected.table.fixed_sums;
+    } while (schedule.Advance());
+    return e;
+  };
+  const Exploration correct = explore(TransportDefect::kNone);
+  const Exploration racing = explore(TransportDefect::kReadsCurrentTable);
+  std::printf(
+      "one read and one add to its cell, exhaustive: correct transport %llu schedules, all equal; reading the current "
+      "table caught under %llu of %llu\n",
+      (unsigned long long)correct.schedules, (unsigned long long)racing.caught, (unsigned long long)racing.schedules);
+  EXPECT_EQ(correct.caught, 0u);
+  EXPECT_GT(racing.caught, 0u);
+  EXPECT_LT(racing.caught, racing.schedules) << "no order read A's history: the exploration saw no order that does";
 }
 
 // hpsf fuzz's sequences that transport (verifier/fuzzing/adversarial_case.h) have teeth: over the first 30 of seed 1,
@@ -136,6 +226,7 @@ TEST(TransportContract, TheFuzzersSequencesCatchEachBrokenTransport) {
     for (const AdversarialCase& c : cases) {
       EmulatorOptions emulator = c.emulator;
       emulator.transport_defect = defect;
+      if (emulator.mode == simt::Mode::kFast) emulator.threads = 1;  // the race's reads in one order every run
       failed += !Judge(c.Frames(), c.config, emulator).Passed();
     }
     std::printf("%s: %d of %zu sequences fail\n", ToString(defect).c_str(), failed, cases.size());
