@@ -34,8 +34,8 @@ struct TableBuffers {
   std::uint32_t squares = 0;
 };
 
-struct TemporalArgs;        // emulated/temporal_kernel.h
-struct EvictionArgs;        // emulated/eviction_kernels.h
+struct TemporalArgs;         // emulated/temporal_kernel.h
+struct EvictionArgs;         // emulated/eviction_kernels.h
 struct TransportInPassArgs;  // emulated/broken_transport.h
 
 struct AccumulateArgs {

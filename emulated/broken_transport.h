@@ -22,8 +22,9 @@ enum class TransportDefect {
   // primary's path length chooses the cell size): a lookup of the wrong cell size.
   kScatteredAtRecordLevel,
   // The lookup reads the table being accumulated, not the one before the frame (D10's cousin): each record looks up
-  // its scattered vertex's cell inside the accumulate's launch (TransportDuringAccumulate, emulated/defect_injection.h),
-  // so it sees whichever of the frame's adds came first, and cells new in the frame: a race the schedules explore.
+  // its scattered vertex's cell inside the accumulate's launch (TransportDuringAccumulate,
+  // emulated/defect_injection.h), so it sees whichever of the frame's adds came first, and cells new in the frame: a
+  // race the schedules explore.
   kReadsCurrentTable,
 };
 

@@ -5,10 +5,10 @@
 
 #include "core/error.h"
 #include "core/hash_table.h"
+#include "core/neighbour_search.h"
 #include "core/shared/eviction_priority.h"
 #include "core/shared/fixed_point.h"
 #include "core/shared/levels.h"
-#include "core/neighbour_search.h"
 #include "core/shared/lookup.h"
 #include "core/shared/packed_sums.h"
 #include "core/shared/second_moment.h"
@@ -162,8 +162,7 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
       if (SumAddWrapped(args.accumulation, co_await ctx.AtomicAdd(b.squares, slot, add), add))
         co_await ctx.AtomicAdd(b.wraps, 0, 1);
     } else if (b.keeps_squares) {
-      co_await ctx.AtomicAddFloat(b.squares, slot,
-                                  std::bit_cast<std::uint32_t>(shared::SquareAsFloat(contribution)));
+      co_await ctx.AtomicAddFloat(b.squares, slot, std::bit_cast<std::uint32_t>(shared::SquareAsFloat(contribution)));
     }
     if (defect == Defect::kD9NonAtomicAdd) {
       const std::uint64_t count = co_await ctx.Load(b.counts, slot);

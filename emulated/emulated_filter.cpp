@@ -102,9 +102,10 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     // Bound by reference: a conditional of the copy and `given` would copy the whole batch for the correct pass too.
     std::optional<RecordBatch> weighted_twice;
     if (defect == TransportDefect::kWeightTwice) weighted_twice = WithWeightTwice(given);
-    transport = TransportBatch(
-        weighted_twice ? *weighted_twice : given, params, config.accumulation, previous ? previous->fixed_point_bits : 0,
-        lookup, defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr, on_workers);
+    transport =
+        TransportBatch(weighted_twice ? *weighted_twice : given, params, config.accumulation,
+                       previous ? previous->fixed_point_bits : 0, lookup,
+                       defect == TransportDefect::kScatteredAtRecordLevel ? KeyAtRecordLevel : nullptr, on_workers);
     run.transport_read = std::move(transport->read);
     run.transport = transport->stats;
     run.timings.transport_ms = clock.LapMs();
@@ -325,8 +326,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
         const bool transports = !given.scattered.empty() && accepted[i] && shared::RecordHasVertex(all[i]) &&
                                 shared::RecordHasVertex(given.scattered[i]) &&
                                 CheckRecordInputs(given.scattered[i]) == InputVerdict::kAccepted;
-        scattered_keys[i] = transports ? shared::ComputeKey(params, given.scattered[i])
-                                       : shared::EmptyKeyResult(shared::kKeyNoVertex);
+        scattered_keys[i] =
+            transports ? shared::ComputeKey(params, given.scattered[i]) : shared::EmptyKeyResult(shared::kKeyNoVertex);
       }
     });
     transport_args = {scattered_keys, given.scattered, table.fixed_point_bits, memory.Allocate32("transport_reads", n)};

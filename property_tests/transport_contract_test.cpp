@@ -12,8 +12,10 @@
 #include "emulated/simt/schedule.h"
 #include "property_tests/constructed_cells.h"
 #include "property_tests/transport_furnace.h"
+#include "property_tests/vulkan_test_devices.h"
 #include "verifier/contract/contract_levels.h"
 #include "verifier/fuzzing/adversarial_case.h"
+#include "vulkan/vulkan_backend.h"
 
 namespace hpsf::testing {
 namespace {
@@ -210,6 +212,47 @@ TEST(TransportContract, EveryOrderOfAReadAndAnAddToItsCellIsExplored) {
   EXPECT_EQ(correct.caught, 0u);
   EXPECT_GT(racing.caught, 0u);
   EXPECT_LT(racing.caught, racing.schedules) << "no order read A's history: the exploration saw no order that does";
+}
+
+// A team's transport shader (--transport-spv), given through the interface of transport.comp, on Vulkan mapped and
+// staged over the traced furnace's 3 frames: hpsf's own shader given as a team's holds the contract; one that applies
+// the scattered vertex's throughput twice fails level 2 at a slot's sums, and one that writes back a slot past the
+// table fails level 2 naming the record and the word.
+TEST(TransportContract, ATeamsTransportShaderIsJudgedByTheContract) {
+  const std::vector<RecordBatch> frames = TracedFurnaceFrames(2, 3, 16, 2);
+  FilterConfig config;
+  config.transport = true;
+  config.frames = 3;
+  config.capacity = 1u << 14;
+  std::vector<std::uint32_t> numbers;
+  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
+  const struct {
+    const char* variant;
+    const char* failure;  // what the first failure says; empty where the contract holds
+  } cases[] = {
+      {"correct", ""},
+      {"WEIGHT_TWICE", "sum differs from the records placed at slot"},
+      {"READ_PAST_THE_END", "invalid shader output: record 0: transport read 16384, not a slot below the capacity"},
+  };
+  for (const StagingPolicy staging : kStagingPolicies) {
+    for (const auto& c : cases) {
+      const std::string spv = std::string(HPSF_SHADER_VARIANT_DIR "/transport_") + c.variant + ".spv";
+      VulkanBackend backend(TestDevice(staging), "", "", "", "", "", spv);
+      VulkanBackend rerun(TestDevice(staging), "", "", "", "", "", spv);
+      const JudgedBackend judged{"vulkan", &backend, &rerun, "rerun", false, true};
+      const CrosscheckReport report =
+          JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+      const std::string name = std::string(c.variant) + ", staging " + ToString(staging);
+      if (std::string(c.failure).empty()) {
+        EXPECT_TRUE(report.Passed()) << name << ": " << report.FirstFailure();
+        continue;
+      }
+      EXPECT_FALSE(report.Passed()) << name;
+      EXPECT_EQ(report.FirstFailure().rfind("level 2", 0), 0u) << name << ": " << report.FirstFailure();
+      EXPECT_NE(report.FirstFailure().find(c.failure), std::string::npos) << name << ": " << report.FirstFailure();
+      std::printf("%s: %s\n", name.c_str(), report.FirstFailure().c_str());
+    }
+  }
 }
 
 // hpsf fuzz's sequences that transport (verifier/fuzzing/adversarial_case.h) have teeth: over the first 30 of seed 1,

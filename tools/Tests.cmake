@@ -280,6 +280,27 @@ hpsf_add_cli_test(HpsfCrosscheck.KeptPathsHoldTheContract "unit;bounces;vulkan" 
   "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*emulated: .*over 4 frames.*vulkan: .*over 4 frames" ""
   $<TARGET_FILE:hpsf> crosscheck furnace --size 16x16 --spp 2 --frames 4 --transport on --continuation-depth 5
   --capacity 16384)
+# A team's transport shader (--transport-spv) through the interface of transport.comp: one that applies the scattered
+# vertex's throughput twice fails level 2 on Vulkan and is bundled; hpsf's own, given as a team's, holds the contract;
+# a file that is not SPIR-V is refused by name and nothing is run; render names the shader whose word is bad.
+hpsf_add_cli_test(HpsfCrosscheck.ATeamsTransportShaderHoldsTheContract "unit;bounces;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS" ""
+  $<TARGET_FILE:hpsf> crosscheck furnace --size 16x16 --spp 2 --frames 3 --transport on --filtered-vertices 2
+  --capacity 16384 --backends reference,vulkan --transport-spv ${HPSF_SHADER_VARIANT_DIR}/transport_correct.spv)
+hpsf_add_cli_test(HpsfCrosscheck.ATransportShaderThatWeighsTwiceFailsLevel2 "unit;bounces;vulkan" 2
+  "level 2 tables: FAIL.*vulkan, frame 1: sum differs from the records placed at slot" ""
+  $<TARGET_FILE:hpsf> crosscheck furnace --size 16x16 --spp 2 --frames 3 --transport on --filtered-vertices 2
+  --capacity 16384 --backends reference,vulkan --transport-spv ${HPSF_SHADER_VARIANT_DIR}/transport_WEIGHT_TWICE.spv
+  --repro-dir ${hpsf_out}/transport-weight-twice)
+hpsf_add_cli_test(HpsfCrosscheck.ATransportShaderThatIsNotSpirvExits3 "unit;bounces;vulkan;untrusted" 3
+  "furnace.json.*SPIR-V" ""
+  $<TARGET_FILE:hpsf> crosscheck furnace --size 8x8 --frames 2 --transport on --filtered-vertices 2
+  --backends reference,vulkan --transport-spv ${PROJECT_SOURCE_DIR}/scenes/furnace.json)
+hpsf_add_cli_test(HpsfRender.ATransportShaderWritingASlotPastTheTableExits2 "unit;bounces;vulkan;untrusted" 2
+  "the transport shader .*transport_READ_PAST_THE_END.spv.*transport read 1024, not a slot below the capacity" ""
+  $<TARGET_FILE:hpsf> render furnace --size 8x8 --frames 2 --transport on --filtered-vertices 2 --capacity 1024
+  --backend vulkan --transport-spv ${HPSF_SHADER_VARIANT_DIR}/transport_READ_PAST_THE_END.spv
+  -o ${hpsf_out}/past-the-end.exr ABSENT ${hpsf_out}/past-the-end.exr)
 hpsf_add_cli_test(HpsfRender.AShallowContinuationDepthExits3 "unit;bounces" 3
   "--continuation-depth: must be 0 \\(off\\) or lie in \\[3, 1024\\]" ""
   $<TARGET_FILE:hpsf> render furnace --size 8x8 --filtered-vertices 2 --transport on --continuation-depth 2

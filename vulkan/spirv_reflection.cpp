@@ -135,10 +135,10 @@ bool ReadsCountWords(std::span<const std::uint32_t> spirv, const std::string& fi
 }
 
 std::vector<TeamTagReader> TeamTagReaders(const TeamShader& accumulate, const TeamShader& eviction,
-                                          const TeamShader& compaction) {
+                                          const TeamShader& compaction, const TeamShader& transport) {
   std::vector<TeamTagReader> readers;
   for (const auto& [shader, binding] :
-       {std::pair{&accumulate, 2u}, std::pair{&eviction, 0u}, std::pair{&compaction, 1u}}) {
+       {std::pair{&accumulate, 2u}, std::pair{&eviction, 0u}, std::pair{&compaction, 1u}, std::pair{&transport, 3u}}) {
     if (!shader->spirv.empty())
       readers.push_back({shader->name, binding, DeclaredTagViews(shader->spirv, shader->name, binding)});
   }

@@ -39,16 +39,17 @@ struct TagViews {
 TagViews DeclaredTagViews(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t tags_binding);
 
 // Whether a team's pass shader uses a 32-bit view of its counts binding (an eviction shader's 2, a temporal shader's
-// 1), the count words of packed-decimal sums (core/shared/packed_sums.h), as eviction.comp and temporal.comp do by
-// a push constant. One that reads 64-bit counts only would read count words with the wrong stride, so VulkanFilter
-// refuses it with packed-decimal sums.
+// 1, a transport shader's 5), the count words of packed-decimal sums (core/shared/packed_sums.h), as eviction.comp and
+// temporal.comp do by a push constant. One that reads 64-bit counts only would read count words with the wrong stride,
+// so VulkanFilter refuses it with packed-decimal sums.
 constexpr std::uint32_t kEvictionCountsBinding = 2;
 constexpr std::uint32_t kTemporalCountsBinding = 1;
+constexpr std::uint32_t kTransportCountsBinding = 5;
 bool ReadsCountWords(std::span<const std::uint32_t> spirv, const std::string& file, std::uint32_t counts_binding);
 
 // A team's shader that reads the table's tags (--accumulate-spv at binding 2, --eviction-spv at 0, --compaction-spv
-// at 1) and the views it uses. The one place those bindings are named, for VulkanFilter's refusal and for what
-// hpsf fuzz draws.
+// at 1, --transport-spv at 3) and the views it uses. The one place those bindings are named, for VulkanFilter's refusal
+// and for what hpsf fuzz draws.
 struct TeamTagReader {
   std::string name;
   std::uint32_t binding;
@@ -59,7 +60,7 @@ struct TeamShader {
   std::string name;
 };
 std::vector<TeamTagReader> TeamTagReaders(const TeamShader& accumulate, const TeamShader& eviction,
-                                          const TeamShader& compaction);
+                                          const TeamShader& compaction, const TeamShader& transport = {});
 
 }  // namespace hpsf
 

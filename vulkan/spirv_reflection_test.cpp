@@ -14,6 +14,7 @@
 #include "resolve_float32_spv.h"
 #include "resolve_packed_decimal_spv.h"
 #include "temporal_spv.h"
+#include "transport_spv.h"
 
 namespace hpsf {
 namespace {
@@ -67,11 +68,13 @@ TEST(SpirvReflection, OtherBindingsAndBytesAreRefused) {
   EXPECT_EQ(Refusal(not_spirv).rfind("x.spv: the SPIR-V does not reflect: ", 0), 0u) << Refusal(not_spirv);
 }
 
-// A 32-bit view of the counts binding used: packed-decimal's count words. eviction.comp (binding 2) and temporal.comp
-// (binding 1) use both views (by a push constant); a resolve's counts are binding 2, 64-bit or count words by its mode.
+// A 32-bit view of the counts binding used: packed-decimal's count words. eviction.comp (binding 2), temporal.comp
+// (binding 1) and transport.comp (binding 5) use both views (by a push constant); a resolve's counts are binding 2,
+// 64-bit or count words by its mode.
 TEST(SpirvReflection, APassShaderReadsCountWordsOnlyThroughA32BitView) {
   EXPECT_TRUE(ReadsCountWords(eviction_spv, "e.spv", kEvictionCountsBinding));
   EXPECT_TRUE(ReadsCountWords(temporal_spv, "t.spv", kTemporalCountsBinding));
+  EXPECT_TRUE(ReadsCountWords(transport_spv, "p.spv", kTransportCountsBinding));
   EXPECT_TRUE(ReadsCountWords(resolve_packed_decimal_spv, "r.spv", 2));
   EXPECT_FALSE(ReadsCountWords(resolve_fixed64_spv, "r.spv", 2));
 }

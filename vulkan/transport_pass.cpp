@@ -39,10 +39,11 @@ void Ensure(VulkanDevice::Impl& device, DeviceBuffer& buffer, vk::DeviceSize byt
 
 }  // namespace
 
-TransportPass::TransportPass(VulkanDevice::Impl& device)
+TransportPass::TransportPass(VulkanDevice::Impl& device, std::span<const std::uint32_t> custom, std::string name)
     : device_(device),
-      program_(
-          vulkan_internal::CreateComputeProgram(device, transport_spv, kTransportBindings, sizeof(TransportPush))) {}
+      name_(custom.empty() ? "the transport shader" : "the transport shader " + name),
+      program_(vulkan_internal::CreateComputeProgram(device, custom.empty() ? transport_spv : custom,
+                                                     kTransportBindings, sizeof(TransportPush))) {}
 
 DeviceTransport TransportPass::Run(std::span<const Record> records, std::span<const Record> scattered,
                                    const KeyParams& params, const TransportTable& table) {
@@ -125,7 +126,7 @@ DeviceTransport TransportPass::Run(std::span<const Record> records, std::span<co
     faults.push_back("transport: " + std::to_string(*unkeyable) + " unkeyable scattered vertices, more than the " +
                      std::to_string(result.stats.scattered - result.stats.found) + " it found no cell for");
   }
-  if (!faults.empty()) throw ShaderOutputError("the transport shader", std::move(faults));
+  if (!faults.empty()) throw ShaderOutputError(name_, std::move(faults));
   result.stats.unkeyable = *unkeyable;
   result.stats.missed = result.stats.scattered - result.stats.found - result.stats.unkeyable;
   return result;

@@ -1,11 +1,13 @@
-// transport.comp on a Vulkan device: several filtered bounces' lookups (core/transport.h) in the device table as the
-// previous frame left it, before the frame's accumulate. The host then adds the transported records as it adds any
+// transport.comp, or a team's transport shader (--transport-spv, docs/reference/buffer-interface.md), on a Vulkan
+// device: several filtered bounces' lookups (core/transport.h) in the device table as the previous frame left it,
+// before the frame's accumulate. The host then adds the transported records as it adds any
 // record (vulkan_filter.cpp), so the accumulate's interface stays the one a team's shader is written against.
 #ifndef HPSF_VULKAN_TRANSPORT_PASS_H
 #define HPSF_VULKAN_TRANSPORT_PASS_H
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/key_batch.h"
@@ -38,7 +40,8 @@ struct DeviceTransport {
 
 class TransportPass {
  public:
-  explicit TransportPass(VulkanDevice::Impl& device);
+  // custom: a team's SPIR-V, named `name` in errors; empty for transport.comp.
+  TransportPass(VulkanDevice::Impl& device, std::span<const std::uint32_t> custom = {}, std::string name = "");
 
   // records: the frame's records then its deeper ones; scattered: one per record. params: the frame's key
   // parameters (record_count the records with the deeper ones). Every word the shader writes back is checked before
@@ -48,6 +51,7 @@ class TransportPass {
 
  private:
   VulkanDevice::Impl& device_;
+  std::string name_;  // who writes the words read back, for a ShaderOutputError
   vulkan_internal::ComputeProgram program_;
   vulkan_internal::DeviceBuffer scattered_, marked_, contributions_, read_, stats_;
   std::vector<vulkan_internal::StagingBuffer> staging_;

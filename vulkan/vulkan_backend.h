@@ -14,12 +14,13 @@ namespace hpsf {
 
 class VulkanBackend : public Backend {
  public:
-  // accumulate_spv, eviction_spv, temporal_spv, resolve_spv, compaction_spv: a user's shaders, as VulkanFilter takes
-  // them. The device must outlive the backend.
+  // accumulate_spv, eviction_spv, temporal_spv, resolve_spv, compaction_spv, transport_spv: a user's shaders, as
+  // VulkanFilter takes them. The device must outlive the backend.
   explicit VulkanBackend(VulkanDevice& device, const std::string& accumulate_spv = "",
                          const std::string& eviction_spv = "", const std::string& temporal_spv = "",
-                         const std::string& resolve_spv = "", const std::string& compaction_spv = "")
-      : filter_(device, accumulate_spv, eviction_spv, temporal_spv, resolve_spv, compaction_spv) {}
+                         const std::string& resolve_spv = "", const std::string& compaction_spv = "",
+                         const std::string& transport_spv = "")
+      : filter_(device, accumulate_spv, eviction_spv, temporal_spv, resolve_spv, compaction_spv, transport_spv) {}
   std::string Name() const override { return "vulkan"; }
   const HashedRun* LastHashedRun() const override { return run_ ? &*run_ : nullptr; }
   // The last frame's run: the table after it, and its records' keys and placements. Only after a frame.

@@ -368,7 +368,7 @@ struct VulkanFilter::Impl {
   // Who wrote the read-back words, for a ShaderOutputError.
   std::string ShaderNames() const {
     if (custom_accumulate.empty() && custom_eviction.empty() && custom_temporal.empty() && custom_resolve.empty() &&
-        custom_compaction.empty()) {
+        custom_compaction.empty() && custom_transport.empty()) {
       return "the built-in shaders";
     }
     std::string names = custom_accumulate.empty() ? "" : "the accumulate shader " + accumulate_name;
@@ -377,6 +377,7 @@ struct VulkanFilter::Impl {
     if (!custom_resolve.empty()) names += (names.empty() ? "" : " or ") + ("the resolve shader " + resolve_name);
     if (!custom_compaction.empty())
       names += (names.empty() ? "" : " or ") + ("the compaction shader " + compaction_name);
+    if (!custom_transport.empty()) names += (names.empty() ? "" : " or ") + ("the transport shader " + transport_name);
     return names;
   }
   void Ensure(DeviceBuffer& buffer, vk::DeviceSize bytes) {
@@ -397,15 +398,18 @@ struct VulkanFilter::Impl {
   std::optional<TransportPass> transport;
   DeviceBuffer resolve_placements;
 
+  std::vector<std::uint32_t> custom_transport;  // --transport-spv
+  std::string transport_name;
+
   TransportPass& Transport() {
-    if (!transport) transport.emplace(device);
+    if (!transport) transport.emplace(device, custom_transport, transport_name);
     return *transport;
   }
 };
 
 VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv, const std::string& eviction_spv,
                            const std::string& temporal_spv, const std::string& resolve_spv,
-                           const std::string& compaction_spv)
+                           const std::string& compaction_spv, const std::string& transport_spv)
     : impl_(new Impl{device.impl(),
                      accumulate_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(accumulate_spv),
                      accumulate_spv.empty() ? "built-in" : accumulate_spv,
@@ -458,6 +462,8 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {},
                      {},
                      {},
+                     {},
+                     {},
                      {}}) {
   if (!impl_->custom_accumulate.empty()) {
     impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
@@ -469,8 +475,13 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
     impl_->custom_compaction = ReadSpirvFile(compaction_spv);
     impl_->compaction_name = compaction_spv;
   }
-  impl_->team_tags = TeamTagReaders({impl_->custom_accumulate, accumulate_spv}, {impl_->custom_eviction, eviction_spv},
-                                    {impl_->custom_compaction, compaction_spv});
+  if (!transport_spv.empty()) {
+    impl_->custom_transport = ReadSpirvFile(transport_spv);
+    impl_->transport_name = transport_spv;
+  }
+  impl_->team_tags =
+      TeamTagReaders({impl_->custom_accumulate, accumulate_spv}, {impl_->custom_eviction, eviction_spv},
+                     {impl_->custom_compaction, compaction_spv}, {impl_->custom_transport, transport_spv});
 }
 
 VulkanFilter::~VulkanFilter() = default;
@@ -561,7 +572,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   }
   for (const auto& [spirv, name, binding] :
        {std::tuple{&p.custom_eviction, &p.eviction_name, kEvictionCountsBinding},
-        std::tuple{&p.custom_temporal, &p.temporal_name, kTemporalCountsBinding}}) {
+        std::tuple{&p.custom_temporal, &p.temporal_name, kTemporalCountsBinding},
+        std::tuple{&p.custom_transport, &p.transport_name, kTransportCountsBinding}}) {
     if (config.accumulation == Accumulation::kPackedDecimal && !spirv->empty() &&
         !ReadsCountWords(*spirv, *name, binding)) {
       throw ConfigError("--accum", *name + " reads its counts (binding " + std::to_string(binding) +

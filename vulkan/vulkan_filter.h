@@ -54,10 +54,12 @@ class VulkanFilter {
   // through the same bindings; empty for the built-in shaders. InputError naming the file when it is not SPIR-V.
   // eviction_spv: likewise for the eviction pass (eviction.comp's bindings and push constants), temporal_spv for
   // the temporal blend (temporal.comp's), resolve_spv for the resolve (resolve.glsl's; its sums binding says its mode),
-  // compaction_spv for the occupied list's passes of --compaction occupied-list (compaction.comp's).
+  // compaction_spv for the occupied list's passes of --compaction occupied-list (compaction.comp's), transport_spv
+  // for several filtered bounces' transport (transport.comp's).
   explicit VulkanFilter(VulkanDevice& device, const std::string& accumulate_spv = "",
                         const std::string& eviction_spv = "", const std::string& temporal_spv = "",
-                        const std::string& resolve_spv = "", const std::string& compaction_spv = "");
+                        const std::string& resolve_spv = "", const std::string& compaction_spv = "",
+                        const std::string& transport_spv = "");
   ~VulkanFilter();
   VulkanFilter(const VulkanFilter&) = delete;
   VulkanFilter& operator=(const VulkanFilter&) = delete;

@@ -40,6 +40,9 @@ void AddEmulatorOptions(CLI::App& command, EmulatorFlags& flags) {
   command.add_option("--compaction-spv", flags.vulkan.compaction_spv,
                      "Vulkan backend: run this SPIR-V compaction shader (the occupied list's gather and prune, "
                      "docs/reference/buffer-interface.md) with --compaction occupied-list");
+  command.add_option("--transport-spv", flags.vulkan.transport_spv,
+                     "Vulkan backend: run this SPIR-V transport shader (several filtered bounces' lookups in the table "
+                     "before the frame, docs/reference/buffer-interface.md) with --transport on");
   command
       .add_option_function<std::string>(
           "--key-source",

@@ -111,6 +111,7 @@ nlohmann::json ToJson(const FuzzOptions& o, std::uint64_t runs, std::uint64_t re
                       {"temporal_spv", o.vulkan.temporal_spv},
                       {"resolve_spv", o.vulkan.resolve_spv},
                       {"compaction_spv", o.vulkan.compaction_spv},
+                      {"transport_spv", o.vulkan.transport_spv},
                       {"key_source", o.vulkan.shader_keys ? "shader" : "core"},
                       {"shaders_know", o.shaders_know},
                       {"accum", o.accumulation.empty() ? "both" : o.accumulation},
@@ -155,11 +156,10 @@ int Run(FuzzOptions& o, bool options_only) {
     throw ConfigError("--inject-defect",
                       "breaks the emulated backend's kernel; for Vulkan give a broken shader with --accumulate-spv");
   }
-  const std::pair<const char*, const std::string*> shaders[] = {{"--accumulate-spv", &o.vulkan.accumulate_spv},
-                                                                {"--eviction-spv", &o.vulkan.eviction_spv},
-                                                                {"--temporal-spv", &o.vulkan.temporal_spv},
-                                                                {"--resolve-spv", &o.vulkan.resolve_spv},
-                                                                {"--compaction-spv", &o.vulkan.compaction_spv}};
+  const std::pair<const char*, const std::string*> shaders[] = {
+      {"--accumulate-spv", &o.vulkan.accumulate_spv}, {"--eviction-spv", &o.vulkan.eviction_spv},
+      {"--temporal-spv", &o.vulkan.temporal_spv},     {"--resolve-spv", &o.vulkan.resolve_spv},
+      {"--compaction-spv", &o.vulkan.compaction_spv}, {"--transport-spv", &o.vulkan.transport_spv}};
   for (const auto& [option, path] : shaders) {
     if (!path->empty() && !backend.runs_user_shaders) {
       throw ConfigError(option, "runs on the Vulkan backend; add --backend vulkan");
@@ -204,11 +204,12 @@ int Run(FuzzOptions& o, bool options_only) {
     return path.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(path);
   };
   const std::vector<std::uint32_t> accumulate = words(o.vulkan.accumulate_spv), eviction = words(o.vulkan.eviction_spv),
-                                   compaction = words(o.vulkan.compaction_spv), temporal = words(o.vulkan.temporal_spv);
+                                   compaction = words(o.vulkan.compaction_spv), temporal = words(o.vulkan.temporal_spv),
+                                   transport = words(o.vulkan.transport_spv);
   bool full_keys = true, fingerprints = true;
   for (const TeamTagReader& team :
        TeamTagReaders({accumulate, o.vulkan.accumulate_spv}, {eviction, o.vulkan.eviction_spv},
-                      {compaction, o.vulkan.compaction_spv})) {
+                      {compaction, o.vulkan.compaction_spv}, {transport, o.vulkan.transport_spv})) {
     full_keys &= team.views.Takes(KeyIdentity::kFull);
     fingerprints &= team.views.Takes(KeyIdentity::kFingerprint);
   }
@@ -216,10 +217,11 @@ int Run(FuzzOptions& o, bool options_only) {
     throw ConfigError("--key-identity",
                       "the team shaders given read tags of different widths: no case can run them all");
   }
-  // Packed-decimal sums only where a team's eviction and temporal shaders read their 32-bit count words.
+  // Packed-decimal sums only where a team's eviction, temporal and transport shaders read their 32-bit count words.
   const bool packed_sums =
       (eviction.empty() || ReadsCountWords(eviction, o.vulkan.eviction_spv, kEvictionCountsBinding)) &&
-      (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding));
+      (temporal.empty() || ReadsCountWords(temporal, o.vulkan.temporal_spv, kTemporalCountsBinding)) &&
+      (transport.empty() || ReadsCountWords(transport, o.vulkan.transport_spv, kTransportCountsBinding));
   // Several levels only where hpsf's own kernels add and resolve them (the level-unjittered kernel adds them, wrongly;
   // the level-wrong-count resolve reads them, wrongly).
   // Or where the team says its shaders know them (--shaders-know).
@@ -234,6 +236,11 @@ int Run(FuzzOptions& o, bool options_only) {
   // Level seeding where hpsf's own kernels run, and no team's shader.
   const bool level_change = defect == Defect::kNone && accumulate.empty() && eviction.empty() && compaction.empty() &&
                             temporal.empty() && o.vulkan.resolve_spv.empty();
+  // The transport where the emulator runs it, or where Vulkan's accumulate and resolve are hpsf's own (a team's
+  // transport shader is judged with them).
+  const bool transports =
+      !backend.on_device || level_change ||
+      (!transport.empty() && defect == Defect::kNone && accumulate.empty() && o.vulkan.resolve_spv.empty());
   // Second moments where hpsf's own accumulate, temporal and eviction passes keep the squares.
   const bool second_moments = defect == Defect::kNone && accumulate.empty() && eviction.empty() && temporal.empty();
   const AdversarialOptions generate{
@@ -242,7 +249,7 @@ int Run(FuzzOptions& o, bool options_only) {
       probing,       full_keys,
       fingerprints,  packed_sums,
       levels,        search,
-      level_change,  !backend.on_device || level_change,  // the transport: Vulkan's with hpsf's own shaders
+      level_change,  transports,
       second_moments};
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
@@ -289,10 +296,11 @@ int Run(FuzzOptions& o, bool options_only) {
       // shrinking may otherwise wander into a failure they share (a sequence whose first frame, its records cut,
       // chooses an F its later frame wraps), which says nothing of the shader. Unless the found case fails there too.
       VulkanBackendOptions own = o.vulkan;
-      own.accumulate_spv = own.eviction_spv = own.temporal_spv = own.resolve_spv = own.compaction_spv = "";
+      own.accumulate_spv = own.eviction_spv = own.temporal_spv = own.resolve_spv = own.compaction_spv =
+          own.transport_spv = "";
       const bool teams_shader = !o.vulkan.accumulate_spv.empty() || !o.vulkan.eviction_spv.empty() ||
                                 !o.vulkan.temporal_spv.empty() || !o.vulkan.resolve_spv.empty() ||
-                                !o.vulkan.compaction_spv.empty();
+                                !o.vulkan.compaction_spv.empty() || !o.vulkan.transport_spv.empty();
       std::optional<Crosschecker> hpsfs_own;
       if (defect != Defect::kNone || teams_shader) {
         hpsfs_own.emplace(backends, Defect::kNone, own);
@@ -308,7 +316,8 @@ int Run(FuzzOptions& o, bool options_only) {
                       .probing = generate.probing.has_value(),
                       .eviction = !o.vulkan.eviction_spv.empty(),
                       .temporal = !o.vulkan.temporal_spv.empty(),
-                      .compaction = !o.vulkan.compaction_spv.empty()});
+                      .compaction = !o.vulkan.compaction_spv.empty(),
+                      .transport = !o.vulkan.transport_spv.empty()});
       const std::optional<CrosscheckReport> shrunk = CheckUntilFails(checker, failure->shrink.shrunk, 3 * tries);
       failure->timing_dependent = !Fails(shrunk);  // the shrunk case lost the timing it needs
       if (shrunk) failure->report = *shrunk;
@@ -373,6 +382,9 @@ void AddFuzzCommand(CLI::App& app, CommandContext& context) {
                 "Vulkan: your temporal blend shader (SPIR-V), run in the cases whose sequence blends");
   c->add_option("--compaction-spv", o->vulkan.compaction_spv,
                 "Vulkan: your compaction shader (SPIR-V), run in the cases whose sequence compacts");
+  c->add_option("--transport-spv", o->vulkan.transport_spv,
+                "Vulkan: your transport shader (SPIR-V), run in the cases whose sequence transports light between "
+                "frames");
   c->add_option_function<std::string>(
        "--key-source",
        [o](const std::string& text) {

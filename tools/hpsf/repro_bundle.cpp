@@ -146,6 +146,9 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
   if (!vulkan.compaction_spv.empty()) {
     a.insert(a.end(), {"--compaction-spv", std::filesystem::absolute(vulkan.compaction_spv).string()});
   }
+  if (!vulkan.transport_spv.empty()) {
+    a.insert(a.end(), {"--transport-spv", std::filesystem::absolute(vulkan.transport_spv).string()});
+  }
   if (vulkan.shader_keys) a.insert(a.end(), {"--key-source", "shader"});
   if (!vulkan.resolve_spv.empty()) {
     a.insert(a.end(), {"--resolve-spv", std::filesystem::absolute(vulkan.resolve_spv).string()});

@@ -151,9 +151,9 @@ BackendInstance MakeBackend(const BackendInfo& info, const BackendSettings& sett
         instance.device = std::make_unique<VulkanDevice>(settings.vulkan.device_filter, settings.vulkan.staging);
         device = instance.device.get();
       }
-      auto vulkan = std::make_unique<VulkanBackend>(*device, settings.vulkan.accumulate_spv,
-                                                    settings.vulkan.eviction_spv, settings.vulkan.temporal_spv,
-                                                    settings.vulkan.resolve_spv, settings.vulkan.compaction_spv);
+      auto vulkan = std::make_unique<VulkanBackend>(
+          *device, settings.vulkan.accumulate_spv, settings.vulkan.eviction_spv, settings.vulkan.temporal_spv,
+          settings.vulkan.resolve_spv, settings.vulkan.compaction_spv, settings.vulkan.transport_spv);
       const VulkanBackend* made = vulkan.get();
       const VulkanDeviceInfo* device_info = &device->info();
       instance.last_frame_stats = [made, device_info] { return ToJson(made->run(), *device_info); };

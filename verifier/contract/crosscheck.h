@@ -83,6 +83,7 @@ struct VulkanBackendOptions {
   std::string temporal_spv;    // --temporal-spv: a user's temporal blend shader; empty for the built-in one
   std::string resolve_spv;     // --resolve-spv: a user's resolve shader; empty for the built-in ones
   std::string compaction_spv;  // --compaction-spv: a user's compaction shader; empty for the built-in one
+  std::string transport_spv;   // --transport-spv: a user's transport shader; empty for the built-in one
   // --key-source shader: the accumulate shader's key words are its own (a team's quantization and hashes), judged
   // as given (verifier/contract/given_keys.h) instead of word for word against core's.
   bool shader_keys = false;

@@ -106,7 +106,7 @@ class Shrinker {
       });
     }
     if (c.config.level_seed.enabled) attempt([](AdversarialCase& a) { a.config.level_seed = {}; });
-    if (c.config.transport) attempt([](AdversarialCase& a) { a.config.transport = false; });
+    if (c.config.transport && !keep_.transport) attempt([](AdversarialCase& a) { a.config.transport = false; });
     if (c.config.second_moments) attempt([](AdversarialCase& a) { a.config.second_moments = false; });
     if (c.config.levels > 1) {
       attempt([](AdversarialCase& a) {

@@ -24,8 +24,9 @@ struct ShrinkResult {
 };
 
 // What was the user's choice and is not simplified: a shader may handle one accumulation mode or one probing
-// scheme only, and a team's eviction, temporal or compaction shader runs only while the case evicts, blends or
-// compacts (simplified away, the case would shrink into some other failure, or none of the shader's).
+// scheme only, and a team's eviction, temporal, compaction or transport shader runs only while the case evicts,
+// blends, compacts or transports (simplified away, the case would shrink into some other failure, or none of the
+// shader's).
 struct ShrinkKeeps {
   bool accumulation = false;
   bool key_identity = false;  // a shader that reads 64-bit tags only keeps its full keys
@@ -33,6 +34,7 @@ struct ShrinkKeeps {
   bool eviction = false;
   bool temporal = false;
   bool compaction = false;
+  bool transport = false;  // a team's transport shader runs only while the case transports
 };
 
 ShrinkResult ShrinkCase(const AdversarialCase& failing, const CaseFailsFn& fails, ShrinkKeeps keep = {},

@@ -33,7 +33,7 @@ std::vector<std::string> OptionArguments(const std::string& name, const json& va
 
 bool IsPathOption(const std::string& name) {
   return name == "accumulate-spv" || name == "eviction-spv" || name == "temporal-spv" || name == "resolve-spv" ||
-         name == "compaction-spv" || name == "table";
+         name == "compaction-spv" || name == "transport-spv" || name == "table";
 }
 
 bool IsFile(const std::string& scene) {

@@ -6,6 +6,10 @@
 // changes what is read: D10's cousin cannot happen here), and adds the cell's average, carried back by the
 // scattered vertex's throughput, to its own contribution. It writes the transported contribution and the slot it
 // read, or kNothingTransported; the host judges both.
+//
+// Broken variants for the tests of a team's transport shader (--transport-spv): HPSF_DEFECT_WEIGHT_TWICE, the
+// scattered vertex's throughput applied twice; HPSF_DEFECT_READ_PAST_THE_END, a found cell's slot written back one
+// past the last slot.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -100,7 +104,13 @@ void Transport(uint i, KeyParams k) {
   }
   uint slot = Find(scattered.words, k);
   if (slot == kNothingTransported) return;
+#if defined(HPSF_DEFECT_WEIGHT_TWICE)
+  s.throughput *= s.throughput;
+#endif
   contributions[i] = vec4(TransportedContribution(contributions[i].xyz, s.throughput.xyz, Average(slot)), 0.0);
+#if defined(HPSF_DEFECT_READ_PAST_THE_END)
+  slot = k.capacity_mask + 1u;
+#endif
   read_slots[i] = slot;
 }
 
