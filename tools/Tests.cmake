@@ -301,6 +301,15 @@ hpsf_add_cli_test(HpsfRender.ATransportShaderWritingASlotPastTheTableExits2 "uni
   $<TARGET_FILE:hpsf> render furnace --size 8x8 --frames 2 --transport on --filtered-vertices 2 --capacity 1024
   --backend vulkan --transport-spv ${HPSF_SHADER_VARIANT_DIR}/transport_READ_PAST_THE_END.spv
   -o ${hpsf_out}/past-the-end.exr ABSENT ${hpsf_out}/past-the-end.exr)
+# hpsf fuzz draws sequences that transport for a team's transport shader: the throughput applied twice is found,
+# shrunk to at most 2 records, and its bundle reproduces it (found at run 4 of seed 1, shrunk to 2 records in 2
+# frames).
+add_test(NAME HpsfFuzz.FindsATransportShaderThatWeighsTwice
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DNAME=fuzz_transport_weight_twice
+    -DMAX_RECORDS=2
+    "-DARGS=--backend;vulkan;--transport-spv;${HPSF_SHADER_VARIANT_DIR}/transport_WEIGHT_TWICE.spv;--runs;200;--seed;1"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/fuzz_finds_defect.cmake)
+set_tests_properties(HpsfFuzz.FindsATransportShaderThatWeighsTwice PROPERTIES LABELS "vulkan;bounces")
 hpsf_add_cli_test(HpsfRender.AShallowContinuationDepthExits3 "unit;bounces" 3
   "--continuation-depth: must be 0 \\(off\\) or lie in \\[3, 1024\\]" ""
   $<TARGET_FILE:hpsf> render furnace --size 8x8 --filtered-vertices 2 --transport on --continuation-depth 2
