@@ -144,6 +144,26 @@ EffectDecision DecideTransport(const FilterConfig& config, std::uint32_t frames)
   return d;
 }
 
+EffectDecision DecideSurvival(const FilterConfig& config, std::uint32_t frames) {
+  EffectDecision d{Effect::kSurvival, config.survival.enabled(), config.forced.Has(Effect::kSurvival), 0, ""};
+  if (!d.asked) {
+    d.reason = "--survival off";
+    return d;
+  }
+  d.frames_run = FramesRunning(config, frames, &FrameEffects::survival);
+  const std::string empty = "the first frame has no table before it: every path survives";
+  if (d.forced) {
+    d.reason = "forced on every frame, though " + empty;
+  } else if (frames == 1) {
+    d.reason = "a single frame: " + empty;
+  } else {
+    d.reason =
+        "runs from frame 1 of the sequence on: each path survives its primary vertex by its cell's variance in the "
+        "table before the frame";
+  }
+  return d;
+}
+
 }  // namespace
 
 std::string EffectName(Effect effect) {
@@ -160,6 +180,8 @@ std::string EffectName(Effect effect) {
       return "neighbour-search";
     case Effect::kTransport:
       return "transport";
+    case Effect::kSurvival:
+      return "survival";
   }
   return "?";
 }
@@ -169,7 +191,8 @@ Effect ParseEffect(const std::string& name) {
     if (EffectName(effect) == name) return effect;
   }
   throw ConfigError("--force-effect", "is not an effect: '" + name +
-                                          "' (animation, temporal, level-seed, eviction, neighbour-search, transport)");
+                                          "' (animation, temporal, level-seed, eviction, neighbour-search, transport, "
+                                          "survival)");
 }
 
 bool ForcedEffects::Any() const { return std::find(forced.begin(), forced.end(), true) != forced.end(); }
@@ -193,6 +216,8 @@ FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index) {
   e.search_every_pixel = config.neighbour_search && forced.Has(Effect::kNeighbourSearch);
   // The first frame's table before it is empty: every lookup misses.
   e.transport = config.transport && (index > 0 || forced.Has(Effect::kTransport));
+  // Likewise: a first frame's survival reads no table, and every path survives with p = 1.
+  e.survival = config.survival.enabled() && (index > 0 || forced.Has(Effect::kSurvival));
   return e;
 }
 
@@ -200,7 +225,8 @@ std::vector<EffectDecision> PlanSequenceEffects(const FilterConfig& config, cons
                                                 std::uint32_t frames) {
   return {DecideAnimation(config, scene, frames), DecideTemporal(config, scene, frames),
           DecideLevelSeed(config, scene, frames), DecideEviction(config, scene, frames),
-          DecideNeighbourSearch(config, frames),  DecideTransport(config, frames)};
+          DecideNeighbourSearch(config, frames),  DecideTransport(config, frames),
+          DecideSurvival(config, frames)};
 }
 
 bool RebuildsScenePerFrame(const FilterConfig& config, const SceneFacts& scene) {

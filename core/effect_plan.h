@@ -22,6 +22,10 @@
 //   transport   several filtered bounces (--transport on): each record takes its scattered vertex's light from the
 //               table before the frame; called for from the second frame of a sequence on. The first frame's table
 //               before it is empty, so every lookup misses: forced there, the pass looks up and finds nothing.
+//   survival    variance-aware path survival (--survival, core/survival.h): the tracer reads each primary vertex's
+//               cell in the table before the frame; called for from the second frame of a sequence on. The first
+//               frame has no table before it: forced there, every lookup misses and every path survives with p = 1,
+//               its records the same bits as without survival.
 // An effect asked for but not called for by the scene (temporal forgetting on a static scene, say) still runs, since
 // skipping it would change the result the user asked for; the plan says so in its reason.
 #ifndef HPSF_CORE_EFFECT_PLAN_H
@@ -36,11 +40,12 @@ namespace hpsf {
 
 struct FilterConfig;
 
-enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch, kTransport };
-inline constexpr std::array<Effect, 6> kEffects = {Effect::kAnimation, Effect::kTemporal,        Effect::kLevelSeed,
-                                                   Effect::kEviction,  Effect::kNeighbourSearch, Effect::kTransport};
+enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch, kTransport, kSurvival };
+inline constexpr std::array<Effect, 7> kEffects = {Effect::kAnimation, Effect::kTemporal,        Effect::kLevelSeed,
+                                                   Effect::kEviction,  Effect::kNeighbourSearch, Effect::kTransport,
+                                                   Effect::kSurvival};
 
-// "animation", "temporal", "level-seed", "eviction", "neighbour-search", "transport"
+// "animation", "temporal", "level-seed", "eviction", "neighbour-search", "transport", "survival"
 std::string EffectName(Effect effect);
 
 // Parses an effect's name; a ConfigError naming --force-effect otherwise.
@@ -64,6 +69,7 @@ struct FrameEffects {
   bool eviction = false;  // the eviction pass; last-seen frames are tracked whenever config.eviction is enabled
   bool search_every_pixel = false;  // the search pass resolves every pixel, not only those below the threshold
   bool transport = false;           // records take their scattered vertices' light from the table before the frame
+  bool survival = false;            // the tracer reads the table before the frame for each path's survival
 };
 FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index);
 

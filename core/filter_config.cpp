@@ -139,6 +139,9 @@ void FilterConfig::Validate() const {
   if (forced.Has(Effect::kTransport) && !transport) {
     throw ConfigError("--force-effect", "transport needs --transport on");
   }
+  if (forced.Has(Effect::kSurvival) && !survival.enabled()) {
+    throw ConfigError("--force-effect", "survival needs --survival linear:... or smooth:...");
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }
@@ -162,6 +165,12 @@ void FilterConfig::Validate() const {
   if (second_moments && level_seed.enabled) {
     throw ConfigError("--second-moments",
                       "cannot be kept with --level-change seed: a seed carries sums and counts only");
+  }
+  if (survival.enabled() && !second_moments) {
+    throw ConfigError("--survival", "reads each cell's variance, which needs --second-moments on");
+  }
+  if (survival.enabled() && transport) {
+    throw ConfigError("--survival", "decides at a path's primary vertex; it is not built with --transport on");
   }
   if (neighbour_search && min_count == 1) {
     throw ConfigError("--neighbour-search", "searches cells below --min-count, which needs --min-count 2 or more");
@@ -192,6 +201,7 @@ std::string FilterConfig::ToString() const {
          (min_count != 1 ? " min_count: " + std::to_string(min_count) : std::string()) +
          (neighbour_search ? " neighbour_search: on" : std::string()) + (transport ? " transport: on" : std::string()) +
          (second_moments ? " second_moments: on" : std::string()) +
+         (survival.enabled() ? " survival: " + survival.ToString() : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 

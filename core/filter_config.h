@@ -14,6 +14,7 @@
 #include "core/level_seed.h"
 #include "core/probing.h"
 #include "core/shared/key_params.h"
+#include "core/survival.h"
 #include "core/temporal.h"
 
 namespace hpsf {
@@ -69,6 +70,9 @@ struct FilterConfig {
   // --second-moments: each slot also keeps the sum of its records' squared brightness, from which a cell's variance
   // follows (core/shared/second_moment.h)
   bool second_moments = false;
+  // --survival: a traced sequence's paths survive their primary vertex by the variance of its cell in the table the
+  // frame before left (core/survival.h); the tracer decides, the filter passes see the records it made
+  SurvivalParams survival;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // Throws ConfigError for the first invalid option.

@@ -62,6 +62,12 @@ TEST(EffectPlan, PlansEachPassByWhatTheFrameGivesIt) {
   EXPECT_TRUE(PlanFrameEffects(config, 1).transport);
   config.forced.Add(Effect::kTransport);
   EXPECT_TRUE(PlanFrameEffects(config, 0).transport);
+  // Survival likewise: the tracer reads no table on the first frame unless forced, where every path survives.
+  config.survival = ParseSurvival("linear:0.001:0.01");
+  EXPECT_FALSE(PlanFrameEffects(config, 0).survival);
+  EXPECT_TRUE(PlanFrameEffects(config, 1).survival);
+  config.forced.Add(Effect::kSurvival);
+  EXPECT_TRUE(PlanFrameEffects(config, 0).survival);
 
   // The sequence's decisions, with the frames each pass runs on and why.
   FilterConfig plain;
@@ -84,8 +90,8 @@ TEST(EffectPlan, PlansEachPassByWhatTheFrameGivesIt) {
 TEST(EffectPlan, ForcingNeedsAnEffectTheOptionsAskFor) {
   EXPECT_EQ(ParseEffect("level-seed"), Effect::kLevelSeed);
   EXPECT_THROW(ParseEffect("glossy"), ConfigError);
-  for (Effect effect :
-       {Effect::kTemporal, Effect::kLevelSeed, Effect::kEviction, Effect::kNeighbourSearch, Effect::kTransport}) {
+  for (Effect effect : {Effect::kTemporal, Effect::kLevelSeed, Effect::kEviction, Effect::kNeighbourSearch,
+                        Effect::kTransport, Effect::kSurvival}) {
     FilterConfig config;
     config.forced.Add(effect);
     try {

@@ -27,7 +27,7 @@ namespace {
 
 // RNG dimensions within one bounce; the bounce index separates vertices.
 constexpr std::uint32_t kPixelU = 0, kPixelV = 1, kLightPick = 2, kLightU = 3, kLightV = 4, kBounceU = 5, kBounceV = 6,
-                        kRoulette = 7;
+                        kRoulette = 7, kSurvive = 8;
 constexpr std::uint32_t kTile = 16;
 constexpr int kRouletteStart = 4;
 
@@ -108,9 +108,10 @@ constexpr std::uint32_t kContinuationStreams = 1u << 16;
 
 class Tracer {
  public:
-  Tracer(const PreparedScene::Built& built, const TraceOptions& options)
+  Tracer(const PreparedScene::Built& built, const TraceOptions& options, const SurvivalView* survival)
       : scene_(built.scene),
         options_(options),
+        survival_(survival),
         embree_(built.embree),
         emitters_(built.emitters),
         normals_(built.normals),
@@ -232,6 +233,7 @@ class Tracer {
 
   const Scene& scene_;
   const TraceOptions& options_;
+  const SurvivalView* survival_;  // --survival: each path's survival at its primary vertex (core/survival.h)
   const EmbreeScene& embree_;
   const EmitterSampler& emitters_;
   const std::vector<glm::dvec3>& normals_;
@@ -265,6 +267,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   glm::dvec3 previous = origin;
   std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
+  double survival = 1.0;  // the path's probability of surviving its primary vertex
   std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
   if (options_.scattered) max_vertices = std::min(max_vertices, first + filtered + 1u);
 
@@ -288,7 +291,6 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     // next-event estimate is light from one vertex further, whose bounce-found half is never traced, so it
     // is not taken at all (taking it under its MIS weight adds a fraction of the next term).
     const bool last_vertex = bounce + 1 >= max_vertices;
-    const glm::dvec3 direct = last_vertex ? glm::dvec3(0.0) : DirectLight(p, random, stats);
     const auto here = [&](glm::dvec3 throughput) {
       VertexSample v;
       v.pixel = pixel;
@@ -301,6 +303,21 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       v.throughput = glm::vec3(throughput);
       return v;
     };
+    // Survival (core/survival.h), before any ray leaves the primary vertex: a culled path's record holds its vertex
+    // and no light; a surviving one's light is divided by p at the end.
+    if (survival_ && bounce == first) {
+      survival = survival_->Probability(MakeVertexRecord(here(weight * albedo)));
+      if (random(kSurvive) >= survival) {
+        ++stats.culled;
+        radiance_before = gathered;
+        record_throughput = weight * albedo;
+        chain[0] = here(record_throughput);
+        reached = 1;
+        gathered = glm::dvec3(0.0);
+        break;
+      }
+    }
+    const glm::dvec3 direct = last_vertex ? glm::dvec3(0.0) : DirectLight(p, random, stats);
 
     if (bounce >= first && bounce - first < filtered) {
       const std::uint32_t j = bounce - first;
@@ -345,7 +362,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     origin = Offset(p);
     ++stats.bounce_rays;
   }
-  if (reached > 0) chain[reached - 1].contribution = glm::vec3(gathered);
+  if (reached > 0) {
+    const bool reweight = survival_ && survival_->params().reweight;
+    chain[reached - 1].contribution = glm::vec3(reweight ? gathered / survival : gathered);
+  }
 
   if (out.scattered) {
     const Record none = MakeRecordWithoutVertex(pixel, sample, glm::vec3(0.0f));
@@ -409,15 +429,20 @@ const Scene& PreparedScene::scene() const { return built_->scene; }
 
 TraceResult TraceRecords(const Scene& animated, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress,
-                         PathContinuation* continuation) {
+                         PathContinuation* continuation, const SurvivalView* survival) {
   options.Validate();
-  return TraceRecords(PreparedScene(animated, options.frame), options, progress, continuation);
+  return TraceRecords(PreparedScene(animated, options.frame), options, progress, continuation, survival);
 }
 
 TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress,
-                         PathContinuation* continuation) {
+                         PathContinuation* continuation, const SurvivalView* survival) {
   options.Validate();
+  if (survival && (options.filter_bounce != 0 || options.scattered)) {
+    throw ConfigError("--survival",
+                      "decides at a path's primary vertex: it needs --filter-bounce 0 and one filtered "
+                      "vertex, without scattered vertices");
+  }
   if (prepared.animated() && prepared.frame() != options.frame) {
     throw std::logic_error("an animated scene prepared at frame " + std::to_string(prepared.frame()) +
                            " traced at frame " + std::to_string(options.frame));
@@ -425,7 +450,7 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
   const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const Scene& scene = prepared.scene();
-  const Tracer tracer(*prepared.built_, options);
+  const Tracer tracer(*prepared.built_, options, survival);
 
   TraceResult result;
   RecordBatch& batch = result.batch;
@@ -492,6 +517,7 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
         result.stats.bounce_rays += local.bounce_rays;
         result.stats.shadow_rays += local.shadow_rays;
         result.stats.continued += local.continued;
+        result.stats.culled += local.culled;
         if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
       },
       threads);

@@ -5,8 +5,10 @@
 
 #include "core/error.h"
 #include "core/record_file.h"
+#include "reference/reference_filter.h"
 #include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/image_size.h"
+#include "tools/hpsf/survival_decision.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf {
@@ -44,13 +46,25 @@ std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const Trace
   // A static scene is built once for every frame, an animated one for each (core/effect_plan.h, "animation").
   std::optional<PreparedScene> prepared;
   PathContinuation continuation;  // A-nHPSF's kept paths, from frame to frame
+  // Survival (core/survival.h) decides by the reference's exact map of the frame before, so that every backend is
+  // handed the same records: the reference filters each frame once here, before the next is traced.
+  std::optional<FilterResult> decided;
+  FilterConfig frame_config = config;
   for (std::uint32_t k = 0; k < frames; ++k) {
     frame_trace.frame = trace.frame + k;
+    frame_config.frame = frame_trace.frame;
     if (!prepared || RebuildsScenePerFrame(config, FactsOf(scene))) {
       prepared.reset();
       prepared.emplace(scene, frame_trace.frame);
     }
-    sequence.push_back(TraceRecords(*prepared, frame_trace, {}, &continuation).batch);
+    const std::optional<SurvivalView> survival =
+        config.survival.enabled()
+            ? FrameSurvivalView(frame_config, frame_trace, *prepared, k, decided ? &*decided : nullptr, nullptr)
+            : std::nullopt;
+    sequence.push_back(TraceRecords(*prepared, frame_trace, {}, &continuation, survival ? &*survival : nullptr).batch);
+    if (config.survival.enabled() && k + 1 < frames) {
+      decided = ReferenceFilter(sequence.back(), frame_config, decided ? &*decided : nullptr);
+    }
   }
   return sequence;
 }

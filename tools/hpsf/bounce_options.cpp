@@ -1,5 +1,10 @@
 #include "tools/hpsf/bounce_options.h"
 
+#include <string>
+
+#include "core/error.h"
+#include "core/survival.h"
+
 namespace hpsf {
 
 void AddBounceOptions(CLI::App& command, TraceOptions& trace) {
@@ -19,6 +24,29 @@ void AddBounceOptions(CLI::App& command, TraceOptions& trace) {
 
 void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace) {
   trace.scattered = config.transport || trace.filtered_vertices > 1 || trace.continuation_depth > 0;
+}
+
+void AddSurvivalOption(CLI::App& command, FilterConfig& config) {
+  command
+      .add_option_function<std::string>(
+          "--survival", [&config](const std::string& text) { config.survival = ParseSurvival(text); },
+          "Variance-aware path survival (Schipek eqs. 4.1, 4.2): off, linear:V0:V1[:FLOOR] or smooth:V0:V1[:FLOOR]. "
+          "From a sequence's second frame on, each path survives its primary vertex with a probability p of its "
+          "cell's variance in the table before the frame (at least FLOOR, default 0.0625), its light divided by p; a "
+          "culled path is not traced on and adds 0. Needs --second-moments on")
+      ->default_str("off");
+}
+
+void CheckSurvival(const FilterConfig& config, const TraceOptions& trace) {
+  if (!config.survival.enabled()) return;
+  if (trace.filter_bounce != 0) {
+    throw ConfigError("--survival", "decides at a path's primary vertex, which needs --filter-bounce 0");
+  }
+  if (trace.scattered) {
+    throw ConfigError("--survival",
+                      "decides at a path's primary vertex; it is not built with several filtered vertices, kept paths "
+                      "or the transport");
+  }
 }
 
 }  // namespace hpsf

@@ -1,6 +1,6 @@
-// The trace options of several filtered bounces, the same on every command that traces sequences (render,
-// crosscheck): how many vertices of a path are filtered and how deep a path is continued across frames, and the rule
-// that traces the scattered vertices the transport reads. Apart from the tracer, so that fuzz_cli reaches them.
+// The trace options of sequences, the same on every command that traces them (render, crosscheck): how many vertices
+// of a path are filtered and how deep a path is continued across frames, the rule that traces the scattered vertices
+// the transport reads, and variance-aware path survival. Apart from the tracer, so that fuzz_cli reaches them.
 #ifndef HPSF_TOOLS_HPSF_BOUNCE_OPTIONS_H
 #define HPSF_TOOLS_HPSF_BOUNCE_OPTIONS_H
 
@@ -18,6 +18,13 @@ void AddBounceOptions(CLI::App& command, TraceOptions& trace);
 // transports (--transport on), a path filters more than one vertex (--filtered-vertices) or continues across frames
 // (--continuation-depth).
 void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace);
+
+// --survival (core/survival.h), into config.survival.
+void AddSurvivalOption(CLI::App& command, FilterConfig& config);
+
+// Survival decides at a path's primary vertex: a ConfigError naming --survival where the trace filters another
+// vertex or more than one.
+void CheckSurvival(const FilterConfig& config, const TraceOptions& trace);
 
 }  // namespace hpsf
 

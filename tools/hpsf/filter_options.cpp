@@ -105,7 +105,8 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
       ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
-                     "eviction, neighbour-search, transport; repeatable): the same bits, at the pass's cost");
+                     "eviction, neighbour-search, transport, survival; repeatable): the same bits, at the pass's "
+                     "cost");
 }
 
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {
@@ -200,6 +201,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"neighbour_search", c.neighbour_search},
           {"transport", c.transport},
           {"second_moments", c.second_moments},
+          {"survival", c.survival.ToString()},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

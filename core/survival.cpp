@@ -1,0 +1,90 @@
+#include "core/survival.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "core/error.h"
+#include "core/format.h"
+
+namespace hpsf {
+namespace {
+
+// The numbers of "NAME:V0:V1[:FLOOR]" after the name; nullopt where one does not parse whole.
+std::optional<std::vector<double>> Numbers(const std::string& text, std::size_t from) {
+  std::vector<double> values;
+  const char* at = text.data() + from;
+  const char* last = text.data() + text.size();
+  while (true) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(at, last, value);
+    if (error != std::errc() || end == at) return std::nullopt;
+    values.push_back(value);
+    if (end == last) return values;
+    if (*end != ':') return std::nullopt;
+    at = end + 1;
+  }
+}
+
+double Clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
+
+}  // namespace
+
+std::string SurvivalParams::ToString() const {
+  if (function == SurvivalFunction::kOff) return "off";
+  return std::string(function == SurvivalFunction::kLinear ? "linear:" : "smooth:") + FormatDouble(v0) + ":" +
+         FormatDouble(v1) + ":" + FormatDouble(floor);
+}
+
+SurvivalParams ParseSurvival(const std::string& text) {
+  if (text == "off") return {};
+  const std::string usage = "expected off, linear:V0:V1[:FLOOR] or smooth:V0:V1[:FLOOR]";
+  SurvivalParams params;
+  std::size_t from = 0;
+  if (text.rfind("linear:", 0) == 0) {
+    params.function = SurvivalFunction::kLinear;
+    from = 7;
+  } else if (text.rfind("smooth:", 0) == 0) {
+    params.function = SurvivalFunction::kSmooth;
+    from = 7;
+  } else {
+    throw ConfigError("--survival", usage + "; got '" + text + "'");
+  }
+  const std::optional<std::vector<double>> values = Numbers(text, from);
+  if (!values || values->size() < 2 || values->size() > 3)
+    throw ConfigError("--survival", usage + "; got '" + text + "'");
+  params.v0 = (*values)[0];
+  params.v1 = (*values)[1];
+  if (values->size() == 3) params.floor = (*values)[2];
+  if (!(std::isfinite(params.v0) && std::isfinite(params.v1) && params.v0 >= 0.0 && params.v0 < params.v1)) {
+    throw ConfigError("--survival", "the variance thresholds need 0 <= V0 < V1, both finite; got '" + text + "'");
+  }
+  // Eq. 4.2's upper edge, 1 - (v1 - v0) / 8, must stay above its lower edge 0.
+  if (params.function == SurvivalFunction::kSmooth && !(params.v1 - params.v0 < 8.0)) {
+    throw ConfigError("--survival",
+                      "smooth needs V1 - V0 below 8 (eq. 4.2's ramp ends at 1 - (V1 - V0) / 8); got '" + text + "'");
+  }
+  if (!(params.floor > 0.0 && params.floor <= 1.0)) {
+    throw ConfigError("--survival", "FLOOR, the least probability of survival, must lie in (0, 1]; got '" + text + "'");
+  }
+  return params;
+}
+
+double SurvivalProbability(const SurvivalParams& params, double variance) {
+  double p = 1.0;
+  if (params.function == SurvivalFunction::kLinear) {
+    p = Clamp01((variance - params.v0) / (params.v1 - params.v0));
+  } else if (params.function == SurvivalFunction::kSmooth) {
+    const double width = params.v1 - params.v0;
+    const double edge = 1.0 - width / 8.0;
+    const double x = (variance - (params.v1 + params.v0) * 0.5) / (width * 5.0) + edge * 0.5;
+    const double t = Clamp01(x / edge);
+    p = t * t * (3.0 - 2.0 * t);
+  }
+  return std::max(p, params.floor);
+}
+
+}  // namespace hpsf

@@ -1,0 +1,68 @@
+#include "core/survival_view.h"
+
+#include <array>
+#include <map>
+#include <memory>
+
+#include "core/cell_moments.h"
+#include "core/error.h"
+#include "core/filter_result.h"
+#include "core/hash_table.h"
+#include "core/level_seed.h"
+
+namespace hpsf {
+
+SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params)
+    : params_(params), key_params_(key_params), accumulation_(Accumulation::kFixed64) {}
+
+SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params, const FilterResult& previous,
+                           Accumulation accumulation)
+    : params_(params),
+      key_params_(key_params),
+      accumulation_(accumulation),
+      fixed_point_bits_(previous.stats.fixed_point_bits),
+      square_bits_(previous.stats.square_bits) {
+  auto cells = std::make_shared<std::map<std::array<std::uint32_t, 6>, std::uint32_t>>();
+  for (std::uint32_t c = 0; c < previous.cells.size(); ++c) cells->emplace(previous.cells[c].key, c);
+  lookup_ = [cells, &previous](const shared::KeyWords& w) -> std::optional<CellState> {
+    const auto it = cells->find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
+    if (it == cells->end()) return std::nullopt;
+    const TableCell& c = previous.cells[it->second];
+    return CellState{c.fixed_sum, c.float_sum, c.count, c.fixed_square, c.float_square};
+  };
+}
+
+SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params, const HashTableDump& previous,
+                           bool normal_in_index)
+    : params_(params),
+      key_params_(key_params),
+      accumulation_(previous.accumulation),
+      fixed_point_bits_(previous.fixed_point_bits),
+      square_bits_(previous.square_bits) {
+  if (!previous.second_moments) {
+    throw ConfigError("--survival", "the table before the frame keeps no second moments (--second-moments on)");
+  }
+  lookup_ = [&previous, normal_in_index](const shared::KeyWords& w) -> std::optional<CellState> {
+    const std::optional<std::uint32_t> slot = FindSlotInTable(previous, w, normal_in_index);
+    if (!slot) return std::nullopt;
+    CellState state = StateOfSlot(previous, *slot);
+    if (IntegerSums(previous.accumulation)) {
+      state.fixed_square = previous.fixed_squares[*slot];
+    } else {
+      state.float_square = previous.float_squares[*slot];
+    }
+    return state;
+  };
+}
+
+double SurvivalView::Probability(const Record& vertex) const {
+  const KeyResult key = shared::ComputeKey(key_params_, vertex);
+  if (key.status != shared::kKeyed || !lookup_) return 1.0;
+  const std::optional<CellState> cell = lookup_(key.words);
+  if (!cell || cell->count < 2) return 1.0;
+  const CellMoments moments = MomentsOf(accumulation_, cell->fixed_sum, cell->float_sum, cell->fixed_square,
+                                        cell->float_square, cell->count, fixed_point_bits_, square_bits_);
+  return SurvivalProbability(params_, moments.variance);
+}
+
+}  // namespace hpsf
