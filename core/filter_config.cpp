@@ -177,6 +177,23 @@ void FilterConfig::Validate() const {
   }
 }
 
+namespace {
+
+std::uint32_t Headroom(std::uint32_t frames, double weight) {
+  const double headroom = double(frames) * std::ceil(weight);
+  return headroom >= 4294967295.0 ? 0xFFFFFFFFu : std::uint32_t(headroom);
+}
+
+}  // namespace
+
+std::uint32_t FilterConfig::SumHeadroom() const {
+  return Headroom(frames, survival.enabled() ? 1.0 / survival.floor : 1.0);
+}
+
+std::uint32_t FilterConfig::SquareHeadroom() const {
+  return Headroom(frames, survival.enabled() ? 1.0 / (survival.floor * survival.floor) : 1.0);
+}
+
 std::string FilterConfig::ToString() const {
   return "[ FilterConfig filter_width_px: " + FormatFloat(filter_width_px) +
          " jitter_scale: " + FormatFloat(jitter_scale) + " normal: " + normal.ToString() +

@@ -75,6 +75,12 @@ struct FilterConfig {
   SurvivalParams survival;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
+  // The frames of headroom a sequence's first frame leaves when it chooses F and G (core/fixed_point_scale.h):
+  // `frames`, times the most a survivor's light can be weighted with --survival (1 / floor; its square for G), so that
+  // no later frame's sums or squares outgrow them. Saturates at 2^32 - 1.
+  std::uint32_t SumHeadroom() const;
+  std::uint32_t SquareHeadroom() const;
+
   // Throws ConfigError for the first invalid option.
   void Validate() const;
   std::string ToString() const;

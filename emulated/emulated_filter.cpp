@@ -142,7 +142,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   table.fixed_point_bits = packed                    ? 0
                            : previous                ? previous->fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
-                                                     : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
+                                                     : ChooseFixedPointBitsOf(entering, AllCores, config.SumHeadroom());
   const bool fixed = IntegerSums(config.accumulation);  // fixed64 or packed-decimal
   const bool wide_sums = config.accumulation == Accumulation::kFixed64;
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(table.fixed_point_bits);
@@ -150,7 +150,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   if (packed) RequirePackedDecimalConverts(entering);
   table.second_moments = config.second_moments;
   if (config.second_moments) {
-    table.square_bits = previous ? previous->square_bits : ChooseSquareBitsOf(entering, AllCores, config.frames);
+    table.square_bits = previous ? previous->square_bits : ChooseSquareBitsOf(entering, AllCores, config.SquareHeadroom());
     if (wide_sums) RequireSquaresConvert(entering, table.square_bits);
     if (!fixed) RequireFloat32SquaresRange(table.square_bits);
   }

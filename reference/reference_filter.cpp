@@ -211,14 +211,14 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
   stats.fixed_point_bits = packed                    ? 0
                            : previous                ? previous->stats.fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
-                                                     : ChooseFixedPointBits(all, config.frames);
+                                                     : ChooseFixedPointBits(all, config.SumHeadroom());
   const float scale = SumScale(config.accumulation, stats.fixed_point_bits);
   const bool fixed = IntegerSums(config.accumulation);
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(stats.fixed_point_bits);
   if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(all, stats.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(all);
   if (config.second_moments) {
-    stats.square_bits = previous ? previous->stats.square_bits : ChooseSquareBits(all, config.frames);
+    stats.square_bits = previous ? previous->stats.square_bits : ChooseSquareBits(all, config.SquareHeadroom());
     if (fixed) RequireSquaresConvert(all, stats.square_bits);
     if (!fixed) RequireFloat32SquaresRange(stats.square_bits);
   }

@@ -280,6 +280,37 @@ hpsf_add_cli_test(HpsfCrosscheck.KeptPathsHoldTheContract "unit;bounces;vulkan" 
   "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*emulated: .*over 4 frames.*vulkan: .*over 4 frames" ""
   $<TARGET_FILE:hpsf> crosscheck furnace --size 16x16 --spp 2 --frames 4 --transport on --continuation-depth 5
   --capacity 16384)
+# Variance-aware path survival (label adaptive): a sequence traced with survival, decided by the reference's table
+# before each frame, holds the contract on all three backends in fixed64 and float32 (blending and evicting); it needs
+# second moments, one filtered vertex at the primary hit, and a scene (a record file's paths were decided when
+# recorded); a bad rule is named.
+hpsf_add_cli_test(HpsfCrosscheck.SurvivalHoldsTheContract "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 3 frames.*second moments at G" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --frames 3 --second-moments on --survival linear:0.001:0.01)
+hpsf_add_cli_test(HpsfCrosscheck.SurvivalHoldsTheContractInFloat32 "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 3 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --frames 3 --accum float32 --temporal ema:0.5 --eviction strict
+  --second-moments on --survival smooth:0:0.01)
+hpsf_add_cli_test(HpsfRender.SurvivalWithoutSecondMomentsExits3 "unit;adaptive;untrusted" 3
+  "--survival: reads each cell's variance, which needs --second-moments on" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --frames 2 --survival linear:0.001:0.01 -o ${hpsf_out}/survival.exr
+  ABSENT ${hpsf_out}/survival.exr)
+hpsf_add_cli_test(HpsfRender.SurvivalAtAnotherVertexExits3 "unit;adaptive;untrusted" 3
+  "--survival: decides at a path's primary vertex, which needs --filter-bounce 0" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --frames 2 --second-moments on --survival linear:0.001:0.01
+  --filter-bounce 1 -o ${hpsf_out}/survival.exr ABSENT ${hpsf_out}/survival.exr)
+hpsf_add_cli_test(HpsfRender.ABadSurvivalRuleExits3 "unit;adaptive;untrusted" 3
+  "--survival: the variance thresholds need 0 <= V0 < V1" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --second-moments on --survival linear:0.01:0.001
+  -o ${hpsf_out}/survival.exr ABSENT ${hpsf_out}/survival.exr)
+hpsf_add_cli_test(HpsfCrosscheck.SurvivalOverARecordFileExits3 "unit;adaptive;untrusted" 3
+  "--survival: .*seed_lookup_alias.hpsfv: survival decides while a scene is traced" ""
+  $<TARGET_FILE:hpsf> crosscheck ${hpsf_data}/seed_lookup_alias.hpsfv --second-moments on --survival linear:0:1)
+# render reports the paths survival culled, and the effect's frames.
+hpsf_add_cli_test(HpsfRender.SurvivalReportsTheCulledPaths "unit;adaptive" 0
+  "effect.: .survival.,[^}]*frames_run.: 2.*culled.: [1-9]" ""
+  $<TARGET_FILE:hpsf> render cornell --size 32x32 --frames 3 --second-moments on --survival linear:0.001:0.01 --json
+  -o ${hpsf_out}/survival-culled.exr)
 # A team's transport shader (--transport-spv) through the interface of transport.comp: one that applies the scattered
 # vertex's throughput twice fails level 2 on Vulkan and is bundled; hpsf's own, given as a team's, holds the contract;
 # a file that is not SPIR-V is refused by name and nothing is run; render names the shader whose word is bad.

@@ -726,13 +726,13 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   table.fixed_point_bits = packed                    ? 0
                            : keep_table              ? kept_fixed_point_bits
                            : config.fixed_point_bits ? *config.fixed_point_bits
-                                                     : ChooseFixedPointBitsOf(entering, AllCores, config.frames);
+                                                     : ChooseFixedPointBitsOf(entering, AllCores, config.SumHeadroom());
   if (config.accumulation == Accumulation::kFloat32) RequireFloat32Range(table.fixed_point_bits);
   if (fixed) RequireFixedPointConverts(entering, table.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(entering);
   table.second_moments = config.second_moments;
   if (config.second_moments) {
-    table.square_bits = keep_table ? kept_square_bits : ChooseSquareBitsOf(entering, AllCores, config.frames);
+    table.square_bits = keep_table ? kept_square_bits : ChooseSquareBitsOf(entering, AllCores, config.SquareHeadroom());
     if (fixed) RequireSquaresConvert(entering, table.square_bits);
     if (!fixed) RequireFloat32SquaresRange(table.square_bits);
   }

@@ -32,6 +32,7 @@
 #include "tools/hpsf/pareto_plot.h"
 #include "tools/hpsf/reference_cache.h"
 #include "tools/hpsf/seconds_since.h"
+#include "tools/hpsf/survival_decision.h"
 #include "tools/hpsf/sweep_grid.h"
 #include "tools/hpsf/sweep_html_report.h"
 #include "tracer/path_continuation.h"
@@ -129,9 +130,10 @@ class SceneAtFrame {
   std::optional<PreparedScene> prepared_;
 };
 
-TracedFrame TraceFrame(SceneAtFrame& scene, const TraceOptions& trace, PathContinuation& continuation) {
+TracedFrame TraceFrame(SceneAtFrame& scene, const TraceOptions& trace, PathContinuation& continuation,
+                       const SurvivalView* survival = nullptr) {
   const auto start = Clock::now();
-  TraceResult traced = TraceRecords(scene.At(trace.frame), trace, {}, &continuation);
+  TraceResult traced = TraceRecords(scene.At(trace.frame), trace, {}, &continuation, survival);
   return {std::move(traced.batch), SecondsSince(start), traced.stats.Rays()};
 }
 
@@ -188,6 +190,10 @@ class Runner {
     trace.seed = config.seed = seed;
     config.frames = c.frames;
     config.transport = c.Transports();
+    if (c.survival) {  // survival reads each cell's variance
+      config.survival = ParseSurvival(*c.survival);
+      config.second_moments = true;
+    }
     PathContinuation continuation;
     BackendInstance* backend = c.Hashed() ? &BackendFor(c.backend) : nullptr;
     if (backend) backend->backend->Reset();
@@ -198,7 +204,16 @@ class Runner {
     for (std::uint32_t f = 0; f < c.frames; ++f) {
       trace.frame = config.frame = f;
       TracedFrame traced_now;
-      if (!cached) traced_now = TraceFrame(scene_, trace, continuation);
+      if (!cached) {
+        // Survival reads the table the frame before left in the configuration's backend.
+        const HashedRun* hashed = f > 0 && backend ? backend->backend->LastHashedRun() : nullptr;
+        const std::optional<SurvivalView> survival =
+            config.survival.enabled() ? FrameSurvivalView(config, trace, scene_.At(f), f,
+                                                          f > 0 ? backend->backend->LastExactResult() : nullptr,
+                                                          hashed ? &hashed->table : nullptr)
+                                      : std::nullopt;
+        traced_now = TraceFrame(scene_, trace, continuation, survival ? &*survival : nullptr);
+      }
       const TracedFrame& traced = cached ? *cached : traced_now;
       trace_s.push_back(traced.seconds);
       rays += traced.rays;
@@ -679,8 +694,8 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
   c->add_option("scene", o->scene, "A built-in scene or a scene file")->required();
   c->add_option("--grid", o->grid,
                 "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
-                "screen; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, continuation-depth; "
-                "other axes: any filter option without its dashes)")
+                "screen; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, continuation-depth, "
+                "survival; other axes: any filter option without its dashes)")
       ->required()
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // a later --grid replaces an earlier one
   c->add_option("--seeds", o->seeds, "Independent seeds per configuration (1..K); 2 or more split the error")

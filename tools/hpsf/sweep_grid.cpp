@@ -6,6 +6,7 @@
 
 #include "core/backend_registry.h"
 #include "core/error.h"
+#include "core/survival.h"
 #include "tracer/trace_options.h"
 
 namespace hpsf {
@@ -52,6 +53,12 @@ void CheckValue(const std::string& axis, const std::string& value) {
     }
   } else if (axis == "continuation-depth") {
     if (!Integer(value, 1, 1024)) refuse("a depth in [1, 1024]");
+  } else if (axis == "survival") {
+    try {
+      ParseSurvival(value);
+    } catch (const ConfigError& e) {
+      refuse(std::string("a --survival rule: ") + e.what());
+    }
   } else if (axis == "transport") {
     refuse("the transport is the method's: method=nhpsf or anhpsf filter with it, hpsf without");
   } else if (axis == "method") {
@@ -119,6 +126,8 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
         c.filtered_vertices = std::uint32_t(std::stoul(value));
       } else if (axes[a].name == "continuation-depth") {
         c.continuation_depth = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "survival") {
+        if (value != "off") c.survival = value;
       } else if (axes[a].name == "method") {
         c.method = value;
       } else if (axes[a].name == "backend") {
@@ -133,11 +142,13 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
     if (c.Transports()) c.max_depth.reset();  // their paths end where their filtered vertices say
     if (!c.Transports()) c.filtered_vertices.reset();
     if (c.method != "anhpsf") c.continuation_depth.reset();
+    if (c.method != "hpsf") c.survival.reset();
     c.id = "method=" + c.method + " backend=" + c.backend + " spp=" + std::to_string(c.spp);
     if (c.frames != 1) c.id += " frames=" + std::to_string(c.frames);
     if (c.max_depth) c.id += " max-depth=" + std::to_string(*c.max_depth);
     if (c.filtered_vertices) c.id += " filtered-vertices=" + std::to_string(*c.filtered_vertices);
     if (c.continuation_depth) c.id += " continuation-depth=" + std::to_string(*c.continuation_depth);
+    if (c.survival) c.id += " survival=" + *c.survival;
     for (const auto& [name, value] : c.filter) c.id += " " + name + "=" + value;
     if (seen.insert(c.id).second) configs.push_back(std::move(c));
     std::size_t a = axes.size();

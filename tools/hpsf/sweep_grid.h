@@ -11,6 +11,8 @@
 //                       --max-depth)
 //   filtered-vertices   vertices of a path nhpsf and anhpsf filter (default 1)
 //   continuation-depth  how deep anhpsf continues a path across frames (default the sweep's --max-depth)
+//   survival            hpsf's variance-aware path survival, off or a --survival rule (core/survival.h), with
+//                       second moments kept; it acts from a sequence's second frame on (default off)
 // Every other axis is an option of `hpsf render`'s filter (filter-width, jitter, normal, fingerprint-bits,
 // probe-limit, accum, capacity, temporal, ...), written without its dashes, checked by that option layer; the
 // transport is the methods' own. A combination that differs from an earlier one only in an axis its method ignores
@@ -44,6 +46,7 @@ struct SweepConfig {
   std::optional<int> max_depth;
   std::optional<std::uint32_t> filtered_vertices;
   std::optional<std::uint32_t> continuation_depth;
+  std::optional<std::string> survival;  // a --survival rule other than off, for hpsf
   std::vector<std::pair<std::string, std::string>> filter;  // the filter axes' values, in axis order
   // The filter options as command-line words ("--filter-width", "2", ...).
   std::vector<std::string> FilterArguments() const;
