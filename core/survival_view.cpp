@@ -1,16 +1,24 @@
 #include "core/survival_view.h"
 
 #include <array>
-#include <map>
 #include <memory>
+#include <unordered_map>
 
 #include "core/cell_moments.h"
 #include "core/error.h"
 #include "core/filter_result.h"
+#include "core/fnv1a.h"
 #include "core/hash_table.h"
 #include "core/level_seed.h"
 
 namespace hpsf {
+namespace {
+
+struct KeyWordsHash {
+  std::size_t operator()(const std::array<std::uint32_t, 6>& key) const { return Fnv1a(key.data(), sizeof key); }
+};
+
+}  // namespace
 
 SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params)
     : params_(params), key_params_(key_params), accumulation_(Accumulation::kFixed64) {}
@@ -22,7 +30,9 @@ SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_pa
       accumulation_(accumulation),
       fixed_point_bits_(previous.stats.fixed_point_bits),
       square_bits_(previous.stats.square_bits) {
-  auto cells = std::make_shared<std::map<std::array<std::uint32_t, 6>, std::uint32_t>>();
+  // Hashed, not ordered: the tracer looks every sample's primary vertex up.
+  auto cells = std::make_shared<std::unordered_map<std::array<std::uint32_t, 6>, std::uint32_t, KeyWordsHash>>();
+  cells->reserve(previous.cells.size());
   for (std::uint32_t c = 0; c < previous.cells.size(); ++c) cells->emplace(previous.cells[c].key, c);
   lookup_ = [cells, &previous](const shared::KeyWords& w) -> std::optional<CellState> {
     const auto it = cells->find({w.cell_x, w.cell_y, w.cell_z, w.level, w.normal, w.extra});
