@@ -46,7 +46,7 @@ struct SweepConfig {
   std::optional<int> max_depth;
   std::optional<std::uint32_t> filtered_vertices;
   std::optional<std::uint32_t> continuation_depth;
-  std::optional<std::string> survival;  // a --survival rule other than off, for hpsf
+  std::optional<std::string> survival;                      // a --survival rule other than off, for hpsf
   std::vector<std::pair<std::string, std::string>> filter;  // the filter axes' values, in axis order
   // The filter options as command-line words ("--filter-width", "2", ...).
   std::vector<std::string> FilterArguments() const;
