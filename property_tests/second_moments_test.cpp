@@ -5,7 +5,8 @@
 // - a bright, nearly constant cell (mean 1000, spread 0.01) is resolved in fixed64, where the same difference of
 //   means taken in float32 (the broken variant: a variance from float sums) cancels to nonsense;
 // - on the Cornell box every cell's variance is its records' within the bound, on every backend;
-// - over 16 replicate runs of the furnace, a cell's variance predicts the spread of its mean across the runs;
+// - over 16 replicate runs of the furnace and the Cornell box, a cell's variance predicts the spread of its mean
+//   across the runs;
 // - the squares hold the cross-check contract on all three backends over sequences, under every temporal mode and
 //   eviction policy, with several levels and compaction.
 
@@ -204,62 +205,65 @@ TEST(SecondMoments, EveryCellOfASceneHoldsItsRecordsVariance) {
   }
 }
 
-// Against replicate runs: 16 seeds of the furnace (whose light is the same everywhere, so a cell's samples are
-// independent draws of one distribution whatever their positions; jitter off, so a cell is the same region in every
-// run). For each cell reached in every run with at least 2 samples, the variance of its channel mean across the runs
+// Against replicate runs: 16 seeds of a scene at 32 x 32 x 4 spp, jitter off so that a cell is the same region in every
+// run. For each cell reached in every run with at least 2 samples, the variance of its channel mean across the runs
 // is compared with what its own second moments predict, the mean over runs of variance / (n - 1) (the cell reports the
 // samples' variance over n; over n - 1 it is the unbiased estimate of its mean's variance). Pooled over the cells, the
 // mean of the per-cell ratios must be 1 within 4 standard errors of that mean (the cells are independent; each
-// ratio's spread is measured, not assumed). The alternative it rejects: a variance off by a constant factor, such as
-// N53's, the brightness's variance (9 times the channel mean's), which the test shows failing.
+// ratio's spread is measured, not assumed). The furnace's light is the same everywhere, so a cell's samples are
+// independent draws of one distribution; the Cornell box's varies across a cell and its samples are stratified by
+// pixel, which would make the mean spread less than predicted if a cell's light varied much across it. The
+// alternative the test rejects: a variance off by a constant factor, such as N53's, the brightness's variance (9
+// times the channel mean's), which the test shows failing.
 TEST(SecondMoments, ACellsVarianceMatchesItsMeansSpreadOverReplicateRuns) {
   constexpr std::uint32_t kRuns = 16;
-  FilterConfig config;
-  config.second_moments = true;
-  config.jitter_scale = 0.0f;
-  struct Cell {
-    std::vector<double> means, predicted;  // per run: the channel mean, and its variance predicted
-  };
-  std::map<std::array<std::uint32_t, 6>, Cell> cells;
-  for (std::uint32_t seed = 1; seed <= kRuns; ++seed) {
-    TraceOptions trace;
-    trace.width = trace.height = 32;
-    trace.samples_per_pixel = 4;
-    trace.seed = seed;
-    config.seed = seed;
-    const FilterResult run =
-        ReferenceFilter(TraceRecords(LoadScene(HPSF_SCENES_DIR "/furnace.json"), trace).batch, config);
-    for (const TableCell& c : run.cells) {
-      if (c.count < 2) continue;
-      const CellMoments m = MomentsOfCell(c, Accumulation::kFixed64, run.stats);
-      Cell& cell = cells[c.key];
-      cell.means.push_back(m.mean_brightness / 3.0);
-      cell.predicted.push_back(m.variance / double(c.count - 1));
+  for (const char* scene : {"furnace", "cornell"}) {
+    FilterConfig config;
+    config.second_moments = true;
+    config.jitter_scale = 0.0f;
+    struct Cell {
+      std::vector<double> means, predicted;  // per run: the channel mean, and its variance predicted
+    };
+    std::map<std::array<std::uint32_t, 6>, Cell> cells;
+    for (std::uint32_t seed = 1; seed <= kRuns; ++seed) {
+      TraceOptions trace;
+      trace.width = trace.height = 32;
+      trace.samples_per_pixel = 4;
+      trace.seed = seed;
+      config.seed = seed;
+      const FilterResult run = ReferenceFilter(TraceRecords(LoadScene(scene), trace).batch, config);
+      for (const TableCell& c : run.cells) {
+        if (c.count < 2) continue;
+        const CellMoments m = MomentsOfCell(c, Accumulation::kFixed64, run.stats);
+        Cell& cell = cells[c.key];
+        cell.means.push_back(m.mean_brightness / 3.0);
+        cell.predicted.push_back(m.variance / double(c.count - 1));
+      }
     }
+    const auto pooled = [&](double factor) {
+      std::vector<double> ratios;
+      for (const auto& [key, cell] : cells) {
+        if (cell.means.size() != kRuns) continue;
+        double mean = 0.0, spread = 0.0, predicted = 0.0;
+        for (double m : cell.means) mean += m / kRuns;
+        for (double m : cell.means) spread += (m - mean) * (m - mean) / (kRuns - 1);
+        for (double v : cell.predicted) predicted += factor * v / kRuns;
+        if (predicted > 0.0) ratios.push_back(spread / predicted);
+      }
+      double mean = 0.0, variance = 0.0;
+      for (double r : ratios) mean += r / double(ratios.size());
+      for (double r : ratios) variance += (r - mean) * (r - mean) / double(ratios.size() - 1);
+      return std::array<double, 3>{mean, std::sqrt(variance / double(ratios.size())), double(ratios.size())};
+    };
+    const auto [ratio, error, judged] = pooled(1.0);
+    std::printf("%s: %g cells in all %u runs: spread over predicted %.4f, standard error %.4f\n", scene, judged, kRuns,
+                ratio, error);
+    EXPECT_GT(judged, 100.0) << scene;
+    EXPECT_LT(std::abs(ratio - 1.0), 4.0 * error) << scene;
+    const auto [wrong, wrong_error, unused] = pooled(9.0);  // the brightness's variance taken for the channel mean's
+    std::printf("%s, with the brightness's variance: %.4f, standard error %.4f\n", scene, wrong, wrong_error);
+    EXPECT_GT(std::abs(wrong - 1.0), 4.0 * wrong_error) << scene;
   }
-  const auto pooled = [&](double factor) {
-    std::vector<double> ratios;
-    for (const auto& [key, cell] : cells) {
-      if (cell.means.size() != kRuns) continue;
-      double mean = 0.0, spread = 0.0, predicted = 0.0;
-      for (double m : cell.means) mean += m / kRuns;
-      for (double m : cell.means) spread += (m - mean) * (m - mean) / (kRuns - 1);
-      for (double v : cell.predicted) predicted += factor * v / kRuns;
-      if (predicted > 0.0) ratios.push_back(spread / predicted);
-    }
-    double mean = 0.0, variance = 0.0;
-    for (double r : ratios) mean += r / double(ratios.size());
-    for (double r : ratios) variance += (r - mean) * (r - mean) / double(ratios.size() - 1);
-    return std::array<double, 3>{mean, std::sqrt(variance / double(ratios.size())), double(ratios.size())};
-  };
-  const auto [ratio, error, judged] = pooled(1.0);
-  std::printf("%g cells in all %u runs: spread over predicted %.4f, standard error %.4f\n", judged, kRuns, ratio,
-              error);
-  EXPECT_GT(judged, 100.0);
-  EXPECT_LT(std::abs(ratio - 1.0), 4.0 * error);
-  const auto [wrong, wrong_error, unused] = pooled(9.0);  // the brightness's variance taken for the channel mean's
-  std::printf("with the brightness's variance: %.4f, standard error %.4f\n", wrong, wrong_error);
-  EXPECT_GT(std::abs(wrong - 1.0), 4.0 * wrong_error);
 }
 
 // Three frames of the Cornell box through one table per backend: the checker holds every slot's square sum (exactly
