@@ -169,6 +169,14 @@ void FilterConfig::Validate() const {
   if (survival.enabled() && !second_moments) {
     throw ConfigError("--survival", "reads each cell's variance, which needs --second-moments on");
   }
+  if (interpolation.enabled() && !second_moments) {
+    throw ConfigError("--interpolation", "reads each cell's variance, which needs --second-moments on");
+  }
+  if (interpolation.enabled() && neighbour_search) {
+    throw ConfigError("--interpolation",
+                      "weighs the variance of a record's own cell; it is not built with --neighbour-search, whose "
+                      "stencil reads several");
+  }
   if (survival.enabled() && transport) {
     throw ConfigError("--survival", "decides at a path's primary vertex; it is not built with --transport on");
   }
@@ -219,6 +227,7 @@ std::string FilterConfig::ToString() const {
          (neighbour_search ? " neighbour_search: on" : std::string()) + (transport ? " transport: on" : std::string()) +
          (second_moments ? " second_moments: on" : std::string()) +
          (survival.enabled() ? " survival: " + survival.ToString() : std::string()) +
+         (interpolation.enabled() ? " interpolation: " + interpolation.ToString() : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/accumulation.h"
+#include "core/cell_interpolation.h"
 #include "core/compaction.h"
 #include "core/effect_plan.h"
 #include "core/eviction.h"
@@ -73,6 +74,9 @@ struct FilterConfig {
   // --survival: a traced sequence's paths survive their primary vertex by the variance of its cell in the table the
   // frame before left (core/survival.h); the tracer decides, the filter passes see the records it made
   SurvivalParams survival;
+  // --interpolation: the resolve blends each record's own light with its cell's average by a weight of the cell's
+  // variance (core/cell_interpolation.h)
+  CellInterpolation interpolation;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
 
   // The frames of headroom a sequence's first frame leaves when it chooses F and G (core/fixed_point_scale.h):

@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/cell_interpolation.h"
 #include "core/hash_table.h"
 #include "core/image.h"
 #include "core/key_batch.h"
@@ -29,6 +30,7 @@ struct HashedRun {
   std::vector<std::uint64_t> resolved_at_level;  // [k]: records whose resolve read the slot k levels above their own
   std::uint32_t min_count = 1;                   // the resolve's --min-count
   bool neighbour_search = false;                 // the resolve's --neighbour-search
+  CellInterpolation interpolation;               // the resolve's --interpolation (core/cell_interpolation.h)
   KeyParams key_params{};              // the host's, from which the search's checks compute a record's position again
   std::uint64_t records_searched = 0;  // records whose resolve searched (core/shared/neighbour_search.h)
   std::uint64_t neighbours_read = 0;   // the neighbour slots their lookups found
@@ -73,7 +75,8 @@ NeighbourReads SearchInTable(const HashedRun& run, const Record& r, std::size_t 
 
 // What record i's resolve reads in the run's table and averages: the slot of its chosen level (ResolvedSlot's, or a
 // broken resolve's) and, where it searches (core/neighbour_search.h), the slots `search` found (by default
-// SearchInTable). Nothing where no level is placed. reads, when given, receives the search's.
+// SearchInTable). Nothing where no level is placed. reads, when given, receives the search's. With --interpolation,
+// what the record's vertex receives: that average blended with its own light by the slot's weight.
 std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r, std::size_t i,
                                           const shared::LevelChoice& chosen, NeighbourReads* reads = nullptr,
                                           const SlotSearch* search = nullptr);

@@ -513,6 +513,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   run.placements.resize(n);
   run.min_count = config.min_count;
   run.neighbour_search = config.neighbour_search;
+  run.interpolation = config.interpolation;
   run.key_params = params;
   run.wraps = memory.Words64(b.wraps)[0];
   run.count_wraps = memory.Words64(b.wraps)[1];
@@ -624,6 +625,11 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
                                            : fixed ? double(table.fixed_sums[slot][c]) * unscale
                                                    : double(table.float_sums[slot][c]);
                 average[c] = channel_sum / double(table.counts[slot]);
+              }
+              if (config.interpolation.enabled()) {
+                const glm::vec4& own = batch.records[i].contribution;
+                average = Interpolated(config.interpolation, SlotWeight(config.interpolation, table, slot), average,
+                                       glm::dvec3(own.x, own.y, own.z));
               }
             }
             if (accepted[i]) sum += AcceptedRecordValue(batch.records[i], slot < config.capacity ? &average : nullptr);

@@ -264,6 +264,14 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     }
     stats.max_records_per_cell = std::max(stats.max_records_per_cell, cell.count);
   }
+  // --interpolation: each cell's weight, from its sums and square sum (core/cell_interpolation.h).
+  std::vector<double> weights(config.interpolation.enabled() ? result.cells.size() : 0);
+  for (std::size_t c = 0; c < weights.size(); ++c) {
+    const TableCell& cell = result.cells[c];
+    weights[c] =
+        CellWeight(config.interpolation, config.accumulation, cell.fixed_sum, cell.float_sum, cell.fixed_square,
+                   cell.float_square, cell.count, stats.fixed_point_bits, stats.square_bits);
+  }
   stats.cells = result.cells.size();
   std::uint64_t in_cells = 0;  // every frame's, in a sequence
   for (const TableCell& cell : result.cells) in_cells += cell.count;
@@ -286,7 +294,10 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     if (chosen.slot == kNoCell) continue;
     ++stats.resolved_at_level[chosen.level];
     if (!Searches(config.neighbour_search, chosen, kNoCell)) {
-      cell_average[i] = averages[chosen.slot];
+      const glm::vec4& own = batch.records[i].contribution;
+      cell_average[i] = weights.empty() ? averages[chosen.slot]
+                                        : Interpolated(config.interpolation, weights[chosen.slot],
+                                                       averages[chosen.slot], glm::dvec3(own.x, own.y, own.z));
       continue;
     }
     const NeighbourReads reads = SearchNeighbours(params, batch.records[i], chosen, std::uint32_t(i), find);

@@ -306,6 +306,25 @@ hpsf_add_cli_test(HpsfRender.ABadSurvivalRuleExits3 "unit;adaptive;untrusted" 3
 hpsf_add_cli_test(HpsfCrosscheck.SurvivalOverARecordFileExits3 "unit;adaptive;untrusted" 3
   "--survival: .*seed_lookup_alias.hpsfv: survival decides while a scene is traced" ""
   $<TARGET_FILE:hpsf> crosscheck ${hpsf_data}/seed_lookup_alias.hpsfv --second-moments on --survival linear:0:1)
+# Cell interpolation (label adaptive): alone and with survival (Schipek's adaptive PSF for primary surfaces), the
+# contract holds on all three backends over a blending sequence; it needs second moments, is not built with the
+# search or a team's resolve shader, and a bad rule is named.
+hpsf_add_cli_test(HpsfCrosscheck.InterpolationHoldsTheContract "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 3 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --frames 3 --second-moments on --temporal ema:0.5
+  --interpolation smooth:0.001:0.01 --survival linear:0.001:0.01)
+hpsf_add_cli_test(HpsfRender.InterpolationWithoutSecondMomentsExits3 "unit;adaptive;untrusted" 3
+  "--interpolation: reads each cell's variance, which needs --second-moments on" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --interpolation smooth:0.001:0.01 -o ${hpsf_out}/interpolation.exr
+  ABSENT ${hpsf_out}/interpolation.exr)
+hpsf_add_cli_test(HpsfRender.ABadInterpolationRuleExits3 "unit;adaptive;untrusted" 3
+  "--interpolation: smooth needs V1 - V0 below 8" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --second-moments on --interpolation smooth:0:9
+  -o ${hpsf_out}/interpolation.exr ABSENT ${hpsf_out}/interpolation.exr)
+hpsf_add_cli_test(HpsfCrosscheck.InterpolationWithATeamsResolveExits3 "unit;adaptive;vulkan;untrusted" 3
+  "--interpolation: .*resolve_correct.spv is a team's resolve" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 8x8 --second-moments on --interpolation step:0:0.01
+  --backends reference,vulkan --resolve-spv ${HPSF_SHADER_VARIANT_DIR}/resolve_correct.spv --accum fixed64)
 # render reports the paths survival culled, and the effect's frames.
 hpsf_add_cli_test(HpsfRender.SurvivalReportsTheCulledPaths "unit;adaptive" 0
   "effect.: .survival.,[^}]*frames_run.: 2.*culled.: [1-9]" ""

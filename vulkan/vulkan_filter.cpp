@@ -181,7 +181,18 @@ constexpr BindingKind kSettleBindings[] = {BindingKind::kStorageBuffer, BindingK
 constexpr BindingKind kResolveBindings[] = {
     BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
+
+// --interpolation's parameters, the resolve's binding 10 (resolve.glsl's InterpolationParams).
+struct InterpolationParams {
+  double v0;
+  double v1;
+  double square_unscale;   // 2^-G, fixed64
+  std::uint32_t function;  // shared::kInterpolation*: off, step or smooth
+  std::uint32_t reserved;
+};
+static_assert(sizeof(InterpolationParams) == 32, "resolve.glsl's binding 10");
 
 // A built-in shader's SPIR-V by accumulation mode.
 std::span<const std::uint32_t> ByMode(Accumulation mode, std::span<const std::uint32_t> fixed64,
@@ -295,6 +306,7 @@ struct VulkanFilter::Impl {
   DeviceBuffer previous_sums, previous_counts;  // the double buffer of temporal.comp and level_seed.comp
   // --second-moments: the square sums, their double buffer for temporal.comp, and the accumulate's binding 12
   DeviceBuffer squares, previous_squares, square_params;
+  DeviceBuffer interpolation_params;                    // the resolve's binding 10
   DeviceBuffer previous_tags, seeded, seeded_count;     // level_seed.comp's
   DeviceBuffer deferred_pixels, deferred_header;        // the search's list of pixels (resolve.glsl)
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
@@ -464,6 +476,7 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      {},
                      {},
                      {},
+                     {},
                      {}}) {
   if (!impl_->custom_accumulate.empty()) {
     impl_->custom_accumulation = SumsAccumulation(impl_->custom_accumulate, accumulate_spv);
@@ -569,6 +582,11 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                      SumsTypeName(p.custom_resolve_accumulation) + ": it resolves " +
                                      ToString(p.custom_resolve_accumulation) + ", not " +
                                      ToString(config.accumulation));
+  }
+  if (!p.custom_resolve.empty() && config.interpolation.enabled()) {
+    throw ConfigError("--interpolation", p.resolve_name +
+                                             " is a team's resolve: its interface has no interpolation (the square "
+                                             "sums and the rule are hpsf's own resolve's bindings 9 and 10)");
   }
   for (const auto& [spirv, name, binding] :
        {std::tuple{&p.custom_eviction, &p.eviction_name, kEvictionCountsBinding},
@@ -989,10 +1007,21 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // (core/shared/levels.h): the resolve's interface places level k of record i at k * records + i.
   const bool separate_placements = resolved != n && config.levels > 1;
   if (separate_placements) p.Ensure(p.resolve_placements, vk::DeviceSize(resolved) * config.levels * 4);
-  DeviceBuffer* const resolve_buffers[] = {
-      &p.records,        &p.sums,   &p.counts, separate_placements ? &p.resolve_placements : &p.placements,
-      &p.accepted,       &p.pixels, &p.tags,   &p.deferred_pixels,
-      &p.deferred_header};
+  // --interpolation: the squares (binding 9) and the rule (binding 10), bound always.
+  p.Ensure(p.interpolation_params, sizeof(InterpolationParams));
+  const InterpolationParams interpolation{config.interpolation.v0, config.interpolation.v1,
+                                          std::ldexp(1.0, -table.square_bits), config.interpolation.function, 0};
+  DeviceBuffer* const resolve_buffers[] = {&p.records,
+                                           &p.sums,
+                                           &p.counts,
+                                           separate_placements ? &p.resolve_placements : &p.placements,
+                                           &p.accepted,
+                                           &p.pixels,
+                                           &p.tags,
+                                           &p.deferred_pixels,
+                                           &p.deferred_header,
+                                           &p.squares,
+                                           &p.interpolation_params};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   ComputeProgram* const search_resolve = deferring ? &p.SearchResolve(config.accumulation) : nullptr;
   if (search_resolve) vulkan_internal::BindBuffers(p.device, *search_resolve, resolve_buffers);
@@ -1010,6 +1039,10 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                  planned.search_every_pixel ? 1u : 0u,
                                  0};
   run.timings.resolve_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
+    cb.updateBuffer<InterpolationParams>(*p.interpolation_params.buffer, 0, interpolation);
+    const vk::MemoryBarrier updated(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead);
+    cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, updated,
+                       nullptr, nullptr);
     if (separate_placements) {
       std::vector<vk::BufferCopy> levels;
       for (std::uint32_t k = 0; k < config.levels; ++k)
@@ -1136,6 +1169,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   CountCoarserProbes(run, push.key);
   run.min_count = config.min_count;
   run.neighbour_search = config.neighbour_search;
+  run.interpolation = config.interpolation;
   run.key_params = push.key;
   CountResolvedLevels(run);
   CountSearches(run, batch);

@@ -103,6 +103,13 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "on or off: each slot also keeps the sum of its records' squared brightness (r + g + b)^2, so the "
                   "table holds each cell's variance (fixed64 at a scale 2^G of its own, exact; float32 as floats)")
       ->capture_default_str();
+  command
+      .add_option("--interpolation", o.interpolation,
+                  "Variance-aware cell interpolation (Schipek eqs. 4.4, 4.5): off, step:V0:V1 or smooth:V0:V1. The "
+                  "resolve gives each record w times its cell's average plus 1 - w times its own light, w a function "
+                  "of the cell's variance: the cell outside [V0, V1], the path inside (step), or leaning to it "
+                  "(smooth). Needs --second-moments on")
+      ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
                      "eviction, neighbour-search, transport, survival; repeatable): the same bits, at the pass's "
@@ -127,6 +134,7 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     throw ConfigError("--second-moments", "expected on or off; got '" + o.second_moments + "'");
   }
   config.second_moments = o.second_moments == "on";
+  config.interpolation = ParseInterpolation(o.interpolation);
   if (o.fixed_point_bits != "auto") {
     int bits = 0;
     const char* end = o.fixed_point_bits.data() + o.fixed_point_bits.size();
@@ -202,6 +210,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"transport", c.transport},
           {"second_moments", c.second_moments},
           {"survival", c.survival.ToString()},
+          {"interpolation", c.interpolation.ToString()},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
 }

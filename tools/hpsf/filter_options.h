@@ -22,6 +22,7 @@ struct FilterOptions {
   std::string neighbour_search = "off";  // --neighbour-search: on or off
   std::string transport = "off";         // --transport: on or off
   std::string second_moments = "off";    // --second-moments: on or off
+  std::string interpolation = "off";     // --interpolation: off, step:V0:V1 or smooth:V0:V1
   std::string accumulation = "fixed64";
   std::string fixed_point_bits = "auto";
   std::string eviction = "none";

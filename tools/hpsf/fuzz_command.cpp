@@ -244,13 +244,13 @@ int Run(FuzzOptions& o, bool options_only) {
   // Second moments where hpsf's own accumulate, temporal and eviction passes keep the squares.
   const bool second_moments = defect == Defect::kNone && accumulate.empty() && eviction.empty() && temporal.empty();
   const AdversarialOptions generate{
-      o.max_records, defect == Defect::kNone || search_defect || defect == Defect::kLevelWrongCount,
-      accumulation,  backend.on_device,
-      probing,       full_keys,
-      fingerprints,  packed_sums,
-      levels,        search,
-      level_change,  transports,
-      second_moments};
+      o.max_records,  defect == Defect::kNone || search_defect || defect == Defect::kLevelWrongCount,
+      accumulation,   backend.on_device,
+      probing,        full_keys,
+      fingerprints,   packed_sums,
+      levels,         search,
+      level_change,   transports,
+      second_moments, o.vulkan.resolve_spv.empty()};  // interpolation: hpsf's own resolve
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
 
   const Clock::time_point start = Clock::now();

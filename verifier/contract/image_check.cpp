@@ -90,6 +90,12 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
       } else if (slot < run.table.capacity) {
         const double n = double(run.table.counts[slot]), k = n - 1.0;
         average = sums.exact[slot] / n;
+        // --interpolation: the weight as the backend computes it, from its table's words; the bound below, times
+        // w <= 1, still holds.
+        if (run.interpolation.enabled()) {
+          average = Interpolated(run.interpolation, SlotWeight(run.interpolation, run.table, slot), *average,
+                                 glm::dvec3(r.contribution.x, r.contribution.y, r.contribution.z));
+        }
         // The slot's float sum is within gamma(n - 1) * sum|c| of the exact one; divided by n, times |throughput|.
         bound += glm::abs(glm::dvec3(r.throughput)) * (k * kUnitRoundoff / (1.0 - k * kUnitRoundoff)) *
                  sums.magnitude[slot] / n;

@@ -9,9 +9,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/cell_interpolation.h"
 #include "core/eviction.h"
 #include "core/footprint.h"
 #include "core/level_seed.h"
+#include "core/shared/cell_interpolation.h"
 #include "core/shared/key.h"
 #include "core/shared/rng.h"
 #include "core/temporal.h"
@@ -519,6 +521,14 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
   if (options.second_moments && a.config.accumulation != Accumulation::kPackedDecimal && !a.config.level_seed.enabled &&
       moment_draws.Bits() % 4u == 0u) {
     a.config.second_moments = true;
+    // Half of them interpolate (not with the search, whose stencil the rule does not weigh), by a rule whose
+    // thresholds span the variances of cells of the drawn contributions: V0 from 1e-6 to 1, V1 up to 100 times it.
+    if (options.interpolation && !a.config.neighbour_search && moment_draws.Bits() % 2u == 0u) {
+      CellInterpolation& rule = a.config.interpolation;
+      rule.function = moment_draws.Bits() % 2u == 0u ? shared::kInterpolationStep : shared::kInterpolationSmooth;
+      rule.v0 = std::pow(10.0, double(moment_draws.Uniform(-6.0f, 0.0f)));
+      rule.v1 = std::min(rule.v0 * std::pow(10.0, double(moment_draws.Uniform(0.3f, 2.0f))), rule.v0 + 7.5);
+    }
   }
   a.config.Validate();
   return a;

@@ -80,6 +80,9 @@ struct AdversarialOptions {
   // Whether a case may keep second moments (--second-moments, core/shared/second_moment.h): false where a broken
   // kernel or a team's accumulate, temporal or eviction shader runs, which need not keep the squares.
   bool second_moments = true;
+  // Whether a case that keeps second moments may interpolate (--interpolation, core/cell_interpolation.h): false where
+  // a team's resolve shader runs, whose interface has no interpolation.
+  bool interpolation = true;
 };
 
 AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const AdversarialOptions& options = {});

@@ -15,8 +15,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/cell_interpolation.h"
 #include "core/footprint.h"
 #include "core/input_check.h"
+#include "core/shared/cell_interpolation.h"
 #include "core/shared/key.h"
 #include "reference/reference_filter.h"
 
@@ -375,6 +377,31 @@ TEST(AdversarialCase, SomeCasesKeepSecondMoments) {
   AdversarialOptions none;
   none.second_moments = false;
   for (std::uint64_t run = 0; run < 200; ++run) EXPECT_FALSE(MakeAdversarialCase(9, run, none).config.second_moments);
+}
+
+// Half the cases that keep second moments interpolate (never with the search), by rules of both kinds that
+// validate; none where the options say a team's resolve runs.
+TEST(AdversarialCase, SomeCasesInterpolate) {
+  int keeping = 0, interpolating = 0, step = 0;
+  for (std::uint64_t run = 0; run < 800; ++run) {
+    const AdversarialCase c = MakeAdversarialCase(9, run);
+    keeping += c.config.second_moments;
+    if (!c.config.interpolation.enabled()) continue;
+    ++interpolating;
+    step += c.config.interpolation.function == shared::kInterpolationStep;
+    EXPECT_TRUE(c.config.second_moments);
+    EXPECT_FALSE(c.config.neighbour_search);
+    EXPECT_EQ(ParseInterpolation(c.config.interpolation.ToString()), c.config.interpolation);
+  }
+  std::printf("%d of %d cases keeping second moments interpolate, %d by steps\n", interpolating, keeping, step);
+  EXPECT_GT(interpolating, keeping / 4);
+  EXPECT_GT(step, 0);
+  EXPECT_LT(step, interpolating);
+  AdversarialOptions none;
+  none.interpolation = false;
+  for (std::uint64_t run = 0; run < 200; ++run) {
+    EXPECT_FALSE(MakeAdversarialCase(9, run, none).config.interpolation.enabled());
+  }
 }
 
 }  // namespace

@@ -107,7 +107,13 @@ class Shrinker {
     }
     if (c.config.level_seed.enabled) attempt([](AdversarialCase& a) { a.config.level_seed = {}; });
     if (c.config.transport && !keep_.transport) attempt([](AdversarialCase& a) { a.config.transport = false; });
-    if (c.config.second_moments) attempt([](AdversarialCase& a) { a.config.second_moments = false; });
+    if (c.config.interpolation.enabled()) attempt([](AdversarialCase& a) { a.config.interpolation = {}; });
+    if (c.config.second_moments) {
+      attempt([](AdversarialCase& a) {
+        a.config.second_moments = false;
+        a.config.interpolation = {};
+      });
+    }
     if (c.config.levels > 1) {
       attempt([](AdversarialCase& a) {
         a.config.levels = 1;

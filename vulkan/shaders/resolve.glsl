@@ -43,6 +43,7 @@
 #define HPSF_COUNT_TYPE uint64_t
 #endif
 #include "subgroup_runs.glsl"
+#include "../../core/shared/cell_interpolation.h"
 
 #define HPSF_RECORDS_BINDING 0
 #include "record_texels.glsl"
@@ -56,6 +57,16 @@ layout(std430, binding = 2) readonly buffer Counts { HPSF_COUNT_TYPE counts[]; }
 layout(std430, binding = 3) readonly buffer Placements { uint placements[]; };
 layout(std430, binding = 4) readonly buffer Accepted { uint accepted[]; };
 layout(std430, binding = 5) writeonly buffer Pixels { float pixels[]; };  // RGB per pixel
+// --interpolation (core/shared/cell_interpolation.h): the square sums as the accumulate's binding 11 left them (two
+// 32-bit words a slot, low first, fixed64; one float's bits, float32), and the rule.
+layout(std430, binding = 9) readonly buffer SquareWords { uint square_words[]; };
+layout(std430, binding = 10) readonly buffer Interpolation {  // vulkan_filter.cpp's InterpolationParams
+  double interpolation_v0;
+  double interpolation_v1;
+  double square_unscale;  // 2^-G, fixed64
+  uint interpolation_function;  // kInterpolationOff, kInterpolationStep or kInterpolationSmooth
+  uint interpolation_reserved;
+};
 // The tags, for the search's lookups (slot_tags.glsl): 32-bit fingerprints or 64-bit full keys.
 #if !defined(HPSF_NEIGHBOUR_SEARCH)
 #elif defined(HPSF_DEFECT_SEARCH_CLAIMS)
@@ -220,6 +231,23 @@ void DeferPixel(uint pixel) {
 }
 #endif
 
+// --interpolation: the record receives w times its cell's average plus 1 - w times its own light, w of the slot's
+// variance (core/cell_interpolation.cpp's SlotWeight: the channel sums and the square sum in their values).
+dvec3 Interpolate(uint slot, ResolveParams p, dvec3 average, dvec3 own) {
+  dvec3 channels;
+  precise double square;
+#ifdef HPSF_FIXED64
+  for (uint c = 0u; c < 3u; ++c) channels[c] = double(sums[slot * 3u + c]) * p.unscale;
+  square = double(uint64_t(square_words[2u * slot]) | (uint64_t(square_words[2u * slot + 1u]) << 32)) * square_unscale;
+#else
+  for (uint c = 0u; c < 3u; ++c) channels[c] = double(sums[slot * 3u + c]);
+  square = double(uintBitsToFloat(square_words[slot]));
+#endif
+  double variance = SlotVariance(channels, square, double(SlotCount(slot)));
+  double w = InterpolationWeight(interpolation_function, interpolation_v0, interpolation_v1, variance);
+  return InterpolatedIncident(w, average, own);
+}
+
 void ResolvePixel(uint pixel, ResolveParams p) {
   precise dvec3 sum = dvec3(0.0LF);
 #if defined(HPSF_DEFER_SEARCH)
@@ -259,6 +287,8 @@ void ResolvePixel(uint pixel, ResolveParams p) {
           incident[c] = channel / count;
 #endif
         }
+        // The host refuses the search with interpolation: the slot's own sums are the cell's.
+        if (interpolation_function != kInterpolationOff) incident = Interpolate(chosen.slot, p, incident, D(r.contribution));
       }
       value = value + D(r.throughput) * incident;
     }
