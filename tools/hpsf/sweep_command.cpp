@@ -370,6 +370,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
   if (c.max_depth) trace_axes["max-depth"] = std::to_string(*c.max_depth);
   if (c.filtered_vertices) trace_axes["filtered-vertices"] = std::to_string(*c.filtered_vertices);
   if (c.continuation_depth) trace_axes["continuation-depth"] = std::to_string(*c.continuation_depth);
+  if (c.survival) trace_axes["survival"] = *c.survival;
   result["trace_axes"] = trace_axes;
   for (const auto& [name, value] : c.filter) result["filter"][name] = value;
   for (const auto& [name, values] : phases) result["phases"][name] = Median(values);
