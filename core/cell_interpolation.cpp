@@ -1,6 +1,5 @@
 #include "core/cell_interpolation.h"
 
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -8,6 +7,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/hash_table.h"
+#include "core/number_list.h"
 #include "core/shared/cell_interpolation.h"
 
 namespace hpsf {
@@ -32,16 +32,10 @@ CellInterpolation ParseInterpolation(const std::string& text) {
   } else {
     throw ConfigError("--interpolation", usage + "; got '" + text + "'");
   }
-  const char* first = text.data() + from;
-  const char* last = text.data() + text.size();
-  const auto [middle, error] = std::from_chars(first, last, interpolation.v0);
-  if (error != std::errc() || middle == first || middle == last || *middle != ':') {
-    throw ConfigError("--interpolation", usage + "; got '" + text + "'");
-  }
-  const auto [end, error1] = std::from_chars(middle + 1, last, interpolation.v1);
-  if (error1 != std::errc() || end != last || end == middle + 1) {
-    throw ConfigError("--interpolation", usage + "; got '" + text + "'");
-  }
+  const std::optional<std::vector<double>> values = ParseNumberList(text, from);
+  if (!values || values->size() != 2) throw ConfigError("--interpolation", usage + "; got '" + text + "'");
+  interpolation.v0 = (*values)[0];
+  interpolation.v1 = (*values)[1];
   if (!(std::isfinite(interpolation.v0) && std::isfinite(interpolation.v1) && interpolation.v0 >= 0.0 &&
         interpolation.v0 < interpolation.v1)) {
     throw ConfigError("--interpolation", "the variance thresholds need 0 <= V0 < V1, both finite; got '" + text + "'");

@@ -124,44 +124,38 @@ EffectDecision DecideNeighbourSearch(const FilterConfig& config, std::uint32_t f
   return d;
 }
 
-EffectDecision DecideTransport(const FilterConfig& config, std::uint32_t frames) {
-  EffectDecision d{Effect::kTransport, config.transport, config.forced.Has(Effect::kTransport), 0, ""};
+// An effect that reads the table before the frame, so runs from frame 1 of a sequence on (frame 0 has none, and
+// forced there reads nothing): the transport and survival.
+EffectDecision DecideFromFrameOne(const FilterConfig& config, std::uint32_t frames, Effect effect, bool asked,
+                                  bool FrameEffects::*member, const std::string& off, const std::string& empty,
+                                  const std::string& runs) {
+  EffectDecision d{effect, asked, config.forced.Has(effect), 0, ""};
   if (!d.asked) {
-    d.reason = "--transport off";
+    d.reason = off;
     return d;
   }
-  d.frames_run = FramesRunning(config, frames, &FrameEffects::transport);
-  const std::string empty = "the first frame's table before it is empty: every lookup misses";
+  d.frames_run = FramesRunning(config, frames, member);
   if (d.forced) {
     d.reason = "forced on every frame, though " + empty;
   } else if (frames == 1) {
     d.reason = "a single frame: " + empty;
   } else {
-    d.reason =
-        "runs from frame 1 of the sequence on: each record takes its scattered vertex's light from the table "
-        "before the frame";
+    d.reason = "runs from frame 1 of the sequence on: " + runs;
   }
   return d;
 }
 
+EffectDecision DecideTransport(const FilterConfig& config, std::uint32_t frames) {
+  return DecideFromFrameOne(config, frames, Effect::kTransport, config.transport, &FrameEffects::transport,
+                            "--transport off", "the first frame's table before it is empty: every lookup misses",
+                            "each record takes its scattered vertex's light from the table before the frame");
+}
+
 EffectDecision DecideSurvival(const FilterConfig& config, std::uint32_t frames) {
-  EffectDecision d{Effect::kSurvival, config.survival.enabled(), config.forced.Has(Effect::kSurvival), 0, ""};
-  if (!d.asked) {
-    d.reason = "--survival off";
-    return d;
-  }
-  d.frames_run = FramesRunning(config, frames, &FrameEffects::survival);
-  const std::string empty = "the first frame has no table before it: every path survives";
-  if (d.forced) {
-    d.reason = "forced on every frame, though " + empty;
-  } else if (frames == 1) {
-    d.reason = "a single frame: " + empty;
-  } else {
-    d.reason =
-        "runs from frame 1 of the sequence on: each path survives its primary vertex by its cell's variance in the "
-        "table before the frame";
-  }
-  return d;
+  return DecideFromFrameOne(config, frames, Effect::kSurvival, config.survival.enabled(), &FrameEffects::survival,
+                            "--survival off", "the first frame has no table before it: every path survives",
+                            "each path survives its primary vertex by its cell's variance in the table before the "
+                            "frame");
 }
 
 }  // namespace

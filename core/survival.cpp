@@ -2,32 +2,16 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/number_list.h"
 
 namespace hpsf {
 namespace {
-
-// The numbers of "NAME:V0:V1[:FLOOR]" after the name; nullopt where one does not parse whole.
-std::optional<std::vector<double>> Numbers(const std::string& text, std::size_t from) {
-  std::vector<double> values;
-  const char* at = text.data() + from;
-  const char* last = text.data() + text.size();
-  while (true) {
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(at, last, value);
-    if (error != std::errc() || end == at) return std::nullopt;
-    values.push_back(value);
-    if (end == last) return values;
-    if (*end != ':') return std::nullopt;
-    at = end + 1;
-  }
-}
 
 double Clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
 
@@ -53,7 +37,7 @@ SurvivalParams ParseSurvival(const std::string& text) {
   } else {
     throw ConfigError("--survival", usage + "; got '" + text + "'");
   }
-  const std::optional<std::vector<double>> values = Numbers(text, from);
+  const std::optional<std::vector<double>> values = ParseNumberList(text, from);
   if (!values || values->size() < 2 || values->size() > 3)
     throw ConfigError("--survival", usage + "; got '" + text + "'");
   params.v0 = (*values)[0];

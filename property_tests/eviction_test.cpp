@@ -25,6 +25,7 @@
 #include "emulated/simt/schedule.h"
 #include "property_tests/constructed_cells.h"
 #include "property_tests/hashed_backends.h"
+#include "property_tests/racing_schedules.h"
 #include "property_tests/traced_batch.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
@@ -226,19 +227,7 @@ struct RacingSequence {
 TEST(Eviction, AnEvictionRacingAnInsertionIsCaughtUnderTheSchedulesThatInterleaveThem) {
   const RacingSequence sequence;
   const auto& [frames, numbers, config] = sequence;
-  std::vector<EmulatorOptions> schedules;
-  for (int seed = 1; seed <= 20; ++seed) {
-    for (const std::string& policy : {"random:" + std::to_string(seed), "pct:" + std::to_string(seed) + ":3"}) {
-      EmulatorOptions faithful;
-      faithful.mode = simt::Mode::kFaithful;
-      faithful.warp_size = 4;
-      faithful.schedule = policy;
-      schedules.push_back(faithful);
-    }
-  }
-  EmulatorOptions serial;
-  serial.threads = 1;
-  schedules.push_back(serial);
+  const std::vector<EmulatorOptions> schedules = RacingSchedules();
   auto passes = [&](const EmulatorOptions& options, AccumulateKernelFn kernel, std::string* failure) {
     EmulatedBackend backend(options, kernel), rerun(options, kernel);
     const JudgedBackend judged{"emulated", &backend, &rerun, "rerun", options.mode == simt::Mode::kFaithful, false};

@@ -11,6 +11,7 @@
 #include "emulated/defect_injection.h"
 #include "emulated/simt/schedule.h"
 #include "property_tests/constructed_cells.h"
+#include "property_tests/racing_schedules.h"
 #include "property_tests/transport_furnace.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "verifier/contract/contract_levels.h"
@@ -138,19 +139,7 @@ TEST(TransportContract, AReadOfTheCurrentTableIsARaceTheSchedulesFind) {
   config.transport = true;
   config.frames = 3;
   config.capacity = 1u << 12;
-  std::vector<EmulatorOptions> schedules;
-  for (int seed = 1; seed <= 20; ++seed) {
-    for (const std::string& policy : {"random:" + std::to_string(seed), "pct:" + std::to_string(seed) + ":3"}) {
-      EmulatorOptions faithful;
-      faithful.mode = simt::Mode::kFaithful;
-      faithful.warp_size = 4;
-      faithful.schedule = policy;
-      schedules.push_back(faithful);
-    }
-  }
-  EmulatorOptions serial;
-  serial.threads = 1;
-  schedules.push_back(serial);
+  const std::vector<EmulatorOptions> schedules = RacingSchedules();
   int caught = 0;
   for (EmulatorOptions options : schedules) {
     const std::string name = options.mode == simt::Mode::kFast ? "fast, one thread" : options.schedule;
