@@ -287,23 +287,12 @@ TEST(Eviction, EveryInterleavingOfAnEvictionWithAnInsertionIntoItsSlotIsExplored
   frame1.records[0].path.z &= ~shared::kRecordHasVertex;
   const EmulatedRun first = EmulatedFilter(frame0, config, EmulatorOptions{});
   config.frame = 1;
-  struct Exploration {
-    std::uint64_t schedules = 0, caught = 0;
-  };
   auto explore = [&](AccumulateKernelFn kernel) {
-    simt::ExhaustiveSchedule schedule;
-    EmulatorOptions options;
-    options.mode = simt::Mode::kFaithful;
-    options.warp_size = 1;
-    options.schedule_instance = &schedule;
-    Exploration e;
-    do {
-      ++e.schedules;  // every schedule runs: the search learns the next one from this run's decisions
-      const EmulatedRun run = EmulatedFilter(frame1, config, options, kernel, &first.table);
-      e.caught +=
-          !CheckTable({run.table, frame1.records, run.keys, run.placements, &first.table, config.eviction, 1}).empty();
-    } while (schedule.Advance());
-    return e;
+    return ExploreEveryOrder(EmulatorOptions{}, [&](const EmulatorOptions& each) {
+      const EmulatedRun run = EmulatedFilter(frame1, config, each, kernel, &first.table);
+      return !CheckTable({run.table, frame1.records, run.keys, run.placements, &first.table, config.eviction, 1})
+                  .empty();
+    });
   };
   const Exploration correct = explore(AccumulateKernel);
   const Exploration racing = explore(EvictDuringAccumulate);

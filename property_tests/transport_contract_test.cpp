@@ -174,23 +174,13 @@ TEST(TransportContract, EveryOrderOfAReadAndAnAddToItsCellIsExplored) {
   config.frame = 1;
   const EmulatedRun expected = EmulatedFilter(frame1, config, EmulatorOptions{}, AccumulateKernel, &first.table);
   ASSERT_EQ(expected.transport.found, 1u);
-  struct Exploration {
-    std::uint64_t schedules = 0, caught = 0;
-  };
   auto explore = [&](TransportDefect defect) {
-    simt::ExhaustiveSchedule schedule;
     EmulatorOptions options;
-    options.mode = simt::Mode::kFaithful;
-    options.warp_size = 1;
-    options.schedule_instance = &schedule;
     options.transport_defect = defect;
-    Exploration e;
-    do {
-      ++e.schedules;  // every schedule runs: the search learns the next one from this run's decisions
-      const EmulatedRun run = EmulatedFilter(frame1, config, options, AccumulateKernel, &first.table);
-      e.caught += run.table.fixed_sums != expected.table.fixed_sums;
-    } while (schedule.Advance());
-    return e;
+    return ExploreEveryOrder(options, [&](const EmulatorOptions& each) {
+      return EmulatedFilter(frame1, config, each, AccumulateKernel, &first.table).table.fixed_sums !=
+             expected.table.fixed_sums;
+    });
   };
   const Exploration correct = explore(TransportDefect::kNone);
   const Exploration racing = explore(TransportDefect::kReadsCurrentTable);
