@@ -14,13 +14,15 @@ namespace hpsf {
 
 std::string CellInterpolation::ToString() const {
   if (function == shared::kInterpolationOff) return "off";
+  if (function == shared::kInterpolationPath) return "path";
   return std::string(function == shared::kInterpolationStep ? "step:" : "smooth:") + FormatDouble(v0) + ":" +
          FormatDouble(v1);
 }
 
 CellInterpolation ParseInterpolation(const std::string& text) {
   if (text == "off") return {};
-  const std::string usage = "expected off, step:V0:V1 or smooth:V0:V1";
+  if (text == "path") return {shared::kInterpolationPath, 0.0, 1.0};
+  const std::string usage = "expected off, path, step:V0:V1 or smooth:V0:V1";
   CellInterpolation interpolation;
   std::size_t from = 0;
   if (text.rfind("step:", 0) == 0) {

@@ -18,16 +18,18 @@ namespace hpsf {
 struct HashTableDump;  // core/hash_table.h
 
 struct CellInterpolation {
-  std::uint32_t function = 0;  // shared::kInterpolationOff, kInterpolationStep or kInterpolationSmooth
+  std::uint32_t function =
+      0;  // shared::kInterpolationOff, kInterpolationStep, kInterpolationSmooth or kInterpolationPath
   double v0 = 0.0;
   double v1 = 1.0;
   bool enabled() const { return function != 0; }
-  std::string ToString() const;  // "off", "step:V0:V1" or "smooth:V0:V1"
+  std::string ToString() const;  // "off", "path", "step:V0:V1" or "smooth:V0:V1"
   bool operator==(const CellInterpolation&) const = default;
 };
 
-// "off", "step:V0:V1" (eq. 4.4) or "smooth:V0:V1" (eq. 4.5) with 0 <= V0 < V1 finite (smooth: V1 - V0 < 8, where
-// eq. 4.5's least weight (V1 - V0) / 8 stays below 1); a ConfigError naming --interpolation otherwise.
+// "off", "path" (w = 0: each record's own light), "step:V0:V1" (eq. 4.4) or "smooth:V0:V1" (eq. 4.5) with 0 <= V0 < V1
+// finite (smooth: V1 - V0 < 8, where eq. 4.5's least weight (V1 - V0) / 8 stays below 1); a ConfigError naming
+// --interpolation otherwise.
 CellInterpolation ParseInterpolation(const std::string& text);
 
 // The weight of a cell of these sums (fixed64 words at 2^F and a square word at 2^G, or float32's floats) and count.

@@ -125,7 +125,7 @@ EffectDecision DecideNeighbourSearch(const FilterConfig& config, std::uint32_t f
 }
 
 // An effect that reads the table before the frame, so runs from frame 1 of a sequence on (frame 0 has none, and
-// forced there reads nothing): the transport and survival.
+// forced there reads nothing): the transport, survival and path graphs.
 EffectDecision DecideFromFrameOne(const FilterConfig& config, std::uint32_t frames, Effect effect, bool asked,
                                   bool FrameEffects::*member, const std::string& off, const std::string& empty,
                                   const std::string& runs) {
@@ -158,6 +158,13 @@ EffectDecision DecideSurvival(const FilterConfig& config, std::uint32_t frames) 
                             "frame");
 }
 
+EffectDecision DecidePathGraph(const FilterConfig& config, std::uint32_t frames) {
+  return DecideFromFrameOne(config, frames, Effect::kPathGraph, config.path_graph.enabled, &FrameEffects::path_graph,
+                            "--path-graph off", "the first frame has no table before it: no path is cut",
+                            "each path is cut where the variance of its vertices' cells in the table before the "
+                            "frame passes the bound");
+}
+
 }  // namespace
 
 std::string EffectName(Effect effect) {
@@ -176,6 +183,8 @@ std::string EffectName(Effect effect) {
       return "transport";
     case Effect::kSurvival:
       return "survival";
+    case Effect::kPathGraph:
+      return "path-graph";
   }
   return "?";
 }
@@ -186,7 +195,7 @@ Effect ParseEffect(const std::string& name) {
   }
   throw ConfigError("--force-effect", "is not an effect: '" + name +
                                           "' (animation, temporal, level-seed, eviction, neighbour-search, transport, "
-                                          "survival)");
+                                          "survival, path-graph)");
 }
 
 bool ForcedEffects::Any() const { return std::find(forced.begin(), forced.end(), true) != forced.end(); }
@@ -212,6 +221,8 @@ FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index) {
   e.transport = config.transport && (index > 0 || forced.Has(Effect::kTransport));
   // Likewise: a first frame's survival reads no table, and every path survives with p = 1.
   e.survival = config.survival.enabled() && (index > 0 || forced.Has(Effect::kSurvival));
+  // And no path is cut.
+  e.path_graph = config.path_graph.enabled && (index > 0 || forced.Has(Effect::kPathGraph));
   return e;
 }
 
@@ -220,7 +231,7 @@ std::vector<EffectDecision> PlanSequenceEffects(const FilterConfig& config, cons
   return {DecideAnimation(config, scene, frames), DecideTemporal(config, scene, frames),
           DecideLevelSeed(config, scene, frames), DecideEviction(config, scene, frames),
           DecideNeighbourSearch(config, frames),  DecideTransport(config, frames),
-          DecideSurvival(config, frames)};
+          DecideSurvival(config, frames),         DecidePathGraph(config, frames)};
 }
 
 bool RebuildsScenePerFrame(const FilterConfig& config, const SceneFacts& scene) {

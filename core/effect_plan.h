@@ -26,6 +26,9 @@
 //               cell in the table before the frame; called for from the second frame of a sequence on. The first
 //               frame has no table before it: forced there, every lookup misses and every path survives with p = 1,
 //               its records the same bits as without survival.
+//   path-graph  adaptive path graphs (--path-graph, core/path_graph.h): the tracer reads the cell of each vertex along
+//               a path in the table before the frame; called for from the second frame of a sequence on. Forced on
+//               the first frame, every lookup misses and no path is cut: the records are path tracing's bits.
 // An effect asked for but not called for by the scene (temporal forgetting on a static scene, say) still runs, since
 // skipping it would change the result the user asked for; the plan says so in its reason.
 #ifndef HPSF_CORE_EFFECT_PLAN_H
@@ -40,12 +43,12 @@ namespace hpsf {
 
 struct FilterConfig;
 
-enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch, kTransport, kSurvival };
-inline constexpr std::array<Effect, 7> kEffects = {Effect::kAnimation, Effect::kTemporal,        Effect::kLevelSeed,
+enum class Effect { kAnimation, kTemporal, kLevelSeed, kEviction, kNeighbourSearch, kTransport, kSurvival, kPathGraph };
+inline constexpr std::array<Effect, 8> kEffects = {Effect::kAnimation, Effect::kTemporal,        Effect::kLevelSeed,
                                                    Effect::kEviction,  Effect::kNeighbourSearch, Effect::kTransport,
-                                                   Effect::kSurvival};
+                                                   Effect::kSurvival,  Effect::kPathGraph};
 
-// "animation", "temporal", "level-seed", "eviction", "neighbour-search", "transport", "survival"
+// "animation", "temporal", "level-seed", "eviction", "neighbour-search", "transport", "survival", "path-graph"
 std::string EffectName(Effect effect);
 
 // Parses an effect's name; a ConfigError naming --force-effect otherwise.
@@ -70,6 +73,7 @@ struct FrameEffects {
   bool search_every_pixel = false;  // the search pass resolves every pixel, not only those below the threshold
   bool transport = false;           // records take their scattered vertices' light from the table before the frame
   bool survival = false;            // the tracer reads the table before the frame for each path's survival
+  bool path_graph = false;          // the tracer reads the table before the frame for each path's cut
 };
 FrameEffects PlanFrameEffects(const FilterConfig& config, std::uint32_t index);
 

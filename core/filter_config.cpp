@@ -142,6 +142,9 @@ void FilterConfig::Validate() const {
   if (forced.Has(Effect::kSurvival) && !survival.enabled()) {
     throw ConfigError("--force-effect", "survival needs --survival linear:... or smooth:...");
   }
+  if (forced.Has(Effect::kPathGraph) && !path_graph.enabled) {
+    throw ConfigError("--force-effect", "path-graph needs --path-graph with a bound");
+  }
   if (ParseTemporal(temporal.ToString()) != temporal) {
     throw ConfigError("--temporal", "is not a mode: " + temporal.ToString());
   }
@@ -168,6 +171,14 @@ void FilterConfig::Validate() const {
   }
   if (survival.enabled() && !second_moments) {
     throw ConfigError("--survival", "reads each cell's variance, which needs --second-moments on");
+  }
+  if (path_graph.enabled && !second_moments) {
+    throw ConfigError("--path-graph", "reads each cell's variance, which needs --second-moments on");
+  }
+  if (path_graph.enabled && transport) {
+    throw ConfigError("--path-graph",
+                      "gives a pixel's own light; it is not built with --transport on, whose records carry one "
+                      "bounce each");
   }
   if (interpolation.enabled() && !second_moments) {
     throw ConfigError("--interpolation", "reads each cell's variance, which needs --second-moments on");
@@ -227,6 +238,7 @@ std::string FilterConfig::ToString() const {
          (neighbour_search ? " neighbour_search: on" : std::string()) + (transport ? " transport: on" : std::string()) +
          (second_moments ? " second_moments: on" : std::string()) +
          (survival.enabled() ? " survival: " + survival.ToString() : std::string()) +
+         (path_graph.enabled ? " path_graph: " + path_graph.ToString() : std::string()) +
          (interpolation.enabled() ? " interpolation: " + interpolation.ToString() : std::string()) +
          (forced.Any() ? " force_effect: " + forced.ToString() : std::string()) + " ]";
 }

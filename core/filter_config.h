@@ -13,6 +13,7 @@
 #include "core/eviction.h"
 #include "core/key_identity.h"
 #include "core/level_seed.h"
+#include "core/path_graph.h"
 #include "core/probing.h"
 #include "core/shared/key_params.h"
 #include "core/survival.h"
@@ -74,10 +75,16 @@ struct FilterConfig {
   // --survival: a traced sequence's paths survive their primary vertex by the variance of its cell in the table the
   // frame before left (core/survival.h); the tracer decides, the filter passes see the records it made
   SurvivalParams survival;
+  // --path-graph: a traced sequence's paths are cut where the variance they gather along their vertices' cells in the
+  // table the frame before left would pass a bound (core/path_graph.h); the tracer decides, as for survival
+  PathGraphParams path_graph;
   // --interpolation: the resolve blends each record's own light with its cell's average by a weight of the cell's
   // variance (core/cell_interpolation.h)
   CellInterpolation interpolation;
   ForcedEffects forced;  // --force-effect: passes run where the plan skips them (core/effect_plan.h)
+
+  // The tracer reads the table the frame before left (--survival, --path-graph: core/previous_table_view.h).
+  bool TracerReadsTable() const { return survival.enabled() || path_graph.enabled; }
 
   // The frames of headroom a sequence's first frame leaves when it chooses F and G (core/fixed_point_scale.h):
   // `frames`, times the most a survivor's light can be weighted with --survival (1 / floor; its square for G), so that

@@ -6,9 +6,9 @@
 // count keeps counting every sample.
 //
 // The decision reads the table before the frame only (never the one the frame accumulates: D10's cousin), through
-// SurvivalView (core/survival_view.h), so that every backend is handed the same records: `hpsf crosscheck` decides by
-// the reference's exact map, `hpsf render` by the rendering backend's own table. A cell that is not in that table, or
-// holds fewer than two samples, says nothing of its variance: p = 1.
+// PreviousTableView (core/previous_table_view.h), so that every backend is handed the same records: `hpsf crosscheck`
+// decides by the reference's exact map, `hpsf render` by the rendering backend's own table. A cell that is not in that
+// table, or holds fewer than two samples, says nothing of its variance: p = 1.
 #ifndef HPSF_CORE_SURVIVAL_H
 #define HPSF_CORE_SURVIVAL_H
 

@@ -34,7 +34,7 @@
 #include "core/error.h"
 #include "core/filter_config.h"
 #include "core/footprint.h"
-#include "core/survival_view.h"
+#include "core/previous_table_view.h"
 #include "emulated/emulated_backend.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
@@ -65,11 +65,11 @@ TraceOptions Trace(std::uint32_t frame, std::uint32_t seed = 1) {
   return trace;
 }
 
-SurvivalView ViewOf(const FilterConfig& config, const Scene& scene, const FilterResult& previous) {
+PreviousTableView ViewOf(const FilterConfig& config, const Scene& scene, const FilterResult& previous) {
   const double fov = scene.camera.fov_y_degrees * 3.14159265358979323846 / 180.0;
   const KeyParams params =
       MakeKeyParams(config, FootprintScale(config.filter_width_px, fov, kSize), kSize * kSize * kSpp);
-  return SurvivalView(config.survival, params, previous, config.accumulation);
+  return PreviousTableView(config, params, previous);
 }
 
 // A sequence's second frame traced with and without survival, from the same first frame's table.
@@ -83,7 +83,7 @@ SecondFrame TraceSecondFrame(const Scene& scene, FilterConfig config, std::uint3
   const RecordBatch first = TraceRecords(scene, Trace(0, seed)).batch;
   const FilterResult table = ReferenceFilter(first, config);
   config.frame = 1;
-  const SurvivalView view = ViewOf(config, scene, table);
+  const PreviousTableView view = ViewOf(config, scene, table);
   const TraceResult plain = TraceRecords(scene, Trace(1, seed));
   const TraceResult survived = TraceRecords(scene, Trace(1, seed), {}, nullptr, &view);
   SecondFrame f{plain.batch.records, survived.batch.records, {}, plain.stats, survived.stats};
@@ -223,7 +223,7 @@ TEST(Survival, TheFurnacesImageMeanIsUnbiasedAndItsSpreadRisesAsFewerPathsSurviv
       const RecordBatch first = TraceRecords(scene, Trace(0, seed)).batch;
       const FilterResult table = ReferenceFilter(first, config);
       config.frame = 1;
-      const SurvivalView view = ViewOf(config, scene, table);
+      const PreviousTableView view = ViewOf(config, scene, table);
       const RecordBatch second =
           TraceRecords(scene, Trace(1, seed), {}, nullptr, config.survival.enabled() ? &view : nullptr).batch;
       const Image image = ReferenceFilter(second, config, &table).image;
@@ -275,14 +275,14 @@ TEST(Survival, EachBackendDecidingByItsOwnTableMakesTheSameImage) {
     for (std::uint32_t k = 0; k < config.frames; ++k) {
       FilterConfig frame = config;
       frame.frame = k;
-      std::optional<SurvivalView> view;
+      std::optional<PreviousTableView> view;
       const double fov = scene.camera.fov_y_degrees * 3.14159265358979323846 / 180.0;
       const KeyParams params =
           MakeKeyParams(frame, FootprintScale(frame.filter_width_px, fov, kSize), kSize * kSize * kSpp);
       if (k > 0 && backend->LastExactResult()) {
-        view.emplace(frame.survival, params, *backend->LastExactResult(), frame.accumulation);
+        view.emplace(frame, params, *backend->LastExactResult());
       } else if (k > 0) {
-        view.emplace(frame.survival, params, backend->LastHashedRun()->table, frame.normal_in_index);
+        view.emplace(frame, params, backend->LastHashedRun()->table);
       }
       const TraceResult traced = TraceRecords(scene, Trace(k), {}, nullptr, view ? &*view : nullptr);
       culled_paths += traced.stats.culled;
@@ -305,8 +305,8 @@ TEST(Survival, ForcedOnAFirstFrameEveryPathSurvivesAndNoBitChanges) {
   const Scene scene = LoadScene("cornell");
   const FilterConfig config = SurvivalConfig("linear:0:0.001");
   const double fov = scene.camera.fov_y_degrees * 3.14159265358979323846 / 180.0;
-  const SurvivalView nothing(
-      config.survival, MakeKeyParams(config, FootprintScale(config.filter_width_px, fov, kSize), kSize * kSize * kSpp));
+  const PreviousTableView nothing(
+      config, MakeKeyParams(config, FootprintScale(config.filter_width_px, fov, kSize), kSize * kSize * kSpp));
   const TraceResult plain = TraceRecords(scene, Trace(0));
   const TraceResult forced = TraceRecords(scene, Trace(0), {}, nullptr, &nothing);
   EXPECT_EQ(forced.stats.culled, 0u);

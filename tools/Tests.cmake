@@ -330,6 +330,34 @@ hpsf_add_cli_test(HpsfRender.SurvivalReportsTheCulledPaths "unit;adaptive" 0
   "effect.: .survival.,[^}]*frames_run.: 2.*culled.: [1-9]" ""
   $<TARGET_FILE:hpsf> render cornell --size 32x32 --frames 3 --second-moments on --survival linear:0.001:0.01 --json
   -o ${hpsf_out}/survival-culled.exr)
+# Adaptive path graphs (label adaptive): a sequence whose paths are cut by the reference's table before each frame
+# holds the contract on all three backends, alone (the resolve taking each record's own light) and with survival and
+# interpolation (Schipek's "both together"), in fixed64 and float32; it needs second moments, is not built with the
+# transport, and a bad bound is named; render reports the paths it cut and the most variance one gathered.
+hpsf_add_cli_test(HpsfCrosscheck.PathGraphHoldsTheContract "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 3 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --frames 3 --second-moments on --path-graph 0.001
+  --interpolation path)
+hpsf_add_cli_test(HpsfCrosscheck.PathGraphWithSurvivalHoldsTheContractInFloat32 "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 3 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck cornell --size 24x24 --frames 3 --accum float32 --temporal ema:0.5
+  --second-moments on --path-graph 0.01 --survival smooth:0:0.01 --interpolation smooth:0.001:0.01)
+hpsf_add_cli_test(HpsfRender.PathGraphWithoutSecondMomentsExits3 "unit;adaptive;untrusted" 3
+  "--path-graph: reads each cell's variance, which needs --second-moments on" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --frames 2 --path-graph 0.001 -o ${hpsf_out}/path-graph.exr
+  ABSENT ${hpsf_out}/path-graph.exr)
+hpsf_add_cli_test(HpsfRender.PathGraphWithTheTransportExits3 "unit;adaptive;untrusted" 3
+  "--path-graph: gives a pixel's own light; it is not built with --transport on" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --frames 2 --second-moments on --path-graph 0.001 --transport on
+  -o ${hpsf_out}/path-graph.exr ABSENT ${hpsf_out}/path-graph.exr)
+hpsf_add_cli_test(HpsfRender.ABadPathGraphBoundExits3 "unit;adaptive;untrusted" 3
+  "--path-graph: expected off or a variance bound, a finite number >= 0; got '-1'" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --second-moments on --path-graph -1
+  -o ${hpsf_out}/path-graph.exr ABSENT ${hpsf_out}/path-graph.exr)
+hpsf_add_cli_test(HpsfRender.PathGraphReportsTheCutPaths "unit;adaptive" 0
+  "effect.: .path-graph.,[^}]*frames_run.: 2.*cut.: [1-9][0-9]*,.*graph_variance_max.: 0.001," ""
+  $<TARGET_FILE:hpsf> render cornell --size 32x32 --frames 3 --second-moments on --path-graph 0.001
+  --interpolation path --json -o ${hpsf_out}/path-graph-cut.exr)
 # A team's transport shader (--transport-spv) through the interface of transport.comp: one that applies the scattered
 # vertex's throughput twice fails level 2 on Vulkan and is bundled; hpsf's own, given as a team's, holds the contract;
 # a file that is not SPIR-V is refused by name and nothing is run; render names the shader whose word is bad.

@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "core/parallel_for.h"
+#include "core/path_graph.h"
 #include "core/shared/rng.h"
 #include "core/tangent_frame.h"
 #include "tracer/embree_scene.h"
@@ -108,10 +109,10 @@ constexpr std::uint32_t kContinuationStreams = 1u << 16;
 
 class Tracer {
  public:
-  Tracer(const PreparedScene::Built& built, const TraceOptions& options, const SurvivalView* survival)
+  Tracer(const PreparedScene::Built& built, const TraceOptions& options, const PreviousTableView* table)
       : scene_(built.scene),
         options_(options),
-        survival_(survival),
+        table_(table),
         embree_(built.embree),
         emitters_(built.emitters),
         normals_(built.normals),
@@ -233,7 +234,9 @@ class Tracer {
 
   const Scene& scene_;
   const TraceOptions& options_;
-  const SurvivalView* survival_;  // --survival: each path's survival at its primary vertex (core/survival.h)
+  // The table before the frame, for --survival (each path's survival at its primary vertex, core/survival.h) and
+  // --path-graph (where each path is cut, core/path_graph.h); null where neither reads it.
+  const PreviousTableView* table_;
   const EmbreeScene& embree_;
   const EmitterSampler& emitters_;
   const std::vector<glm::dvec3>& normals_;
@@ -268,6 +271,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
   double survival = 1.0;  // the path's probability of surviving its primary vertex
+  // Path graphs: the variance the path has gathered from its vertices' cells, and whether a cell has cut it.
+  const bool graph = table_ && table_->path_graph().enabled;
+  double graph_variance = 0.0;
+  bool graph_cut = false;
   std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
   if (options_.scattered) max_vertices = std::min(max_vertices, first + filtered + 1u);
 
@@ -305,8 +312,8 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     };
     // Survival (core/survival.h), before any ray leaves the primary vertex: a culled path's record holds its vertex
     // and no light; a surviving one's light is divided by p at the end.
-    if (survival_ && bounce == first) {
-      survival = survival_->Probability(MakeVertexRecord(here(weight * albedo)));
+    if (table_ && table_->survival().enabled() && bounce == first) {
+      survival = table_->Probability(MakeVertexRecord(here(weight * albedo)));
       if (random(kSurvive) >= survival) {
         ++stats.culled;
         radiance_before = gathered;
@@ -317,7 +324,29 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
         break;
       }
     }
-    const glm::dvec3 direct = last_vertex ? glm::dvec3(0.0) : DirectLight(p, random, stats);
+    // Path graphs (core/path_graph.h), before any light is gathered at the vertex: its cell may cut the path. The cell
+    // holds the light arriving at the vertex without its albedo, so its weight is the throughput from the filter
+    // vertex up to and with the vertex's albedo (1 at the filter vertex, whose record holds that light itself).
+    glm::dvec3 cell_light(0.0);  // the cut cell's share, weighted
+    double path_share = 1.0;     // alpha: the share of the light the path gathers from this vertex on
+    if (graph && !graph_cut && bounce >= first) {
+      const glm::dvec3 tp = bounce == first ? glm::dvec3(1.0) : weight * albedo;
+      if (const std::optional<CellEstimate> cell = table_->Cell(MakeVertexRecord(here(tp)))) {
+        const double mean_tp = (tp.x + tp.y + tp.z) / 3.0;
+        const PathGraphStep step =
+            StepPathGraph(table_->path_graph(), graph_variance, mean_tp * mean_tp * cell->moments.variance);
+        graph_variance = step.variance;
+        if (step.cut) {
+          graph_cut = true;
+          ++stats.cut;
+          cell_light = tp * cell->average * (1.0 - step.alpha);
+          path_share = step.alpha;
+        }
+      }
+    }
+    // A cut that leaves the path no share ends it here: no light is sampled and no ray leaves.
+    const bool ends_at_cell = path_share == 0.0;
+    const glm::dvec3 direct = last_vertex || ends_at_cell ? glm::dvec3(0.0) : DirectLight(p, random, stats);
 
     if (bounce >= first && bounce - first < filtered) {
       const std::uint32_t j = bounce - first;
@@ -331,10 +360,12 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       }
       chain[j] = here(j == 0 ? record_throughput : weight * albedo);
       reached = j + 1;
-      weight = glm::dvec3(1.0);
-      gathered = direct;
+      weight = glm::dvec3(path_share);
+      gathered = cell_light + weight * direct;
     } else {
       weight *= albedo;
+      gathered += cell_light;
+      weight *= path_share;
       gathered += weight * direct;
       if (options_.scattered && reached == filtered && !has_scattered[filtered - 1]) {  // the last one's next vertex
         scattered_to[filtered - 1] = here(weight);
@@ -349,6 +380,7 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     d_prefix += segment;
     previous = p.position;
     last = p;
+    if (ends_at_cell) break;
 
     if (options_.max_depth < 0 && bounce + 1 >= kRouletteStart) {
       const double survive = std::min(0.95, MaxComponent(reached > 0 ? weight * record_throughput : weight));
@@ -362,8 +394,9 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     origin = Offset(p);
     ++stats.bounce_rays;
   }
+  if (graph) stats.graph_variance_max = std::max(stats.graph_variance_max, graph_variance);
   if (reached > 0) {
-    const bool reweight = survival_ && survival_->params().reweight;
+    const bool reweight = table_ && table_->survival().enabled() && table_->survival().reweight;
     chain[reached - 1].contribution = glm::vec3(reweight ? gathered / survival : gathered);
   }
 
@@ -429,17 +462,17 @@ const Scene& PreparedScene::scene() const { return built_->scene; }
 
 TraceResult TraceRecords(const Scene& animated, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress,
-                         PathContinuation* continuation, const SurvivalView* survival) {
+                         PathContinuation* continuation, const PreviousTableView* table) {
   options.Validate();
-  return TraceRecords(PreparedScene(animated, options.frame), options, progress, continuation, survival);
+  return TraceRecords(PreparedScene(animated, options.frame), options, progress, continuation, table);
 }
 
 TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress,
-                         PathContinuation* continuation, const SurvivalView* survival) {
+                         PathContinuation* continuation, const PreviousTableView* table) {
   options.Validate();
-  if (survival && (options.filter_bounce != 0 || options.scattered)) {
-    throw ConfigError("--survival",
+  if (table && (options.filter_bounce != 0 || options.scattered)) {
+    throw ConfigError(table->survival().enabled() ? "--survival" : "--path-graph",
                       "decides at a path's primary vertex: it needs --filter-bounce 0 and one filtered "
                       "vertex, without scattered vertices");
   }
@@ -450,7 +483,7 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
   const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const Scene& scene = prepared.scene();
-  const Tracer tracer(*prepared.built_, options, survival);
+  const Tracer tracer(*prepared.built_, options, table);
 
   TraceResult result;
   RecordBatch& batch = result.batch;
@@ -518,6 +551,8 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
         result.stats.shadow_rays += local.shadow_rays;
         result.stats.continued += local.continued;
         result.stats.culled += local.culled;
+        result.stats.cut += local.cut;
+        result.stats.graph_variance_max = std::max(result.stats.graph_variance_max, local.graph_variance_max);
         if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
       },
       threads);

@@ -10,8 +10,8 @@
 #include <functional>
 #include <memory>
 
+#include "core/previous_table_view.h"
 #include "core/record.h"
-#include "core/survival_view.h"
 #include "tracer/path_continuation.h"
 #include "tracer/scene.h"
 #include "tracer/trace_options.h"
@@ -28,6 +28,9 @@ struct TraceStats {
   std::uint64_t shadow_rays = 0;
   std::uint64_t continued = 0;  // samples whose kept path grew by a vertex (continuation_depth)
   std::uint64_t culled = 0;     // paths that did not survive their primary vertex (--survival)
+  std::uint64_t cut = 0;        // paths a cell cut (--path-graph)
+  double graph_variance_max =
+      0.0;  // the most variance a path gathered from its cells (--path-graph): the bound at most
   std::uint64_t Rays() const { return camera_rays + bounce_rays + shadow_rays; }
 };
 
@@ -57,7 +60,7 @@ class PreparedScene {
  private:
   friend TraceResult TraceRecords(const PreparedScene&, const TraceOptions&,
                                   const std::function<void(std::uint32_t, std::uint32_t)>&, PathContinuation*,
-                                  const SurvivalView*);
+                                  const PreviousTableView*);
   std::uint32_t frame_;
   bool animated_;
   std::uint64_t digest_;
@@ -66,16 +69,17 @@ class PreparedScene {
 
 // progress(done, total) is called now and then from the calling thread's view of finished tiles. continuation: with
 // options.continuation_depth, the state the frame before left, updated for the next; null, every sample starts afresh.
-// survival: each path survives its primary vertex (filter bounce 0, one filtered vertex) with the view's probability
-// (core/survival.h), drawn from the counter RNG; null, every path is traced.
+// table: the table before the frame. With survival, each path survives its primary vertex (filter bounce 0, one
+// filtered vertex) with the view's probability (core/survival.h), drawn from the counter RNG; with path graphs, each
+// path is cut where its cells' variance passes the bound (core/path_graph.h). Null: every path is traced in full.
 TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress = {},
-                         PathContinuation* continuation = nullptr, const SurvivalView* survival = nullptr);
+                         PathContinuation* continuation = nullptr, const PreviousTableView* table = nullptr);
 // Traces a prepared scene: any frame of a static one, only its own frame of an animated one (a logic_error
 // otherwise). The same records as TraceRecords of the scene.
 TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress = {},
-                         PathContinuation* continuation = nullptr, const SurvivalView* survival = nullptr);
+                         PathContinuation* continuation = nullptr, const PreviousTableView* table = nullptr);
 
 }  // namespace hpsf
 

@@ -15,9 +15,11 @@ HPSF_SHARED_BEGIN
 const uint kInterpolationOff = 0u;
 const uint kInterpolationStep = 1u;    // eq. 4.4
 const uint kInterpolationSmooth = 2u;  // eq. 4.5
+const uint kInterpolationPath = 3u;    // w = 0 everywhere: the record's own light (a path graph's, or the path's)
 
 // The cell's weight w in [0, 1] at variance v.
 HPSF_FN double InterpolationWeight(uint function, double v0, double v1, double variance) {
+  if (function == kInterpolationPath) return double(0.0);
   if (function == kInterpolationStep) return variance > v0 && variance < v1 ? double(0.0) : double(1.0);
   HPSF_PRECISE double width = v1 - v0;
   HPSF_PRECISE double half_sum = (v1 + v0) * double(0.5);

@@ -2,7 +2,7 @@
 // CLI11 callbacks). The input is argv, one word per line, for an App whose subcommands render, replay,
 // crosscheck and stats register the real option groups (AddFilterOptions, AddEmulatorOptions: --mode, --warp-size,
 // --schedule, --vk-staging, --inject-defect ..., AddBounceOptions: --filtered-vertices, --continuation-depth,
-// AddSurvivalOption: --survival) and the
+// AddAdaptiveTraceOptions: --survival, --path-graph) and the
 // trace options as the commands do, and whose callbacks run the real resolvers (ResolveFilterConfig,
 // ResolveEmulatorOptions, ParseDefect, ParseSize, CheckVarianceSamples, TraceScatteredVertices,
 // TraceOptions::Validate). Success, CLI::ParseError (help included) and hpsf::InputError are the outcomes; anything
@@ -53,7 +53,7 @@ CLI::App* AddCommand(CLI::App& app, const char* name, CommandOptions& o, bool em
     c->add_option("--filter-bounce", o.trace.filter_bounce, "filtered vertex");
     c->add_option("--threads", o.trace.threads, "tracing threads");
     AddBounceOptions(*c, o.trace);
-    AddSurvivalOption(*c, o.filter.config);
+    AddAdaptiveTraceOptions(*c, o.filter.config);
   }
   c->callback([&o, emulator, traced] {
     if (emulator) {
@@ -65,7 +65,7 @@ CLI::App* AddCommand(CLI::App& app, const char* name, CommandOptions& o, bool em
       ParseSize(o.size, o.trace);
       CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
       TraceScatteredVertices(config, o.trace);
-      CheckSurvival(config, o.trace);
+      CheckAdaptiveTrace(config, o.trace);
       o.trace.Validate();
     }
   });

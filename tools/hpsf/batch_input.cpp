@@ -8,7 +8,7 @@
 #include "reference/reference_filter.h"
 #include "tools/hpsf/effect_report.h"
 #include "tools/hpsf/image_size.h"
-#include "tools/hpsf/survival_decision.h"
+#include "tools/hpsf/previous_table_decision.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf {
@@ -46,8 +46,9 @@ std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const Trace
   // A static scene is built once for every frame, an animated one for each (core/effect_plan.h, "animation").
   std::optional<PreparedScene> prepared;
   PathContinuation continuation;  // A-nHPSF's kept paths, from frame to frame
-  // Survival (core/survival.h) decides by the reference's exact map of the frame before, so that every backend is
-  // handed the same records: the reference filters each frame once here, before the next is traced.
+  // Survival and path graphs (core/previous_table_view.h) decide by the reference's exact map of the frame before, so
+  // that every backend is handed the same records: the reference filters each frame once here, before the next is
+  // traced.
   std::optional<FilterResult> decided;
   FilterConfig frame_config = config;
   for (std::uint32_t k = 0; k < frames; ++k) {
@@ -57,12 +58,13 @@ std::vector<RecordBatch> LoadOrTraceFrames(const std::string& input, const Trace
       prepared.reset();
       prepared.emplace(scene, frame_trace.frame);
     }
-    const std::optional<SurvivalView> survival =
-        config.survival.enabled()
-            ? FrameSurvivalView(frame_config, frame_trace, *prepared, k, decided ? &*decided : nullptr, nullptr)
+    const std::optional<PreviousTableView> table_before =
+        config.TracerReadsTable()
+            ? FramePreviousTableView(frame_config, frame_trace, *prepared, k, decided ? &*decided : nullptr, nullptr)
             : std::nullopt;
-    sequence.push_back(TraceRecords(*prepared, frame_trace, {}, &continuation, survival ? &*survival : nullptr).batch);
-    if (config.survival.enabled() && k + 1 < frames) {
+    sequence.push_back(
+        TraceRecords(*prepared, frame_trace, {}, &continuation, table_before ? &*table_before : nullptr).batch);
+    if (config.TracerReadsTable() && k + 1 < frames) {
       decided = ReferenceFilter(sequence.back(), frame_config, decided ? &*decided : nullptr);
     }
   }

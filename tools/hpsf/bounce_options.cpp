@@ -1,8 +1,10 @@
 #include "tools/hpsf/bounce_options.h"
 
 #include <string>
+#include <tuple>
 
 #include "core/error.h"
+#include "core/path_graph.h"
 #include "core/survival.h"
 
 namespace hpsf {
@@ -26,7 +28,7 @@ void TraceScatteredVertices(const FilterConfig& config, TraceOptions& trace) {
   trace.scattered = config.transport || trace.filtered_vertices > 1 || trace.continuation_depth > 0;
 }
 
-void AddSurvivalOption(CLI::App& command, FilterConfig& config) {
+void AddAdaptiveTraceOptions(CLI::App& command, FilterConfig& config) {
   command
       .add_option_function<std::string>(
           "--survival", [&config](const std::string& text) { config.survival = ParseSurvival(text); },
@@ -35,17 +37,29 @@ void AddSurvivalOption(CLI::App& command, FilterConfig& config) {
           "cell's variance in the table before the frame (at least FLOOR, default 0.0625), its light divided by p; a "
           "culled path is not traced on and adds 0. Needs --second-moments on")
       ->default_str("off");
+  command
+      .add_option_function<std::string>(
+          "--path-graph", [&config](const std::string& text) { config.path_graph = ParsePathGraph(text); },
+          "Adaptive path graphs (Schipek §4.2, eq. 4.7): off or a variance bound >= 0. From a sequence's second "
+          "frame on, each path gathers the variance of its vertices' cells in the table before the frame (times "
+          "its squared throughput) and is cut where the sum would pass the bound: the cell's average takes 1 - "
+          "alpha of the rest of the path, the path traced on alpha, so the sum meets the bound. 0: every path "
+          "takes its filter vertex's cell. Needs --second-moments on")
+      ->default_str("off");
 }
 
-void CheckSurvival(const FilterConfig& config, const TraceOptions& trace) {
-  if (!config.survival.enabled()) return;
-  if (trace.filter_bounce != 0) {
-    throw ConfigError("--survival", "decides at a path's primary vertex, which needs --filter-bounce 0");
-  }
-  if (trace.scattered) {
-    throw ConfigError("--survival",
-                      "decides at a path's primary vertex; it is not built with several filtered vertices, kept paths "
-                      "or the transport");
+void CheckAdaptiveTrace(const FilterConfig& config, const TraceOptions& trace) {
+  for (const auto& [on, option, what] :
+       {std::tuple{config.survival.enabled(), "--survival", "decides at a path's primary vertex"},
+        std::tuple{config.path_graph.enabled, "--path-graph", "gives a pixel's own light from its filter vertex on"}}) {
+    if (!on) continue;
+    if (trace.filter_bounce != 0) {
+      throw ConfigError(option, std::string(what) + ", which needs --filter-bounce 0");
+    }
+    if (trace.scattered) {
+      throw ConfigError(
+          option, std::string(what) + "; it is not built with several filtered vertices, kept paths or the transport");
+    }
   }
 }
 

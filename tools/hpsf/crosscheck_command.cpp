@@ -95,7 +95,7 @@ int Run(CrosscheckOptions& o, bool options_only) {
   // Bad names are bad input before any tracing; the Vulkan device opens at the first check.
   Crosschecker checker(SplitList(o.backends), ParseDefect(o.emulator.defect), o.emulator.vulkan);
   TraceScatteredVertices(config, o.trace);
-  CheckSurvival(config, o.trace);
+  CheckAdaptiveTrace(config, o.trace);
   if (config.survival.enabled() && IsRecordFile(o.input)) {
     throw ConfigError("--survival", o.input +
                                         ": survival decides while a scene is traced; a record file's paths were "
@@ -140,7 +140,7 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
       ->capture_default_str();
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered")->capture_default_str();
   AddBounceOptions(*c, o->trace);
-  AddSurvivalOption(*c, o->filter.config);
+  AddAdaptiveTraceOptions(*c, o->filter.config);
   c->add_option("--frames", o->frames,
                 "Check a sequence of this many frames through one table per backend (a scene: traced from --frame "
                 "on; a record file: must equal its frames; default every frame of a file, one of a scene)");

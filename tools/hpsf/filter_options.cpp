@@ -105,10 +105,10 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
       ->capture_default_str();
   command
       .add_option("--interpolation", o.interpolation,
-                  "Variance-aware cell interpolation (Schipek eqs. 4.4, 4.5): off, step:V0:V1 or smooth:V0:V1. The "
-                  "resolve gives each record w times its cell's average plus 1 - w times its own light, w a function "
-                  "of the cell's variance: the cell outside [V0, V1], the path inside (step), or leaning to it "
-                  "(smooth). Needs --second-moments on")
+                  "Variance-aware cell interpolation (Schipek eqs. 4.4, 4.5): off, path, step:V0:V1 or smooth:V0:V1. "
+                  "The resolve gives each record w times its cell's average plus 1 - w times its own light, w a "
+                  "function of the cell's variance: the cell outside [V0, V1], the path inside (step), or leaning to "
+                  "it (smooth); path: w = 0, each record's own light (a path graph's). Needs --second-moments on")
       ->capture_default_str();
   command.add_option("--force-effect", o.force_effects,
                      "Run this effect where the plan skips it as a no-op (animation, temporal, level-seed, "
@@ -210,6 +210,7 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"transport", c.transport},
           {"second_moments", c.second_moments},
           {"survival", c.survival.ToString()},
+          {"path_graph", c.path_graph.ToString()},
           {"interpolation", c.interpolation.ToString()},
           {"force_effect", c.forced.ToString()},
           {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};

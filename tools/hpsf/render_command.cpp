@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -20,9 +21,9 @@
 #include "tools/hpsf/frame_soundness.h"
 #include "tools/hpsf/image_file.h"
 #include "tools/hpsf/image_size.h"
+#include "tools/hpsf/previous_table_decision.h"
 #include "tools/hpsf/seconds_since.h"
 #include "tools/hpsf/series_convergence.h"
-#include "tools/hpsf/survival_decision.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
 
@@ -109,7 +110,7 @@ void RunRender(RenderOptions& o, bool options_only) {
   o.filter.config.frames = o.frames;
   FilterConfig config = ResolveFilterConfig(o.filter);  // reject bad filter options before spending time tracing
   TraceScatteredVertices(config, o.trace);
-  CheckSurvival(config, o.trace);
+  CheckAdaptiveTrace(config, o.trace);
   o.trace.Validate();
   CheckVarianceSamples(o.filter, o.trace.samples_per_pixel, "--spp");
   if (std::uint64_t(o.trace.frame) + o.frames - 1 > 0xFFFFFFFFu) {
@@ -136,7 +137,8 @@ void RunRender(RenderOptions& o, bool options_only) {
   const std::vector<EffectDecision> plan = PlanSequenceEffects(config, facts, o.frames);
   std::optional<PreparedScene> prepared;
   PathContinuation continuation;  // A-nHPSF's kept paths, from frame to frame
-  std::uint64_t continued = 0, culled = 0;
+  std::uint64_t continued = 0, culled = 0, cut = 0;
+  double graph_variance_max = 0.0;
   SeriesConvergence series;  // with the transport: whether the fed-back light settled
   for (std::uint32_t k = 0; k < o.frames; ++k) {
     o.trace.frame = first + k;
@@ -148,18 +150,21 @@ void RunRender(RenderOptions& o, bool options_only) {
       prepared.emplace(scene, o.trace.frame);
       scene_seconds = SecondsSince(build_start);
     }
-    // Survival reads the table the frame before left in the rendering backend (core/survival_view.h).
+    // Survival and path graphs read the table the frame before left in the rendering backend
+    // (core/previous_table_view.h).
     const HashedRun* hashed = backend.backend->LastHashedRun();
-    const std::optional<SurvivalView> survival =
-        config.survival.enabled()
-            ? FrameSurvivalView(config, o.trace, *prepared, k, k > 0 ? backend.backend->LastExactResult() : nullptr,
-                                k > 0 && hashed ? &hashed->table : nullptr)
-            : std::nullopt;
+    const std::optional<PreviousTableView> table_before =
+        config.TracerReadsTable() ? FramePreviousTableView(config, o.trace, *prepared, k,
+                                                           k > 0 ? backend.backend->LastExactResult() : nullptr,
+                                                           k > 0 && hashed ? &hashed->table : nullptr)
+                                  : std::nullopt;
     const auto start = std::chrono::steady_clock::now();
     const auto progress = TerminalProgress();
-    traced = TraceRecords(*prepared, o.trace, progress, &continuation, survival ? &*survival : nullptr);
+    traced = TraceRecords(*prepared, o.trace, progress, &continuation, table_before ? &*table_before : nullptr);
     continued += traced.stats.continued;
     culled += traced.stats.culled;
+    cut += traced.stats.cut;
+    graph_variance_max = std::max(graph_variance_max, traced.stats.graph_variance_max);
     if (progress) std::fprintf(stderr, "\r              \r");
     trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool last = k + 1 == o.frames;
@@ -185,6 +190,8 @@ void RunRender(RenderOptions& o, bool options_only) {
                      {"continuation_depth", o.trace.continuation_depth},
                      {"continued", continued},
                      {"culled", culled},
+                     {"cut", cut},
+                     {"graph_variance_max", graph_variance_max},
                      {"threads", o.trace.threads},
                      {"frame", o.trace.frame},
                      {"first_frame", first},
@@ -270,7 +277,7 @@ void AddRenderCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--filter-bounce", o->trace.filter_bounce, "Which diffuse vertex is filtered; 0: the primary hit")
       ->capture_default_str();
   AddBounceOptions(*c, o->trace);
-  AddSurvivalOption(*c, o->filter.config);
+  AddAdaptiveTraceOptions(*c, o->filter.config);
   c->add_option("--threads", o->trace.threads, "Tracing threads; 0: all cores (output bits do not depend on it)")
       ->capture_default_str();
   c->add_option("--frame", o->trace.frame,

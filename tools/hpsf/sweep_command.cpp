@@ -30,9 +30,9 @@
 #include "tools/hpsf/html_report.h"
 #include "tools/hpsf/image_size.h"
 #include "tools/hpsf/pareto_plot.h"
+#include "tools/hpsf/previous_table_decision.h"
 #include "tools/hpsf/reference_cache.h"
 #include "tools/hpsf/seconds_since.h"
-#include "tools/hpsf/survival_decision.h"
 #include "tools/hpsf/sweep_grid.h"
 #include "tools/hpsf/sweep_html_report.h"
 #include "tracer/path_continuation.h"
@@ -131,9 +131,9 @@ class SceneAtFrame {
 };
 
 TracedFrame TraceFrame(SceneAtFrame& scene, const TraceOptions& trace, PathContinuation& continuation,
-                       const SurvivalView* survival = nullptr) {
+                       const PreviousTableView* table_before = nullptr) {
   const auto start = Clock::now();
-  TraceResult traced = TraceRecords(scene.At(trace.frame), trace, {}, &continuation, survival);
+  TraceResult traced = TraceRecords(scene.At(trace.frame), trace, {}, &continuation, table_before);
   return {std::move(traced.batch), SecondsSince(start), traced.stats.Rays()};
 }
 
@@ -194,6 +194,10 @@ class Runner {
       config.survival = ParseSurvival(*c.survival);
       config.second_moments = true;
     }
+    if (c.path_graph) {  // so do path graphs
+      config.path_graph = ParsePathGraph(*c.path_graph);
+      config.second_moments = true;
+    }
     PathContinuation continuation;
     BackendInstance* backend = c.Hashed() ? &BackendFor(c.backend) : nullptr;
     if (backend) backend->backend->Reset();
@@ -205,14 +209,14 @@ class Runner {
       trace.frame = config.frame = f;
       TracedFrame traced_now;
       if (!cached) {
-        // Survival reads the table the frame before left in the configuration's backend.
+        // Survival and path graphs read the table the frame before left in the configuration's backend.
         const HashedRun* hashed = f > 0 && backend ? backend->backend->LastHashedRun() : nullptr;
-        const std::optional<SurvivalView> survival =
-            config.survival.enabled() ? FrameSurvivalView(config, trace, scene_.At(f), f,
-                                                          f > 0 ? backend->backend->LastExactResult() : nullptr,
-                                                          hashed ? &hashed->table : nullptr)
+        const std::optional<PreviousTableView> table_before =
+            config.TracerReadsTable() ? FramePreviousTableView(config, trace, scene_.At(f), f,
+                                                               f > 0 ? backend->backend->LastExactResult() : nullptr,
+                                                               hashed ? &hashed->table : nullptr)
                                       : std::nullopt;
-        traced_now = TraceFrame(scene_, trace, continuation, survival ? &*survival : nullptr);
+        traced_now = TraceFrame(scene_, trace, continuation, table_before ? &*table_before : nullptr);
       }
       const TracedFrame& traced = cached ? *cached : traced_now;
       trace_s.push_back(traced.seconds);
@@ -371,6 +375,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
   if (c.filtered_vertices) trace_axes["filtered-vertices"] = std::to_string(*c.filtered_vertices);
   if (c.continuation_depth) trace_axes["continuation-depth"] = std::to_string(*c.continuation_depth);
   if (c.survival) trace_axes["survival"] = *c.survival;
+  if (c.path_graph) trace_axes["path-graph"] = *c.path_graph;
   result["trace_axes"] = trace_axes;
   for (const auto& [name, value] : c.filter) result["filter"][name] = value;
   for (const auto& [name, values] : phases) result["phases"][name] = Median(values);
@@ -696,7 +701,7 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--grid", o->grid,
                 "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
                 "screen; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, continuation-depth, "
-                "survival; other axes: any filter option without its dashes)")
+                "survival, path-graph; other axes: any filter option without its dashes)")
       ->required()
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // a later --grid replaces an earlier one
   c->add_option("--seeds", o->seeds, "Independent seeds per configuration (1..K); 2 or more split the error")

@@ -6,6 +6,7 @@
 
 #include "core/backend_registry.h"
 #include "core/error.h"
+#include "core/path_graph.h"
 #include "core/survival.h"
 #include "tracer/trace_options.h"
 
@@ -58,6 +59,12 @@ void CheckValue(const std::string& axis, const std::string& value) {
       ParseSurvival(value);
     } catch (const ConfigError& e) {
       refuse(std::string("a --survival rule: ") + e.what());
+    }
+  } else if (axis == "path-graph") {
+    try {
+      ParsePathGraph(value);
+    } catch (const ConfigError& e) {
+      refuse(std::string("a --path-graph bound: ") + e.what());
     }
   } else if (axis == "transport") {
     refuse("the transport is the method's: method=nhpsf or anhpsf filter with it, hpsf without");
@@ -128,6 +135,8 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
         c.continuation_depth = std::uint32_t(std::stoul(value));
       } else if (axes[a].name == "survival") {
         if (value != "off") c.survival = value;
+      } else if (axes[a].name == "path-graph") {
+        if (value != "off") c.path_graph = value;
       } else if (axes[a].name == "method") {
         c.method = value;
       } else if (axes[a].name == "backend") {
@@ -143,12 +152,14 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
     if (!c.Transports()) c.filtered_vertices.reset();
     if (c.method != "anhpsf") c.continuation_depth.reset();
     if (c.method != "hpsf") c.survival.reset();
+    if (c.method != "hpsf") c.path_graph.reset();
     c.id = "method=" + c.method + " backend=" + c.backend + " spp=" + std::to_string(c.spp);
     if (c.frames != 1) c.id += " frames=" + std::to_string(c.frames);
     if (c.max_depth) c.id += " max-depth=" + std::to_string(*c.max_depth);
     if (c.filtered_vertices) c.id += " filtered-vertices=" + std::to_string(*c.filtered_vertices);
     if (c.continuation_depth) c.id += " continuation-depth=" + std::to_string(*c.continuation_depth);
     if (c.survival) c.id += " survival=" + *c.survival;
+    if (c.path_graph) c.id += " path-graph=" + *c.path_graph;
     for (const auto& [name, value] : c.filter) c.id += " " + name + "=" + value;
     if (seen.insert(c.id).second) configs.push_back(std::move(c));
     std::size_t a = axes.size();

@@ -13,6 +13,9 @@
 //   continuation-depth  how deep anhpsf continues a path across frames (default the sweep's --max-depth)
 //   survival            hpsf's variance-aware path survival, off or a --survival rule (core/survival.h), with
 //                       second moments kept; it acts from a sequence's second frame on (default off)
+//   path-graph          hpsf's adaptive path graphs, off or a --path-graph bound (core/path_graph.h), with second
+//                       moments kept; from a sequence's second frame on (default off). Its paths' own light shows
+//                       where the resolve takes it: interpolation=path, or a variance rule
 // Every other axis is an option of `hpsf render`'s filter (filter-width, jitter, normal, fingerprint-bits,
 // probe-limit, accum, capacity, temporal, ...), written without its dashes, checked by that option layer; the
 // transport is the methods' own. A combination that differs from an earlier one only in an axis its method ignores
@@ -47,6 +50,7 @@ struct SweepConfig {
   std::optional<std::uint32_t> filtered_vertices;
   std::optional<std::uint32_t> continuation_depth;
   std::optional<std::string> survival;                      // a --survival rule other than off, for hpsf
+  std::optional<std::string> path_graph;                    // a --path-graph bound other than off, for hpsf
   std::vector<std::pair<std::string, std::string>> filter;  // the filter axes' values, in axis order
   // The filter options as command-line words ("--filter-width", "2", ...).
   std::vector<std::string> FilterArguments() const;

@@ -64,7 +64,7 @@ layout(std430, binding = 10) readonly buffer Interpolation {  // vulkan_filter.c
   double interpolation_v0;
   double interpolation_v1;
   double square_unscale;  // 2^-G, fixed64
-  uint interpolation_function;  // kInterpolationOff, kInterpolationStep or kInterpolationSmooth
+  uint interpolation_function;  // kInterpolationOff, kInterpolationStep, kInterpolationSmooth or kInterpolationPath
   uint interpolation_reserved;
 };
 // The tags, for the search's lookups (slot_tags.glsl): 32-bit fingerprints or 64-bit full keys.

@@ -1,4 +1,4 @@
-#include "core/survival_view.h"
+#include "core/previous_table_view.h"
 
 #include <array>
 #include <memory>
@@ -10,6 +10,7 @@
 #include "core/fnv1a.h"
 #include "core/hash_table.h"
 #include "core/level_seed.h"
+#include "core/neighbour_search.h"
 
 namespace hpsf {
 namespace {
@@ -20,14 +21,18 @@ struct KeyWordsHash {
 
 }  // namespace
 
-SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params)
-    : params_(params), key_params_(key_params), accumulation_(Accumulation::kFixed64) {}
-
-SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params, const FilterResult& previous,
-                           Accumulation accumulation)
-    : params_(params),
+PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams& key_params)
+    : survival_(config.survival),
+      path_graph_(config.path_graph),
       key_params_(key_params),
-      accumulation_(accumulation),
+      accumulation_(config.accumulation) {}
+
+PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams& key_params,
+                                     const FilterResult& previous)
+    : survival_(config.survival),
+      path_graph_(config.path_graph),
+      key_params_(key_params),
+      accumulation_(config.accumulation),
       fixed_point_bits_(previous.stats.fixed_point_bits),
       square_bits_(previous.stats.square_bits) {
   // Hashed, not ordered: the tracer looks every sample's primary vertex up.
@@ -42,17 +47,20 @@ SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_pa
   };
 }
 
-SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_params, const HashTableDump& previous,
-                           bool normal_in_index)
-    : params_(params),
+PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams& key_params,
+                                     const HashTableDump& previous)
+    : survival_(config.survival),
+      path_graph_(config.path_graph),
       key_params_(key_params),
       accumulation_(previous.accumulation),
       fixed_point_bits_(previous.fixed_point_bits),
       square_bits_(previous.square_bits) {
   if (!previous.second_moments) {
-    throw ConfigError("--survival", "the table before the frame keeps no second moments (--second-moments on)");
+    throw ConfigError(config.survival.enabled() ? "--survival" : "--path-graph",
+                      "the table before the frame keeps no second moments (--second-moments on)");
   }
-  lookup_ = [&previous, normal_in_index](const shared::KeyWords& w) -> std::optional<CellState> {
+  lookup_ = [&previous,
+             normal_in_index = config.normal_in_index](const shared::KeyWords& w) -> std::optional<CellState> {
     const std::optional<std::uint32_t> slot = FindSlotInTable(previous, w, normal_in_index);
     if (!slot) return std::nullopt;
     CellState state = StateOfSlot(previous, *slot);
@@ -65,14 +73,23 @@ SurvivalView::SurvivalView(const SurvivalParams& params, const KeyParams& key_pa
   };
 }
 
-double SurvivalView::Probability(const Record& vertex) const {
+std::optional<CellEstimate> PreviousTableView::Cell(const Record& vertex) const {
+  if (!lookup_) return std::nullopt;
   const KeyResult key = shared::ComputeKey(key_params_, vertex);
-  if (key.status != shared::kKeyed || !lookup_) return 1.0;
+  if (key.status != shared::kKeyed) return std::nullopt;
   const std::optional<CellState> cell = lookup_(key.words);
-  if (!cell || cell->count < 2) return 1.0;
-  const CellMoments moments = MomentsOf(accumulation_, cell->fixed_sum, cell->float_sum, cell->fixed_square,
-                                        cell->float_square, cell->count, fixed_point_bits_, square_bits_);
-  return SurvivalProbability(params_, moments.variance);
+  if (!cell || cell->count < 2) return std::nullopt;
+  StencilTotal one;
+  one.Add(cell->fixed_sum, cell->float_sum, cell->count);
+  return CellEstimate{one.Average(accumulation_, fixed_point_bits_),
+                      MomentsOf(accumulation_, cell->fixed_sum, cell->float_sum, cell->fixed_square, cell->float_square,
+                                cell->count, fixed_point_bits_, square_bits_)};
+}
+
+double PreviousTableView::Probability(const Record& vertex) const {
+  if (!survival_.enabled()) return 1.0;
+  const std::optional<CellEstimate> cell = Cell(vertex);
+  return cell ? SurvivalProbability(survival_, cell->moments.variance) : 1.0;
 }
 
 }  // namespace hpsf
