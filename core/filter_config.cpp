@@ -180,6 +180,9 @@ void FilterConfig::Validate() const {
                       "gives a pixel's own light; it is not built with --transport on, whose records carry one "
                       "bounce each");
   }
+  if (temporal.mode == TemporalMode::kAdaptiveVariance && !second_moments) {
+    throw ConfigError("--temporal", "adaptive-variance reads each cell's variance, which needs --second-moments on");
+  }
   if (interpolation.enabled() && !second_moments) {
     throw ConfigError("--interpolation", "reads each cell's variance, which needs --second-moments on");
   }

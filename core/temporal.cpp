@@ -18,6 +18,8 @@ std::string Temporal::ToString() const {
       return "ema:" + FormatDouble(alpha) + (max_count ? ":" + std::to_string(max_count) : std::string());
     case TemporalMode::kAdaptive:
       return "adaptive";
+    case TemporalMode::kAdaptiveVariance:
+      return "adaptive-variance";
   }
   return "?";
 }
@@ -25,9 +27,11 @@ std::string Temporal::ToString() const {
 Temporal ParseTemporal(const std::string& text) {
   if (text == "integrate") return {};
   if (text == "adaptive") return {TemporalMode::kAdaptive, 1.0, 0};
+  if (text == "adaptive-variance") return {TemporalMode::kAdaptiveVariance, 1.0, 0};
   const std::string prefix = "ema:";
   if (text.rfind(prefix, 0) != 0) {
-    throw ConfigError("--temporal", "expected integrate, ema:ALPHA[:MAXCOUNT] or adaptive; got '" + text + "'");
+    throw ConfigError("--temporal",
+                      "expected integrate, ema:ALPHA[:MAXCOUNT], adaptive or adaptive-variance; got '" + text + "'");
   }
   const char* first = text.data() + prefix.size();
   const char* last = text.data() + text.size();
@@ -46,11 +50,14 @@ Temporal ParseTemporal(const std::string& text) {
   return temporal;
 }
 
-shared::TemporalParams MakeTemporalParams(const Temporal& temporal) {
+shared::TemporalParams MakeTemporalParams(const Temporal& temporal, Accumulation accumulation, int fixed_point_bits,
+                                          int square_bits) {
   shared::TemporalParams p{};
-  p.mode = temporal.mode == TemporalMode::kIntegrate ? shared::kTemporalIntegrate
-           : temporal.mode == TemporalMode::kEma     ? shared::kTemporalEma
-                                                     : shared::kTemporalAdaptive;
+  p.mode = temporal.mode == TemporalMode::kIntegrate  ? shared::kTemporalIntegrate
+           : temporal.mode == TemporalMode::kEma      ? shared::kTemporalEma
+           : temporal.mode == TemporalMode::kAdaptive ? shared::kTemporalAdaptive
+                                                      : shared::kTemporalAdaptiveVariance;
+  p.square_shift = accumulation == Accumulation::kFixed64 ? 2 * fixed_point_bits - square_bits : 0;
   p.alpha = temporal.mode == TemporalMode::kEma ? temporal.alpha : 1.0;
   p.max_count = temporal.max_count ? temporal.max_count : std::numeric_limits<std::uint64_t>::max();
   return p;
@@ -68,16 +75,16 @@ CellState BlendCellState(const shared::TemporalParams& params, Accumulation sums
     frame_sum[c] = integer ? double((accumulated.fixed_sum[c] - before.fixed_sum[c]) & word_mask)
                            : double(accumulated.float_sum[c] - before.float_sum[c]);
   }
+  const double old_square = integer ? double(before.fixed_square) : double(before.float_square);
+  const double frame_square = integer ? double(accumulated.fixed_square - before.fixed_square)
+                                      : double(accumulated.float_square - before.float_square);
+  const std::uint64_t frame_count = (accumulated.count - before.count) & count_mask;
   const shared::TemporalBlend blend =
-      shared::BlendCell(params, old_sum, before.count, frame_sum, (accumulated.count - before.count) & count_mask);
+      shared::BlendCell(params, old_sum, before.count, frame_sum, frame_count, old_square, frame_square);
   if (blend.integrated) return accumulated;
   CellState blended;
   blended.count = blend.count & count_mask;
-  const double square =
-      shared::BlendSquare(blend, integer ? double(before.fixed_square) : double(before.float_square), before.count,
-                          integer ? double(accumulated.fixed_square - before.fixed_square)
-                                  : double(accumulated.float_square - before.float_square),
-                          (accumulated.count - before.count) & count_mask);
+  const double square = shared::BlendSquare(blend, old_square, before.count, frame_square, frame_count);
   const double rounded_square = shared::RoundHalfEvenNonNegative(square);
   blended.fixed_square = integer ? (rounded_square < 0x1p64 ? std::uint64_t(rounded_square) : ~std::uint64_t(0)) : 0;
   blended.float_square = integer ? 0.0f : float(square);

@@ -6,8 +6,11 @@
 // converges, Binder §3.4.1) and an old one forgets at the rate ALPHA sets (ALPHA 1 with MAXCOUNT is Schipek's
 // maximum cell count). adaptive lowers the integration's alpha by the cell's temporal change, the largest
 // relative difference |f - h| / (f + h) of a channel: alpha = N_old / (N_old + N_new) * (1 - change), so a cell
-// whose light changed forgets and a steady one integrates (Binder's Fig. 9c). The blend itself is shared by C++
-// and GLSL: core/shared/temporal_blend.h.
+// whose light changed forgets and a steady one integrates (Binder's Fig. 9c). adaptive-variance (--second-moments)
+// takes a change for noise while the brightness's |f - h| stays within two standard deviations of the noise the
+// cell's variance predicts, and scales the change down by how much of |f - h|^2 that noise explains (Schipek §4.1's
+// variance put to Binder's heuristic): at 1 spp adaptive forgets at noise, adaptive-variance does not. The blend
+// itself is shared by C++ and GLSL: core/shared/temporal_blend.h.
 #ifndef HPSF_CORE_TEMPORAL_H
 #define HPSF_CORE_TEMPORAL_H
 
@@ -20,7 +23,7 @@
 
 namespace hpsf {
 
-enum class TemporalMode { kIntegrate, kEma, kAdaptive };
+enum class TemporalMode { kIntegrate, kEma, kAdaptive, kAdaptiveVariance };
 
 struct Temporal {
   TemporalMode mode = TemporalMode::kIntegrate;
@@ -28,16 +31,20 @@ struct Temporal {
   std::uint64_t max_count = 0;  // ema: the cap on the history's count; 0 for none
 
   bool blends() const { return mode != TemporalMode::kIntegrate; }
-  std::string ToString() const;  // "integrate", "ema:0.9", "ema:0.9:64", "adaptive"
+  // adaptive or adaptive-variance: the history's weight follows the cell's averages
+  bool adapts() const { return mode == TemporalMode::kAdaptive || mode == TemporalMode::kAdaptiveVariance; }
+  std::string ToString() const;  // "integrate", "ema:0.9", "ema:0.9:64", "adaptive", "adaptive-variance"
   bool operator==(const Temporal&) const = default;
 };
 
-// Parses "integrate", "ema:ALPHA" or "ema:ALPHA:MAXCOUNT" (ALPHA in (0, 1], MAXCOUNT >= 1) or "adaptive"; a
-// ConfigError naming --temporal otherwise.
+// Parses "integrate", "ema:ALPHA" or "ema:ALPHA:MAXCOUNT" (ALPHA in (0, 1], MAXCOUNT >= 1), "adaptive" or
+// "adaptive-variance"; a ConfigError naming --temporal otherwise.
 Temporal ParseTemporal(const std::string& text);
 
-// The shared blend's parameters for `temporal`.
-shared::TemporalParams MakeTemporalParams(const Temporal& temporal);
+// The shared blend's parameters for `temporal` over a table of these sums, at F and G (adaptive-variance's square
+// shift: 2F - G for fixed64, 0 for float32).
+shared::TemporalParams MakeTemporalParams(const Temporal& temporal, Accumulation accumulation, int fixed_point_bits,
+                                          int square_bits);
 
 // A cell's sums and count in the table's own types: integer sums (fixed64, or packed-decimal's 32-bit words) or
 // float32 sums.

@@ -201,7 +201,13 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   }
   // The double buffer (emulated/temporal_kernel.h): the table before the frame, which the blend reads.
   const bool blending = planned.temporal;  // forced on a first frame, it blends with an empty history
-  TemporalArgs temporal{config.capacity, config.accumulation, MakeTemporalParams(config.temporal), b, 0, 0};
+  TemporalArgs temporal{
+      config.capacity,
+      config.accumulation,
+      MakeTemporalParams(config.temporal, config.accumulation, table.fixed_point_bits, table.square_bits),
+      b,
+      0,
+      0};
   if (blending) {
     temporal.previous_sums = wide_sums ? memory.Allocate64("previous_sums", std::size_t(config.capacity) * 3)
                                        : memory.Allocate32("previous_sums", std::size_t(config.capacity) * 3);

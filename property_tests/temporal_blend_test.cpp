@@ -119,14 +119,16 @@ TEST(Temporal, ParsesItsModesAndNamesABadOne) {
 TEST(Temporal, TheBlendIsIntegrationUnlessCappedAndStaysWithinTheIntegratedSum) {
   const CellState before{{400, 800, 0}, {}, 4};
   const CellState accumulated{{400 + 100, 800 + 300, 0}, {}, 4 + 2};
-  EXPECT_EQ(BlendCellState(MakeTemporalParams(ParseTemporal("integrate")), Accumulation::kFixed64, before, accumulated)
+  EXPECT_EQ(BlendCellState(MakeTemporalParams(ParseTemporal("integrate"), Accumulation::kFixed64, 0, 0),
+                           Accumulation::kFixed64, before, accumulated)
                 .fixed_sum,
             accumulated.fixed_sum);
-  EXPECT_EQ(
-      BlendCellState(MakeTemporalParams(ParseTemporal("ema:0.9")), Accumulation::kFixed64, before, accumulated).count,
-      6u);
+  EXPECT_EQ(BlendCellState(MakeTemporalParams(ParseTemporal("ema:0.9"), Accumulation::kFixed64, 0, 0),
+                           Accumulation::kFixed64, before, accumulated)
+                .count,
+            6u);
   for (const char* mode : {"ema:0.5", "ema:0.25", "ema:1:2", "adaptive"}) {
-    const shared::TemporalParams params = MakeTemporalParams(ParseTemporal(mode));
+    const shared::TemporalParams params = MakeTemporalParams(ParseTemporal(mode), Accumulation::kFixed64, 0, 0);
     const CellState blended = BlendCellState(params, Accumulation::kFixed64, before, accumulated);
     EXPECT_LT(blended.count, 6u) << mode;
     EXPECT_GE(blended.count, 2u) << mode;

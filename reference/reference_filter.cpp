@@ -46,7 +46,8 @@ void EvictCells(const FilterConfig& config, FilterResult& result) {
 
 // The temporal blend (core/temporal.h) of each cell the frame added to that held samples before it.
 void BlendCells(const FilterConfig& config, const std::vector<TableCell>& before, FilterResult& result) {
-  const shared::TemporalParams params = MakeTemporalParams(config.temporal);
+  const shared::TemporalParams params =
+      MakeTemporalParams(config.temporal, config.accumulation, result.stats.fixed_point_bits, result.stats.square_bits);
   for (std::size_t c = 0; c < before.size(); ++c) {
     const TableCell& old = before[c];
     TableCell& cell = result.cells[c];

@@ -358,6 +358,20 @@ hpsf_add_cli_test(HpsfRender.PathGraphReportsTheCutPaths "unit;adaptive" 0
   "effect.: .path-graph.,[^}]*frames_run.: 2.*cut.: [1-9][0-9]*,.*graph_variance_max.: 0.001," ""
   $<TARGET_FILE:hpsf> render cornell --size 32x32 --frames 3 --second-moments on --path-graph 0.001
   --interpolation path --json -o ${hpsf_out}/path-graph-cut.exr)
+# The variance-aware adaptive blend (label adaptive): the contract holds on all three backends over a sequence, in
+# fixed64 (bit for bit) and float32; it needs second moments.
+hpsf_add_cli_test(HpsfCrosscheck.AdaptiveVarianceHoldsTheContract "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 4 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck ${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json --size 24x24 --frames 4
+  --second-moments on --temporal adaptive-variance)
+hpsf_add_cli_test(HpsfCrosscheck.AdaptiveVarianceHoldsTheContractInFloat32 "unit;adaptive;vulkan" 0
+  "level 2 tables: PASS.*level 3 agreement with the reference: PASS.*over 4 frames" ""
+  $<TARGET_FILE:hpsf> crosscheck ${PROJECT_SOURCE_DIR}/scenes/cornell-animated.json --size 24x24 --frames 4
+  --second-moments on --accum float32 --temporal adaptive-variance)
+hpsf_add_cli_test(HpsfRender.AdaptiveVarianceWithoutSecondMomentsExits3 "unit;adaptive;untrusted" 3
+  "--temporal: adaptive-variance reads each cell's variance, which needs --second-moments on" ""
+  $<TARGET_FILE:hpsf> render cornell --size 8x8 --frames 2 --temporal adaptive-variance -o ${hpsf_out}/av.exr
+  ABSENT ${hpsf_out}/av.exr)
 # A team's transport shader (--transport-spv) through the interface of transport.comp: one that applies the scattered
 # vertex's throughput twice fails level 2 on Vulkan and is bundled; hpsf's own, given as a team's, holds the contract;
 # a file that is not SPIR-V is refused by name and nothing is run; render names the shader whose word is bad.

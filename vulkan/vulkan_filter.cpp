@@ -782,11 +782,12 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
       &p.placements,      &p.stats,   &p.accepted,     &p.last_seen, &p.previous_sums,
       &p.previous_counts, &p.squares, &p.square_params};
   vulkan_internal::BindBuffers(p.device, accumulate, accumulate_buffers);
-  AccumulatePush push{key_params,
-                      {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
-                       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
-                       by_priority ? 1u : 0u, SharedProbeKind(config.probing), config.levels},
-                      MakeTemporalParams(config.temporal)};
+  AccumulatePush push{
+      key_params,
+      {config.capacity, config.probe_limit, SumScale(config.accumulation, table.fixed_point_bits),
+       AccumulationWord(config.accumulation), config.frame, tracking ? 1u : 0u, blending ? 1u : 0u,
+       by_priority ? 1u : 0u, SharedProbeKind(config.probing), config.levels},
+      MakeTemporalParams(config.temporal, config.accumulation, table.fixed_point_bits, table.square_bits)};
   const std::array<std::int32_t, 2> square_params{config.second_moments ? 1 : 0, table.square_bits};
   const bool double_squares = config.second_moments && blending;
   run.timings.accumulate_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
@@ -914,13 +915,14 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
     DeviceBuffer* const temporal_buffers[] = {&p.sums,     &p.counts,          &p.previous_sums, &p.previous_counts,
                                               &p.occupied, &p.occupied_header, &p.squares,       &p.previous_squares};
     vulkan_internal::BindBuffers(p.device, temporal, temporal_buffers);
-    const TemporalPush temporal_push{MakeTemporalParams(config.temporal),
-                                     config.capacity,
-                                     fixed ? 1u : 0u,
-                                     compacting ? 1u : 0u,
-                                     packed ? 1u : 0u,
-                                     config.second_moments ? 1u : 0u,
-                                     0};
+    const TemporalPush temporal_push{
+        MakeTemporalParams(config.temporal, config.accumulation, table.fixed_point_bits, table.square_bits),
+        config.capacity,
+        fixed ? 1u : 0u,
+        compacting ? 1u : 0u,
+        packed ? 1u : 0u,
+        config.second_moments ? 1u : 0u,
+        0};
     run.timings.temporal_ms = vulkan_internal::SubmitAndWait(p.device, [&](vk::raii::CommandBuffer& cb) {
       const vk::MemoryBarrier accumulated(vk::AccessFlagBits::eShaderWrite,
                                           vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);

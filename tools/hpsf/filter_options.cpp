@@ -62,8 +62,10 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
   command
       .add_option("--temporal", o.temporal,
                   "How a cell kept across frames blends its history with a frame: integrate (by counts), "
-                  "ema:ALPHA[:MAXCOUNT] (history weight at most ALPHA, its count at most MAXCOUNT) or adaptive "
-                  "(integration, less where the cell's light changed)")
+                  "ema:ALPHA[:MAXCOUNT] (history weight at most ALPHA, its count at most MAXCOUNT), adaptive "
+                  "(integration, less where the cell's light changed) or adaptive-variance (adaptive, taking a change "
+                  "within two standard deviations of the noise the cell's variance predicts for noise; needs "
+                  "--second-moments on)")
       ->capture_default_str();
   command
       .add_option("--level-change", o.level_change,

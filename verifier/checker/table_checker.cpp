@@ -54,7 +54,8 @@ void CheckBlend(const TableCheckInput& in, std::uint32_t s, const std::vector<st
   const HashTableDump& t = in.table;
   const bool fixed = t.accumulation == Accumulation::kFixed64;
   const float scale = shared::PowerOfTwo(t.fixed_point_bits);
-  const shared::TemporalParams params = MakeTemporalParams(in.temporal);
+  const shared::TemporalParams params =
+      MakeTemporalParams(in.temporal, t.accumulation, t.fixed_point_bits, t.square_bits);
   auto fail = [&](std::string detail) {
     violations.push_back({TableInvariant::kTemporalBlend, s, RecordsOf(in, here), std::move(detail)});
   };
@@ -141,7 +142,8 @@ glm::uvec4 BlendPacked(const TableCheckInput& in, std::uint32_t s, const std::ve
                        std::vector<TableViolation>& violations) {
   const CellState before{old_sums, {}, old_count};
   const CellState added{{accumulated.x, accumulated.y, accumulated.z}, {}, shared::PackedCount(accumulated.w)};
-  const CellState wide = BlendCellState(MakeTemporalParams(in.temporal), Accumulation::kFixed64, before, added);
+  const CellState wide = BlendCellState(MakeTemporalParams(in.temporal, Accumulation::kPackedDecimal, 0, 0),
+                                        Accumulation::kFixed64, before, added);
   for (int c = 0; c < 3; ++c) {
     if (wide.fixed_sum[c] > 0xFFFFFFFFu) {
       violations.push_back({TableInvariant::kTemporalBlend, s, RecordsOf(in, here),

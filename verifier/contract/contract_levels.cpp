@@ -109,8 +109,7 @@ std::uint64_t CompareWithReference(const RecordBatch& batch, const FilterConfig&
     const TableCell& c = reference.cells[cell];
     // The adaptive blend's count follows the cell's float averages, whose rounding follows the order of float adds:
     // a float32 slot with a history is held to the checker's count bounds (level 2), not to the reference's count.
-    const bool adaptive_float_history =
-        !fixed && config.temporal.mode == TemporalMode::kAdaptive && before && before->counts[slot] != 0;
+    const bool adaptive_float_history = !fixed && config.temporal.adapts() && before && before->counts[slot] != 0;
     if (adaptive_float_history) continue;
     if (run.table.counts[slot] != c.count) {
       ideal.Fail(prefix + record + " at slot " + std::to_string(slot) + ": count " +
@@ -353,9 +352,7 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
         fixed ? ToString(config.accumulation) +
                     ": slot sums and counts equal the reference cell's, bit for bit, outside the classified records"
               : std::string("float32: counts exact outside the classified records") +
-                    (config.temporal.mode == TemporalMode::kAdaptive
-                         ? " (adaptive: a slot with a history within level 2's bounds); "
-                         : "; ") +
+                    (config.temporal.adapts() ? " (adaptive: a slot with a history within level 2's bounds); " : "; ") +
                     (s.replayed_float_order
                          ? "each new slot's recorded order of adds, replayed by the reference, gives its bits"
                          : "sums inside the bound at level 2");

@@ -529,6 +529,10 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
       rule.v0 = std::pow(10.0, double(moment_draws.Uniform(-6.0f, 0.0f)));
       rule.v1 = std::min(rule.v0 * std::pow(10.0, double(moment_draws.Uniform(0.3f, 2.0f))), rule.v0 + 7.5);
     }
+    // Half of the adaptive sequences judge their change against the cells' variance.
+    if (a.config.temporal.mode == TemporalMode::kAdaptive && moment_draws.Bits() % 2u == 0u) {
+      a.config.temporal = ParseTemporal("adaptive-variance");
+    }
   }
   a.config.Validate();
   return a;

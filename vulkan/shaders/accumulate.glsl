@@ -161,7 +161,7 @@ void BlendDuringAccumulate(uint slot, TableParams t) {
     old_sum[c] = double(before);
     frame_sum[c] = double(sums[slot * 3u + uint(c)] - before);
   }
-  TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, count - old_count);
+  TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, count - old_count, 0.0, 0.0);
   if (b.integrated) return;
   for (int c = 0; c < 3; ++c) sums[slot * 3u + uint(c)] = uint64_t(RoundHalfEvenNonNegative(b.sum[c]));
   counts[slot] = b.count;

@@ -108,10 +108,12 @@ void Blend(uint slot) {
   }
   // packed-decimal's count modulo its 24 bits, as core's BlendCellState.
   uint64_t frame_count = packed != 0u ? uint64_t((uint(word) - uint(old_word)) & kPackedCountMask) : word - old_word;
-  TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, frame_count);
+  double old_square = squares != 0u ? SquareAt(slot, true) : 0.0;
+  double frame_square = squares != 0u ? FrameSquare(slot) : 0.0;
+  TemporalBlend b = BlendCell(temporal, old_sum, old_count, frame_sum, frame_count, old_square, frame_square);
   if (b.integrated) return;
   if (squares != 0u) {
-    double square = BlendSquare(b, SquareAt(slot, true), old_count, FrameSquare(slot), frame_count);
+    double square = BlendSquare(b, old_square, old_count, frame_square, frame_count);
     if (fixed64 != 0u) {
       uvec2 words = unpackUint2x32(uint64_t(RoundHalfEvenNonNegative(square)));
       square_words[slot * 2u] = words.x;
