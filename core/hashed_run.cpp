@@ -77,7 +77,7 @@ std::optional<glm::dvec3> ResolvedAverage(const HashedRun& run, const Record& r,
   const glm::dvec3 average = total.Average(table.accumulation, table.fixed_point_bits);
   if (!run.interpolation.enabled()) return average;
   return Interpolated(run.interpolation, SlotWeight(run.interpolation, table, chosen.slot), average,
-                      glm::dvec3(r.contribution.x, r.contribution.y, r.contribution.z));
+                      OwnLight(run.own_light, r, i));
 }
 
 void CountSearches(HashedRun& run, const RecordBatch& batch) {

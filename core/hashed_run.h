@@ -31,6 +31,7 @@ struct HashedRun {
   std::uint32_t min_count = 1;                   // the resolve's --min-count
   bool neighbour_search = false;                 // the resolve's --neighbour-search
   CellInterpolation interpolation;               // the resolve's --interpolation (core/cell_interpolation.h)
+  std::vector<glm::vec4> own_light;    // the batch's own lights, which the interpolation reads (core/record.h)
   KeyParams key_params{};              // the host's, from which the search's checks compute a record's position again
   std::uint64_t records_searched = 0;  // records whose resolve searched (core/shared/neighbour_search.h)
   std::uint64_t neighbours_read = 0;   // the neighbour slots their lookups found

@@ -59,4 +59,11 @@ TableRecords::TableRecords(const RecordBatch& batch) {
   all_ = joined_;
 }
 
+glm::dvec3 OwnLight(const std::vector<glm::vec4>& own_light, const Record& record, std::size_t i) {
+  const glm::vec4& own = own_light.empty() ? record.contribution : own_light[i];
+  return glm::dvec3(own.x, own.y, own.z);
+}
+
+glm::dvec3 OwnLight(const RecordBatch& batch, std::size_t i) { return OwnLight(batch.own_light, batch.records[i], i); }
+
 }  // namespace hpsf

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "core/shared/record_layout.h"
 
@@ -52,7 +53,17 @@ struct RecordBatch {
   // Its contribution and radiance_before are not read; where a path scattered nowhere it has no vertex flag.
   std::vector<Record> deeper;
   std::vector<Record> scattered;
+  // None, or one per record of `records`: the light its pixel shows as the record's own where that differs from the
+  // contribution its cell adds (adaptive path graphs, core/path_graph.h: the cut path's light, while the table adds
+  // the path's in full). Read by the resolve's interpolation only; rgb, a: 0.
+  std::vector<glm::vec4> own_light;
 };
+
+// What the resolve blends with a record's cell as its own light: own_light[i] where the batch has them, else the
+// record's contribution.
+glm::dvec3 OwnLight(const RecordBatch& batch, std::size_t i);
+// The same from a run's copy of own_light (core/hashed_run.h).
+glm::dvec3 OwnLight(const std::vector<glm::vec4>& own_light, const Record& record, std::size_t i);
 
 // The records a frame adds to its table, in order: `records` then `deeper`. A view of `records` where there are no
 // deeper records, else a copy of both.

@@ -24,9 +24,9 @@ TransportResult TransportBatch(const RecordBatch& batch, const KeyParams& params
   CheckScatteredShape(batch);
   const std::size_t n = batch.records.size();
   // The records and the deeper ones copied to be transported; the scattered vertices are not needed past this step.
-  RecordBatch transported{
-      batch.width, batch.height, batch.samples_per_pixel, batch.fov_y_radians, batch.frame, batch.records, batch.deeper,
-      {}};
+  RecordBatch transported{batch.width,         batch.height, batch.samples_per_pixel,
+                          batch.fov_y_radians, batch.frame,  batch.records,
+                          batch.deeper,        {},           batch.own_light};
   TransportResult result{
       std::move(transported), std::vector<std::uint32_t>(n + batch.deeper.size(), kNothingTransported), {}};
   // Counted per range and added up: sums of integers, the same in any order.

@@ -520,6 +520,7 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   run.min_count = config.min_count;
   run.neighbour_search = config.neighbour_search;
   run.interpolation = config.interpolation;
+  run.own_light = batch.own_light;
   run.key_params = params;
   run.wraps = memory.Words64(b.wraps)[0];
   run.count_wraps = memory.Words64(b.wraps)[1];
@@ -633,9 +634,8 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
                 average[c] = channel_sum / double(table.counts[slot]);
               }
               if (config.interpolation.enabled()) {
-                const glm::vec4& own = batch.records[i].contribution;
                 average = Interpolated(config.interpolation, SlotWeight(config.interpolation, table, slot), average,
-                                       glm::dvec3(own.x, own.y, own.z));
+                                       OwnLight(batch, i));
               }
             }
             if (accepted[i]) sum += AcceptedRecordValue(batch.records[i], slot < config.capacity ? &average : nullptr);

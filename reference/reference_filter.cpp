@@ -295,10 +295,9 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
     if (chosen.slot == kNoCell) continue;
     ++stats.resolved_at_level[chosen.level];
     if (!Searches(config.neighbour_search, chosen, kNoCell)) {
-      const glm::vec4& own = batch.records[i].contribution;
       cell_average[i] = weights.empty() ? averages[chosen.slot]
                                         : Interpolated(config.interpolation, weights[chosen.slot],
-                                                       averages[chosen.slot], glm::dvec3(own.x, own.y, own.z));
+                                                       averages[chosen.slot], OwnLight(batch, i));
       continue;
     }
     const NeighbourReads reads = SearchNeighbours(params, batch.records[i], chosen, std::uint32_t(i), find);

@@ -102,6 +102,8 @@ struct PathOutputs {
   Record* deeper_scattered = nullptr;
   // With continuation_depth: where the vertex the last filtered one scattered to is kept (invalid without one).
   ContinuationVertex* fresh = nullptr;
+  // With a path graph: the pixel record's own light (RecordBatch::own_light); 0 where it has no vertex.
+  glm::vec4* own_light = nullptr;
 };
 
 // The counter RNG's bounce word of a continued vertex: apart from every bounce a frame's own paths draw (at most 1024).
@@ -271,10 +273,15 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
   double survival = 1.0;  // the path's probability of surviving its primary vertex
-  // Path graphs: the variance the path has gathered from its vertices' cells, and whether a cell has cut it.
+  // Path graphs: the variance the path has gathered from its vertices' cells, and whether a cell has cut it. The cut
+  // changes the record's own light only: own = before + cell + alpha (gathered - before), where `before` is what the
+  // record gathered before the cut vertex and `cell` the cut cell's share. Its contribution, which its cell adds, is
+  // the path's in full, so the table learns from traced light and not from its own averages.
   const bool graph = table_ && table_->path_graph().enabled;
   double graph_variance = 0.0;
   bool graph_cut = false;
+  double graph_alpha = 1.0;
+  glm::dvec3 graph_before(0.0), graph_cell(0.0);
   std::uint32_t max_vertices = options_.max_depth < 0 ? UINT32_MAX : std::uint32_t(options_.max_depth);
   if (options_.scattered) max_vertices = std::min(max_vertices, first + filtered + 1u);
 
@@ -327,8 +334,6 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     // Path graphs (core/path_graph.h), before any light is gathered at the vertex: its cell may cut the path. The cell
     // holds the light arriving at the vertex without its albedo, so its weight is the throughput from the filter
     // vertex up to and with the vertex's albedo (1 at the filter vertex, whose record holds that light itself).
-    glm::dvec3 cell_light(0.0);  // the cut cell's share, weighted
-    double path_share = 1.0;     // alpha: the share of the light the path gathers from this vertex on
     if (graph && !graph_cut && bounce >= first) {
       const glm::dvec3 tp = bounce == first ? glm::dvec3(1.0) : weight * albedo;
       if (const std::optional<CellEstimate> cell = table_->Cell(MakeVertexRecord(here(tp)))) {
@@ -339,14 +344,13 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
         if (step.cut) {
           graph_cut = true;
           ++stats.cut;
-          cell_light = tp * cell->average * (1.0 - step.alpha);
-          path_share = step.alpha;
+          graph_alpha = step.alpha;
+          graph_cell = tp * cell->average * (1.0 - step.alpha);
+          graph_before = bounce == first ? glm::dvec3(0.0) : gathered;  // the filter vertex restarts the record's light
         }
       }
     }
-    // A cut that leaves the path no share ends it here: no light is sampled and no ray leaves.
-    const bool ends_at_cell = path_share == 0.0;
-    const glm::dvec3 direct = last_vertex || ends_at_cell ? glm::dvec3(0.0) : DirectLight(p, random, stats);
+    const glm::dvec3 direct = last_vertex ? glm::dvec3(0.0) : DirectLight(p, random, stats);
 
     if (bounce >= first && bounce - first < filtered) {
       const std::uint32_t j = bounce - first;
@@ -360,12 +364,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
       }
       chain[j] = here(j == 0 ? record_throughput : weight * albedo);
       reached = j + 1;
-      weight = glm::dvec3(path_share);
-      gathered = cell_light + weight * direct;
+      weight = glm::dvec3(1.0);
+      gathered = direct;
     } else {
       weight *= albedo;
-      gathered += cell_light;
-      weight *= path_share;
       gathered += weight * direct;
       if (options_.scattered && reached == filtered && !has_scattered[filtered - 1]) {  // the last one's next vertex
         scattered_to[filtered - 1] = here(weight);
@@ -380,7 +382,6 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     d_prefix += segment;
     previous = p.position;
     last = p;
-    if (ends_at_cell) break;
 
     if (options_.max_depth < 0 && bounce + 1 >= kRouletteStart) {
       const double survive = std::min(0.95, MaxComponent(reached > 0 ? weight * record_throughput : weight));
@@ -398,6 +399,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   if (reached > 0) {
     const bool reweight = table_ && table_->survival().enabled() && table_->survival().reweight;
     chain[reached - 1].contribution = glm::vec3(reweight ? gathered / survival : gathered);
+    if (out.own_light) {
+      const glm::dvec3 own = graph_cut ? graph_before + graph_cell + graph_alpha * (gathered - graph_before) : gathered;
+      *out.own_light = glm::vec4(glm::vec3(reweight ? own / survival : own), 0.0f);
+    }
   }
 
   if (out.scattered) {
@@ -501,6 +506,8 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
     batch.deeper.resize(n * more);
     batch.scattered.resize(n + n * more);
   }
+  const bool graph = table && table->path_graph().enabled;
+  if (graph) batch.own_light.assign(n, glm::vec4(0.0f));
   // The kept paths: the frame before's where they continue into this frame, else none.
   PathContinuation fresh_state;
   PathContinuation& state = continuation ? *continuation : fresh_state;
@@ -527,11 +534,11 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
               for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
                 const std::size_t i = std::size_t(pixel) * options.samples_per_pixel + s;
                 ContinuationVertex fresh;
-                const PathOutputs out =
-                    options.scattered
-                        ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
-                                      batch.scattered.data() + n + i * more, continuing ? &fresh : nullptr}
-                        : PathOutputs{};
+                PathOutputs out = options.scattered ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
+                                                                  batch.scattered.data() + n + i * more,
+                                                                  continuing ? &fresh : nullptr}
+                                                    : PathOutputs{};
+                if (graph) out.own_light = &batch.own_light[i];
                 batch.records[i] = tracer.TraceSample(pixel, s, local, out);
                 if (continuing) {
                   // The kept path grows by a vertex; where it cannot go on, the frame's own path is kept.

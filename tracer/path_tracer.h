@@ -29,8 +29,8 @@ struct TraceStats {
   std::uint64_t continued = 0;  // samples whose kept path grew by a vertex (continuation_depth)
   std::uint64_t culled = 0;     // paths that did not survive their primary vertex (--survival)
   std::uint64_t cut = 0;        // paths a cell cut (--path-graph)
-  double graph_variance_max =
-      0.0;  // the most variance a path gathered from its cells (--path-graph): the bound at most
+  // The most variance a path gathered from its cells (--path-graph): the bound at most.
+  double graph_variance_max = 0.0;
   std::uint64_t Rays() const { return camera_rays + bounce_rays + shadow_rays; }
 };
 

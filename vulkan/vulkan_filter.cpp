@@ -182,15 +182,16 @@ constexpr BindingKind kResolveBindings[] = {
     BindingKind::kUniformTexelBuffer, BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
     BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer,
-    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer};
+    BindingKind::kStorageBuffer,      BindingKind::kStorageBuffer, BindingKind::kStorageBuffer};
 
 // --interpolation's parameters, the resolve's binding 10 (resolve.glsl's InterpolationParams).
 struct InterpolationParams {
   double v0;
   double v1;
   double square_unscale;   // 2^-G, fixed64
-  std::uint32_t function;  // shared::kInterpolation*: off, step or smooth
-  std::uint32_t reserved;
+  std::uint32_t function;  // shared::kInterpolation*: off, step, smooth or path
+  std::uint32_t
+      own_lights;  // 1: each record's own light is binding 11's (RecordBatch::own_light), not its contribution
 };
 static_assert(sizeof(InterpolationParams) == 32, "resolve.glsl's binding 10");
 
@@ -307,6 +308,7 @@ struct VulkanFilter::Impl {
   // --second-moments: the square sums, their double buffer for temporal.comp, and the accumulate's binding 12
   DeviceBuffer squares, previous_squares, square_params;
   DeviceBuffer interpolation_params;                    // the resolve's binding 10
+  DeviceBuffer own_lights;                              // the resolve's binding 11 (RecordBatch::own_light)
   DeviceBuffer previous_tags, seeded, seeded_count;     // level_seed.comp's
   DeviceBuffer deferred_pixels, deferred_header;        // the search's list of pixels (resolve.glsl)
   std::vector<vulkan_internal::StagingBuffer> staging;  // kept from run to run, on a staged device
@@ -433,6 +435,7 @@ VulkanFilter::VulkanFilter(VulkanDevice& device, const std::string& accumulate_s
                      resolve_spv.empty() ? std::vector<std::uint32_t>{} : ReadSpirvFile(resolve_spv),
                      resolve_spv,
                      Accumulation::kFixed64,
+                     {},
                      {},
                      {},
                      {},
@@ -719,6 +722,12 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   vulkan_internal::Transfer upload(p.device, p.staging);
   auto* records = static_cast<Record*>(upload.Upload(p.records, all.size() * sizeof(Record)));
   auto* accepted = static_cast<std::uint32_t*>(upload.Upload(p.accepted, vk::DeviceSize(n) * 4));
+  // Bound always: a vec4 where the batch has no own lights.
+  const vk::DeviceSize own_bytes = std::max<vk::DeviceSize>(batch.own_light.size() * sizeof(glm::vec4), 16);
+  p.Ensure(p.own_lights, own_bytes);
+  if (!batch.own_light.empty()) {
+    std::memcpy(upload.Upload(p.own_lights, own_bytes), batch.own_light.data(), own_bytes);
+  }
   std::vector<glm::vec3> entering;  // for F: the contributions of the records that enter the table, else zero
   ResizeOnHugePages(entering, n);
   tbb::parallel_for(
@@ -1012,7 +1021,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   // --interpolation: the squares (binding 9) and the rule (binding 10), bound always.
   p.Ensure(p.interpolation_params, sizeof(InterpolationParams));
   const InterpolationParams interpolation{config.interpolation.v0, config.interpolation.v1,
-                                          std::ldexp(1.0, -table.square_bits), config.interpolation.function, 0};
+                                          std::ldexp(1.0, -table.square_bits), config.interpolation.function,
+                                          batch.own_light.empty() ? 0u : 1u};
   DeviceBuffer* const resolve_buffers[] = {&p.records,
                                            &p.sums,
                                            &p.counts,
@@ -1023,7 +1033,8 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
                                            &p.deferred_pixels,
                                            &p.deferred_header,
                                            &p.squares,
-                                           &p.interpolation_params};
+                                           &p.interpolation_params,
+                                           &p.own_lights};
   vulkan_internal::BindBuffers(p.device, resolve, resolve_buffers);
   ComputeProgram* const search_resolve = deferring ? &p.SearchResolve(config.accumulation) : nullptr;
   if (search_resolve) vulkan_internal::BindBuffers(p.device, *search_resolve, resolve_buffers);
@@ -1172,6 +1183,7 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   run.min_count = config.min_count;
   run.neighbour_search = config.neighbour_search;
   run.interpolation = config.interpolation;
+  run.own_light = batch.own_light;
   run.key_params = push.key;
   CountResolvedLevels(run);
   CountSearches(run, batch);

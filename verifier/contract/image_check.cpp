@@ -94,7 +94,7 @@ void CheckFloat(const RecordBatch& batch, const HashedRun& run, const HashTableD
         // w <= 1, still holds.
         if (run.interpolation.enabled()) {
           average = Interpolated(run.interpolation, SlotWeight(run.interpolation, run.table, slot), *average,
-                                 glm::dvec3(r.contribution.x, r.contribution.y, r.contribution.z));
+                                 OwnLight(run.own_light, r, p * spp + s));
         }
         // The slot's float sum is within gamma(n - 1) * sum|c| of the exact one; divided by n, times |throughput|.
         bound += glm::abs(glm::dvec3(r.throughput)) * (k * kUnitRoundoff / (1.0 - k * kUnitRoundoff)) *

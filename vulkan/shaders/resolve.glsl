@@ -65,8 +65,11 @@ layout(std430, binding = 10) readonly buffer Interpolation {  // vulkan_filter.c
   double interpolation_v1;
   double square_unscale;  // 2^-G, fixed64
   uint interpolation_function;  // kInterpolationOff, kInterpolationStep, kInterpolationSmooth or kInterpolationPath
-  uint interpolation_reserved;
+  uint own_lights;              // 1: a record's own light is binding 11's, else its contribution
 };
+// Adaptive path graphs (core/path_graph.h): each pixel record's own light, where it differs from the contribution its
+// cell added (RecordBatch::own_light, rgb and a 0).
+layout(std430, binding = 11) readonly buffer OwnLights { vec4 own_light[]; };
 // The tags, for the search's lookups (slot_tags.glsl): 32-bit fingerprints or 64-bit full keys.
 #if !defined(HPSF_NEIGHBOUR_SEARCH)
 #elif defined(HPSF_DEFECT_SEARCH_CLAIMS)
@@ -288,7 +291,10 @@ void ResolvePixel(uint pixel, ResolveParams p) {
 #endif
         }
         // The host refuses the search with interpolation: the slot's own sums are the cell's.
-        if (interpolation_function != kInterpolationOff) incident = Interpolate(chosen.slot, p, incident, D(r.contribution));
+        if (interpolation_function != kInterpolationOff) {
+          dvec3 own = own_lights != 0u ? D(own_light[i]) : D(r.contribution);
+          incident = Interpolate(chosen.slot, p, incident, own);
+        }
       }
       value = value + D(r.throughput) * incident;
     }
