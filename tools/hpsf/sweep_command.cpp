@@ -183,9 +183,11 @@ class Runner {
 
   // A hashed method's frames go through one backend whose table carries over (its temporal mode is the
   // configuration's --temporal); every other method shows the mean of its frames' images, as a progressive renderer
-  // does. A frame `cached` (one-frame configurations) is used as traced; otherwise each frame is traced in turn.
+  // does, or on an animated scene its last frame's (a mean over a moving scene would blur). A frame `cached`
+  // (one-frame configurations) is used as traced; otherwise each frame is traced in turn. `references`: one converged
+  // image for every frame (a static scene), or one per frame (an animated one).
   SeedRun Run(const SweepConfig& c, FilterConfig config, TraceOptions trace, std::uint32_t seed,
-              const TracedFrame* cached, const ChannelImage& reference) {
+              const TracedFrame* cached, const std::vector<ChannelImage>& references) {
     SeedRun run;
     trace.seed = config.seed = seed;
     config.frames = c.frames;
@@ -252,10 +254,11 @@ class Runner {
         image = Image(frame.width, frame.height);
         for (std::size_t p = 0; p < sum.size(); ++p) {
           sum[p] += glm::dvec3(frame.pixels[p]);
-          image.pixels[p] = glm::vec3(sum[p] / double(f + 1));
+          image.pixels[p] = references.size() > 1 ? frame.pixels[p] : glm::vec3(sum[p] / double(f + 1));
         }
         filter_s.push_back(SecondsSince(start));
       }
+      const ChannelImage& reference = references[std::min<std::size_t>(f, references.size() - 1)];
       run.relmse_by_frame.push_back(ComputeMetrics(ColourChannels(image), reference).relmse);
       if (f + 1 == c.frames) run.image = std::move(image);
     }
@@ -309,10 +312,22 @@ std::string ConfigFile(const fs::path& out, std::size_t index, const SweepConfig
   return (out / "configs" / (prefix + name + ".json")).string();
 }
 
+// The converged images a sweep measures against: one of frame 0 for a static scene; for an animated one, one per
+// frame, each configuration measured against its last frame's.
+struct Converged {
+  ReferenceImage entry;
+  Image image, variance;
+  ChannelImage channels;
+};
+
 json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const TraceOptions& trace, std::uint32_t seeds,
-                   const Image& reference, const Image& reference_variance, std::uint32_t reference_spp,
-                   Runner& runner) {
-  const ChannelImage reference_channels = ColourChannels(reference);
+                   const std::vector<Converged>& converged, std::uint32_t reference_spp, Runner& runner) {
+  const Converged& last = converged[std::min<std::size_t>(c.frames - 1, converged.size() - 1)];
+  const Image& reference = last.image;
+  const Image& reference_variance = last.variance;
+  const ChannelImage& reference_channels = last.channels;
+  std::vector<ChannelImage> references;
+  for (const Converged& frame : converged) references.push_back(frame.channels);
   const std::vector<TracedFrame>* one_frame = c.frames == 1 ? &runner.OneFrame(trace, seeds) : nullptr;
   std::vector<Image> images;
   std::vector<double> trace_s, filter_s, mse, relmse, ssim, fireflies, rays_per_pixel;
@@ -320,7 +335,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
   std::map<std::string, std::vector<double>> phases;
   std::uint64_t probe_failures = 0, aliased = 0;
   for (std::uint32_t k = 1; k <= seeds; ++k) {
-    SeedRun run = runner.Run(c, config, trace, k, one_frame ? &(*one_frame)[k - 1] : nullptr, reference_channels);
+    SeedRun run = runner.Run(c, config, trace, k, one_frame ? &(*one_frame)[k - 1] : nullptr, references);
     const ChannelImage channels = ColourChannels(run.image);
     const ImageMetrics metrics = ComputeMetrics(channels, reference_channels);
     trace_s.push_back(run.trace_s);
@@ -576,25 +591,36 @@ int Run(SweepOptions& o, bool options_only) {
   if (options_only) return kExitOk;
 
   const Scene scene = LoadScene(o.scene);
-  // A sequence is measured against one converged image, which a scene that moves from frame to frame lacks.
-  if (!scene.animation.Static()) {
-    for (const SweepConfig& c : configs) {
-      if (c.frames > 1) {
-        throw ConfigError("--grid", c.id + ": " + o.scene +
-                                        " is animated, and a sequence's last frame is measured against the "
-                                        "converged image of frame 0; sweep its frames one at a time");
-      }
-    }
-  }
   const bool terminal = isatty(STDERR_FILENO) && !o.json;
-  const ReferenceImage reference =
-      GetReferenceImage(scene, o.scene, reference_request, o.cache.empty() ? DefaultReferenceCache() : o.cache, false,
-                        [&](std::uint32_t done, std::uint32_t total) {
-                          if (terminal)
-                            std::fprintf(stderr, "\rsweep: the converged image, pass %u of %u", done, total);
-                        });
-  const ChannelImage converged = ReadChannelImage(reference.entry.image);
-  const Image reference_image = ColourOf(converged, ""), reference_variance = ColourOf(converged, "variance.");
+  // A static scene's sequence is measured against one converged image; an animated scene's frames each against their
+  // own, so it needs one per frame up to the longest sequence's last.
+  std::uint32_t reference_frames = 1;
+  if (!scene.animation.Static()) {
+    for (const SweepConfig& c : configs) reference_frames = std::max(reference_frames, c.frames);
+  }
+  std::vector<Converged> converged;
+  for (std::uint32_t f = 0; f < reference_frames; ++f) {
+    ReferenceRequest request = reference_request;
+    request.trace.frame = f;
+    Converged frame;
+    frame.entry = GetReferenceImage(scene, o.scene, request, o.cache.empty() ? DefaultReferenceCache() : o.cache, false,
+                                    [&](std::uint32_t done, std::uint32_t total) {
+                                      if (terminal) {
+                                        std::fprintf(stderr, "\rsweep: the converged image of frame %u, pass %u of %u",
+                                                     f, done, total);
+                                      }
+                                    });
+    const ChannelImage channels = ReadChannelImage(frame.entry.entry.image);
+    frame.image = ColourOf(channels, "");
+    frame.variance = ColourOf(channels, "variance.");
+    frame.channels = ColourChannels(frame.image);
+    converged.push_back(std::move(frame));
+  }
+  const ReferenceImage& reference = converged[0].entry;
+  // What a configuration is measured against: its last frame's converged image.
+  const auto against = [&](const SweepConfig& c) {
+    return converged[std::min<std::size_t>(c.frames - 1, converged.size() - 1)].entry.description;
+  };
   const fs::path out = o.out;
   fs::create_directories(out / "configs");
 
@@ -615,7 +641,7 @@ int Run(SweepOptions& o, bool options_only) {
   for (const std::size_t i : order) {
     const SweepConfig& c = configs[i];
     const std::string path = ConfigFile(out, i, c);
-    const std::string description = Description(c, o, reference.description);
+    const std::string description = Description(c, o, against(c));
     if (std::ifstream in(path); in) {
       json kept = json::parse(in, nullptr, false);
       if (!kept.is_discarded() && kept.value("description", "") == description) {
@@ -625,8 +651,7 @@ int Run(SweepOptions& o, bool options_only) {
         continue;
       }
     }
-    results[i] = MeasureConfig(c, filter_configs[i], traces[i], o.seeds, reference_image, reference_variance,
-                               o.reference_spp, runner);
+    results[i] = MeasureConfig(c, filter_configs[i], traces[i], o.seeds, converged, o.reference_spp, runner);
     std::ofstream(path) << json{{"description", description}, {"result", results[i]}}.dump(2) << "\n";
     ++done;
     if (terminal) {
@@ -642,7 +667,7 @@ int Run(SweepOptions& o, bool options_only) {
     if (!results[i].is_null()) continue;
     if (std::ifstream in(ConfigFile(out, i, configs[i])); in) {
       const json kept = json::parse(in, nullptr, false);
-      if (!kept.is_discarded() && kept.value("description", "") == Description(configs[i], o, reference.description)) {
+      if (!kept.is_discarded() && kept.value("description", "") == Description(configs[i], o, against(configs[i]))) {
         results[i] = kept["result"];
       }
     }
@@ -656,8 +681,12 @@ int Run(SweepOptions& o, bool options_only) {
     std::error_code ignored;
     fs::remove(out / "bias-variance.png", ignored);
   }
-  WriteSummaries(out, configs, results, axes, o.scene,
-                 "a converged image of " + std::to_string(o.reference_spp) + " spp (" + reference.entry.image + ")");
+  WriteSummaries(
+      out, configs, results, axes, o.scene,
+      converged.size() > 1
+          ? "each configuration's last frame's converged image of " + std::to_string(o.reference_spp) +
+                " spp (frame 0's: " + reference.entry.image + ")"
+          : "a converged image of " + std::to_string(o.reference_spp) + " spp (" + reference.entry.image + ")");
   std::size_t finished = 0;
   for (const json& r : results) finished += !r.is_null();
   if (o.json) {

@@ -4,7 +4,8 @@
 # the last is its relMSE. Path tracing over frames is the mean of its frames' images, so four frames come out well
 # below one. nhpsf traces short paths (fewer rays per pixel than pt's deep ones), anhpsf continues them across frames
 # (more rays from the second frame on). Each configuration's frontier and path tracing's relMSE at equal time are
-# taken among the configurations after as many frames. frames.png is drawn. A sequence on an animated scene is refused.
+# taken among the configurations after as many frames. frames.png is drawn. An animated scene is measured frame by
+# frame.
 set(dir ${OUT}/sweep_frames_cli)
 file(REMOVE_RECURSE ${dir})
 file(MAKE_DIRECTORY ${dir})
@@ -82,10 +83,26 @@ file(READ ${dir}/sweep/sweep.csv csv)
 if(NOT csv MATCHES "^id,method,backend,spp,frames,temporal,")
   message(FATAL_ERROR "sweep.csv's header: ${csv}")
 endif()
-# An animated scene has no one converged image for a sequence to be measured against: refused by name.
-execute_process(COMMAND ${HPSF} sweep ${SCENES}/cornell-animated.json --grid "frames=1,2; method=pt" --size 8x8
-                        --reference-spp 32 --cache ${dir}/cache --out ${dir}/animated
+# An animated scene (the dolly's moving camera): each frame measured against its own converged image, one rendered per
+# frame up to the longest sequence's last (three in the cache); a sequence's first frame is measured as the one-frame
+# configuration is, against frame 0's.
+execute_process(COMMAND ${HPSF} sweep ${SCENES}/cornell-dolly.json --grid "frames=1,3; method=pt,hpsf" --size 16x16
+                        --seeds 2 --reference-spp 32 --cache ${dir}/animated-cache --out ${dir}/animated --json
                 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT code EQUAL 3 OR EXISTS ${dir}/animated OR NOT err MATCHES "--grid: method=pt backend=- spp=4 frames=2: .*is animated")
-  message(FATAL_ERROR "a sequence on an animated scene: ${err}")
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "hpsf sweep of an animated scene: exit ${code}\n${out}${err}")
 endif()
+file(GLOB converged ${dir}/animated-cache/*.exr)
+list(LENGTH converged converged_count)
+if(NOT converged_count EQUAL 3)
+  message(FATAL_ERROR "an animated sweep of 3 frames renders 3 converged images, not ${converged_count}")
+endif()
+foreach(method pt hpsf)
+  config(${method} 1 one)
+  config(${method} 3 three)
+  string(JSON one_relmse GET "${one}" relmse)
+  string(JSON first GET "${three}" relmse_by_frame 0)
+  if(NOT first STREQUAL one_relmse)
+    message(FATAL_ERROR "${method} on a moving camera: after frame 1 ${first}, one frame ${one_relmse}")
+  endif()
+endforeach()
