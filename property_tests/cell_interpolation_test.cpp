@@ -45,6 +45,14 @@ TEST(CellInterpolation, TheWeightsAreSchipeksWithinZeroAndOne) {
     last = w;
   }
   EXPECT_GT(last, 0.999);
+  // The broken variant "weights outside [0, 1]": eq. 4.5 for thresholds 8 or more apart gives w above 1 near their
+  // midpoint (1 - (V1 - V0) / 8 < 0), a blend that extrapolates past the cell. The parser refuses such rules, and the
+  // weight is clamped wherever it is computed, so a rule that reaches a shader some other way still blends.
+  for (double v = 0.0; v < 20.0; v += 0.05) {
+    const double w = shared::InterpolationWeight(shared::kInterpolationSmooth, 0.0, 12.0, v);
+    EXPECT_GE(w, 0.0) << v;
+    EXPECT_LE(w, 1.0) << v;
+  }
   EXPECT_EQ(ParseInterpolation("off"), CellInterpolation{});
   const CellInterpolation smooth = ParseInterpolation("smooth:0.001:0.01");
   EXPECT_EQ(ParseInterpolation(smooth.ToString()), smooth);
