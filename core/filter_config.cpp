@@ -104,6 +104,14 @@ void FilterConfig::Validate() const {
                                                 std::to_string(shared::kFixedPointBitsMax) + "]; got " +
                                                 std::to_string(*fixed_point_bits));
   }
+  if (square_bits && (*square_bits < shared::kFixedPointBitsMin || *square_bits > shared::kFixedPointBitsMax)) {
+    throw ConfigError("--square-bits", "must lie in [" + std::to_string(shared::kFixedPointBitsMin) + ", " +
+                                           std::to_string(shared::kFixedPointBitsMax) + "]; got " +
+                                           std::to_string(*square_bits));
+  }
+  if (square_bits && !second_moments) {
+    throw ConfigError("--square-bits", "is G of the square sums, which need --second-moments on");
+  }
   if (frames < 1 || frames > kMaxFrames) {
     throw ConfigError("--frames", "must lie in [1, " + std::to_string(kMaxFrames) + "]; got " + std::to_string(frames));
   }
@@ -231,6 +239,7 @@ std::string FilterConfig::ToString() const {
          " seed: " + std::to_string(seed) + " frame: " + std::to_string(frame) +
          // Only when set, so single-frame configs read as they always have (golden metadata holds them).
          (fixed_point_bits ? " fixed_point_bits: " + std::to_string(*fixed_point_bits) : std::string()) +
+         (square_bits ? " square_bits: " + std::to_string(*square_bits) : std::string()) +
          (frames != 1 ? " frames: " + std::to_string(frames) : std::string()) +
          (eviction.enabled() ? " eviction: " + eviction.ToString() : std::string()) +
          (temporal.blends() ? " temporal: " + temporal.ToString() : std::string()) +

@@ -54,6 +54,8 @@ struct FilterConfig {
   // --fixed-point-bits: F of fixed64 for every frame; unset, the first frame of a table chooses it, leaving room
   // for `frames` frames like it (core/fixed_point_scale.h).
   std::optional<int> fixed_point_bits;
+  // --square-bits: G of the square sums (--second-moments) for every frame; unset, chosen as F is
+  std::optional<int> square_bits;
   std::uint32_t frames = 1;  // --frames: how many frames one table integrates (core/backend.h)
   Eviction eviction;         // --eviction: which cells the table forgets after each frame (core/eviction.h)
   Temporal temporal;         // --temporal: how a cell blends its history with a frame (core/temporal.h)

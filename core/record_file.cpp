@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -31,14 +32,22 @@ struct Header {
   std::uint32_t frame_count;      // version 2: the same in every block
   std::uint64_t deeper_count;     // version 3
   std::uint64_t scattered_count;  // version 3: none, or one per record and deeper record
+  std::uint64_t own_light_count;  // version 4: none, or one per record
 };
-static_assert(sizeof(Header) == 72);
+static_assert(sizeof(Header) == 80);
 constexpr std::uint32_t kVersion1HeaderSize = 48;
 constexpr std::uint32_t kVersion2HeaderSize = 56;
+constexpr std::uint32_t kVersion3HeaderSize = 72;
 
 std::uint32_t HeaderSize(std::uint32_t version) {
-  return version == 1 ? kVersion1HeaderSize : version == 2 ? kVersion2HeaderSize : std::uint32_t(sizeof(Header));
+  return version == 1   ? kVersion1HeaderSize
+         : version == 2 ? kVersion2HeaderSize
+         : version == 3 ? kVersion3HeaderSize
+                        : std::uint32_t(sizeof(Header));
 }
+
+// The bytes of a block's own lights (version 4): one vec4 per record.
+std::size_t OwnLightBytes(std::uint64_t count) { return std::size_t(count) * sizeof(glm::vec4); }
 
 }  // namespace
 
@@ -65,11 +74,15 @@ void RecordFileWriter::Append(const RecordBatch& batch) {
                      "; frame numbers must increase");
   }
   CheckScatteredShape(batch);
-  // Version 3 only where version 2 cannot hold the batch: a file of single-vertex records stays what it was.
+  if (!batch.own_light.empty() && batch.own_light.size() != batch.records.size()) {
+    throw InputError(path_ + ": " + std::to_string(batch.own_light.size()) + " own lights for " +
+                     std::to_string(batch.records.size()) + " records (none, or one per record)");
+  }
+  // Each version only where the one before cannot hold the batch: a file of single-vertex records stays what it was.
   const bool several_bounces = !batch.deeper.empty() || !batch.scattered.empty();
   Header header{};
   std::memcpy(header.magic, kMagic, sizeof kMagic);
-  header.version = several_bounces ? kRecordFileVersion : 2;
+  header.version = !batch.own_light.empty() ? kRecordFileVersion : several_bounces ? 3 : 2;
   header.header_size = HeaderSize(header.version);
   header.record_size = sizeof(Record);
   header.width = batch.width;
@@ -81,6 +94,7 @@ void RecordFileWriter::Append(const RecordBatch& batch) {
   header.frame_count = frames_;
   header.deeper_count = batch.deeper.size();
   header.scattered_count = batch.scattered.size();
+  header.own_light_count = batch.own_light.size();
   std::uint64_t checksum = Fnv1a(&header, header.header_size);
   out_.write(reinterpret_cast<const char*>(&header), header.header_size);
   for (const std::vector<Record>* records : {&batch.records, &batch.deeper, &batch.scattered}) {
@@ -88,6 +102,9 @@ void RecordFileWriter::Append(const RecordBatch& batch) {
     checksum = Fnv1a(records->data(), bytes, checksum);
     out_.write(reinterpret_cast<const char*>(records->data()), static_cast<std::streamsize>(bytes));
   }
+  const std::size_t own_bytes = OwnLightBytes(batch.own_light.size());
+  checksum = Fnv1a(batch.own_light.data(), own_bytes, checksum);
+  out_.write(reinterpret_cast<const char*>(batch.own_light.data()), static_cast<std::streamsize>(own_bytes));
   out_.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
   if (!out_) throw InputError(path_ + ": writing the record file failed");
   ++written_;
@@ -132,8 +149,8 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     }
     in.read(reinterpret_cast<char*>(&header), kVersion1HeaderSize);
     if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw fail(at, "not an .hpsfv record file (bad magic)");
-    if (header.version != 2 && header.version != 3 && !(header.version == 1 && at == 0)) {
-      throw fail(at + 8, "format version " + std::to_string(header.version) + ", this hpsf reads versions 1 to 3" +
+    if (header.version != 2 && header.version != 3 && header.version != 4 && !(header.version == 1 && at == 0)) {
+      throw fail(at + 8, "format version " + std::to_string(header.version) + ", this hpsf reads versions 1 to 4" +
                              (at > 0 ? " (version 1 holds one frame)" : ""));
     }
     const std::uint32_t header_size = HeaderSize(header.version);
@@ -180,12 +197,18 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
                                 ", expected none or one per record and deeper record (" +
                                 std::to_string(header.record_count + header.deeper_count) + ")");
       }
-      if (header.deeper_count == 0 && header.scattered_count == 0) {
+      if (header.version == 3 && header.deeper_count == 0 && header.scattered_count == 0) {
         throw fail(at + 56, "a version 3 block without deeper records or scattered vertices (version 2 holds it)");
       }
     }
+    if (header.version == 4 && (header.own_light_count != header.record_count || header.record_count == 0)) {
+      throw fail(at + 72, "own light count " + std::to_string(header.own_light_count) + ", expected one per record (" +
+                              std::to_string(header.record_count) +
+                              "), at least one: versions 2 and 3 hold a block without");
+    }
     const std::uint64_t stored = header.record_count + header.deeper_count + header.scattered_count;
-    const std::uint64_t block_end = at + header_size + stored * sizeof(Record) + sizeof(std::uint64_t);
+    const std::uint64_t block_end =
+        at + header_size + stored * sizeof(Record) + OwnLightBytes(header.own_light_count) + sizeof(std::uint64_t);
     if (block_end > file_size) {
       throw fail(file_size, "truncated: " + std::to_string(file_size) + " bytes, frame " +
                                 std::to_string(frames.size()) + " ends at byte " + std::to_string(block_end));
@@ -208,11 +231,24 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
       in.read(reinterpret_cast<char*>(records->data()), static_cast<std::streamsize>(records->size() * sizeof(Record)));
       expected = Fnv1a(records->data(), records->size() * sizeof(Record), expected);
     }
+    batch.own_light.resize(header.own_light_count);
+    const std::size_t own_bytes = OwnLightBytes(header.own_light_count);
+    in.read(reinterpret_cast<char*>(batch.own_light.data()), static_cast<std::streamsize>(own_bytes));
+    expected = Fnv1a(batch.own_light.data(), own_bytes, expected);
     std::uint64_t checksum = 0;
     in.read(reinterpret_cast<char*>(&checksum), sizeof checksum);
     if (!in) throw fail(at + header_size, "read failed");
     if (checksum != expected) {
       throw fail(block_end - sizeof checksum, "checksum mismatch: the file is corrupt");
+    }
+    // An own light is a pixel's light, blended into the image: finite, its alpha 0, as the tracer writes it.
+    const std::uint64_t own_start = block_end - sizeof checksum - own_bytes;
+    for (std::size_t i = 0; i < batch.own_light.size(); ++i) {
+      const glm::vec4& own = batch.own_light[i];
+      if (!(std::isfinite(own.x) && std::isfinite(own.y) && std::isfinite(own.z)) || own.w != 0.0f) {
+        throw fail(own_start + i * sizeof(glm::vec4),
+                   "own light " + std::to_string(i) + " is not a finite light with alpha 0");
+      }
     }
     frames.push_back(std::move(batch));
     at = block_end;

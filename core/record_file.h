@@ -4,9 +4,11 @@
 // the file), the records in the 144-byte layout of core/shared/record_layout.h, and an FNV-1a checksum of the
 // block before it; frame numbers increase from block to block. Version 3 (written for a batch with several filtered
 // bounces, core/transport.h, and only then): version 2's header with the counts of deeper records and of scattered
-// vertices (none, or one per record and deeper record) after it, and those arrays after the records. A file may mix
-// blocks of versions 2 and 3. Version 1 (read): one block without the frame fields, frame 0. Reading checks each of
-// these; a truncated or corrupt file is an InputError naming the file and the byte offset.
+// vertices (none, or one per record and deeper record) after it, and those arrays after the records. Version 4
+// (written for a batch with own lights, RecordBatch::own_light, and only then): version 3's header with the count of
+// own lights (one per record) after it, and after the scattered vertices one vec4 per record (finite rgb, alpha 0). A
+// file may mix blocks of versions 2 to 4. Version 1 (read): one block without the frame fields, frame 0. Reading
+// checks each of these; a truncated or corrupt file is an InputError naming the file and the byte offset.
 #ifndef HPSF_CORE_RECORD_FILE_H
 #define HPSF_CORE_RECORD_FILE_H
 
@@ -20,7 +22,7 @@
 
 namespace hpsf {
 
-inline constexpr std::uint32_t kRecordFileVersion = 3;           // the newest written
+inline constexpr std::uint32_t kRecordFileVersion = 4;           // the newest written
 inline constexpr std::uint32_t kMaxRecordFileFrames = 1u << 20;  // kMaxFrames, the longest sequence a table takes
 
 // Writes the frames as they come, to a temporary name beside `path` that Finish renames: a failure, or a writer

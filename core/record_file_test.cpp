@@ -203,6 +203,50 @@ TEST(RecordFile, HoldsDeeperRecordsAndScatteredVerticesInVersionThree) {
   EXPECT_THROW(WriteRecordFile(path, frames), InputError);
 }
 
+// Path graphs' own lights: a frame with them is written as version 4 (an 80-byte header with their count, one vec4 per
+// record after the other arrays) and reads back bit for bit; a frame without them stays version 2 in the same file.
+// A count that is not one per record, and an own light that is not finite or whose alpha is not 0, are named at their
+// byte; the checksum covers them.
+TEST(RecordFile, HoldsOwnLightsInVersionFour) {
+  std::vector<RecordBatch> frames(2, SmallBatch());
+  frames[0].frame = 0;
+  frames[1].frame = 1;
+  const std::size_t n = frames[0].records.size();
+  for (std::size_t i = 0; i < n; ++i) frames[0].own_light.push_back(glm::vec4(0.25f * float(i), 1.0f, 2.0f, 0.0f));
+  const std::string path = TempPath("hpsf_own_lights.hpsfv");
+  WriteRecordFile(path, frames);
+  EXPECT_EQ(VersionOf(path), 4u);
+  const std::uint64_t own_at = 80 + n * sizeof(Record);
+  const std::uint64_t second = own_at + n * sizeof(glm::vec4) + 8;
+  EXPECT_EQ(VersionOf(path, second), 2u);
+  const std::vector<RecordBatch> read = ReadRecordFrames(path);
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_TRUE(SameArray(read[0].records, frames[0].records));
+  EXPECT_EQ(read[0].own_light, frames[0].own_light);
+  EXPECT_TRUE(read[1].own_light.empty());
+
+  Poke64(path, 72, n - 1);
+  EXPECT_NE(ErrorOf(path).find("byte 72: own light count " + std::to_string(n - 1) + ", expected one per record"),
+            std::string::npos)
+      << ErrorOf(path);
+  WriteRecordFile(path, frames);
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(own_at + sizeof(glm::vec4) + 4));
+    f.put('\x7f');
+  }
+  EXPECT_NE(ErrorOf(path).find("checksum mismatch"), std::string::npos) << ErrorOf(path);
+  frames[0].own_light[2].w = 1.0f;
+  WriteRecordFile(path, frames);
+  EXPECT_NE(ErrorOf(path).find("byte " + std::to_string(own_at + 2 * sizeof(glm::vec4)) +
+                               ": own light 2 is not a finite light with alpha 0"),
+            std::string::npos)
+      << ErrorOf(path);
+  // The writer refuses own lights that are not one per record.
+  frames[0].own_light.pop_back();
+  EXPECT_THROW(WriteRecordFile(path, frames), InputError);
+}
+
 // Files written before frames (version 1: a 48-byte header, no frame number) read as one frame, frame 0.
 TEST(RecordFile, ReadsVersionOneAsFrameZero) {
   const RecordBatch batch = SmallBatch();

@@ -150,8 +150,9 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
   if (packed) RequirePackedDecimalConverts(entering);
   table.second_moments = config.second_moments;
   if (config.second_moments) {
-    table.square_bits =
-        previous ? previous->square_bits : ChooseSquareBitsOf(entering, AllCores, config.SquareHeadroom());
+    table.square_bits = previous             ? previous->square_bits
+                        : config.square_bits ? *config.square_bits
+                                             : ChooseSquareBitsOf(entering, AllCores, config.SquareHeadroom());
     if (wide_sums) RequireSquaresConvert(entering, table.square_bits);
     if (!fixed) RequireFloat32SquaresRange(table.square_bits);
   }

@@ -219,7 +219,9 @@ FilterResult ReferenceFilter(const RecordBatch& given, const FilterConfig& confi
   if (config.accumulation == Accumulation::kFixed64) RequireFixedPointConverts(all, stats.fixed_point_bits);
   if (packed) RequirePackedDecimalConverts(all);
   if (config.second_moments) {
-    stats.square_bits = previous ? previous->stats.square_bits : ChooseSquareBits(all, config.SquareHeadroom());
+    stats.square_bits = previous             ? previous->stats.square_bits
+                        : config.square_bits ? *config.square_bits
+                                             : ChooseSquareBits(all, config.SquareHeadroom());
     if (fixed) RequireSquaresConvert(all, stats.square_bits);
     if (!fixed) RequireFloat32SquaresRange(stats.square_bits);
   }

@@ -759,7 +759,9 @@ VulkanRun VulkanFilter::Run(const RecordBatch& batch, const FilterConfig& config
   if (packed) RequirePackedDecimalConverts(entering);
   table.second_moments = config.second_moments;
   if (config.second_moments) {
-    table.square_bits = keep_table ? kept_square_bits : ChooseSquareBitsOf(entering, AllCores, config.SquareHeadroom());
+    table.square_bits = keep_table           ? kept_square_bits
+                        : config.square_bits ? *config.square_bits
+                                             : ChooseSquareBitsOf(entering, AllCores, config.SquareHeadroom());
     if (fixed) RequireSquaresConvert(entering, table.square_bits);
     if (!fixed) RequireFloat32SquaresRange(table.square_bits);
   }

@@ -1,8 +1,8 @@
 // fuzz_hpsfv: .hpsfv record files through core/record_file.h. Every input is a sequence of frames or an
 // hpsf::InputError naming the file and byte; a bug is a crash, a hang, a sanitizer report, any other exception, or
-// frames that do not survive a round trip: written back (WriteRecordFile), a file of versions 2 and 3 is byte for byte
-// the input (version 1 is read, never written), and read again they are the same frames, deeper records and scattered
-// vertices included.
+// frames that do not survive a round trip: written back (WriteRecordFile), a file of versions 2 to 4 is byte for byte
+// the input (version 1 is read, never written), and read again they are the same frames, deeper records, scattered
+// vertices and own lights included.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -30,7 +30,10 @@ bool SameBatch(const RecordBatch& a, const RecordBatch& b) {
   return a.frame == b.frame && a.width == b.width && a.height == b.height &&
          a.samples_per_pixel == b.samples_per_pixel &&
          std::memcmp(&a.fov_y_radians, &b.fov_y_radians, sizeof(double)) == 0 && SameRecords(a.records, b.records) &&
-         SameRecords(a.deeper, b.deeper) && SameRecords(a.scattered, b.scattered);
+         SameRecords(a.deeper, b.deeper) && SameRecords(a.scattered, b.scattered) &&
+         a.own_light.size() == b.own_light.size() &&
+         (a.own_light.empty() ||
+          std::memcmp(a.own_light.data(), b.own_light.data(), a.own_light.size() * sizeof(glm::vec4)) == 0);
 }
 
 std::string ReadBytes(const std::string& path) {

@@ -1,5 +1,6 @@
 #include "tools/hpsf/crosscheck_command.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -46,17 +47,24 @@ std::vector<std::string> SplitList(const std::string& text) {
 }
 
 // The same check on the same records: every option that decides the outcome, the input replaced by the recorded
-// frames (which carry their numbers, so --frame goes), and a bundle of its own so the original is kept for
-// comparison.
+// frames (which carry their numbers, so --frame goes; and the tracer's decisions, survival's culls and path graphs'
+// own lights, so --survival and --path-graph go), and a bundle of its own so the original is kept for comparison.
+// Survival also chose F and G with room for its weights: the bundle gives the run's own.
 void WriteBundle(const CrosscheckOptions& o, std::span<const RecordBatch> frames, const CrosscheckReport& report) {
+  const bool survival = std::find(o.arguments.begin(), o.arguments.end(), "--survival") != o.arguments.end();
   std::vector<std::string> arguments;
   for (std::size_t i = 0; i < o.arguments.size(); ++i) {
-    if (o.arguments[i] == "--repro-dir" || o.arguments[i] == "--frame" || o.arguments[i] == "--report" ||
-        o.arguments[i] == "--capture") {
+    const std::string& a = o.arguments[i];
+    if (a == "--repro-dir" || a == "--frame" || a == "--report" || a == "--capture" || a == "--survival" ||
+        a == "--path-graph" || (survival && (a == "--fixed-point-bits" || a == "--square-bits"))) {
       ++i;
       continue;
     }
-    if (o.arguments[i] != "--json") arguments.push_back(o.arguments[i]);
+    if (a != "--json") arguments.push_back(a);
+  }
+  if (survival) {
+    arguments.insert(arguments.end(), {"--fixed-point-bits", std::to_string(report.fixed_point_bits)});
+    if (report.square_bits) arguments.insert(arguments.end(), {"--square-bits", std::to_string(*report.square_bits)});
   }
   WriteReproBundle(o.repro_dir, frames, report, arguments);
   std::cerr << "hpsf: the contract does not hold; repro bundle in " << o.repro_dir

@@ -54,6 +54,11 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                   "F, fixed64's fraction bits, in [-126, 126]; auto: the largest the first frame's totals allow")
       ->capture_default_str();
   command
+      .add_option("--square-bits", o.square_bits,
+                  "G, the fraction bits of the square sums (--second-moments), in [-126, 126]; auto: chosen as F is "
+                  "(a repro bundle of a run with --survival gives the run's)")
+      ->capture_default_str();
+  command
       .add_option("--eviction", o.eviction,
                   "Cells a table kept across frames forgets after each frame: none, strict (not touched this frame) "
                   "stale:N (not touched for N frames) or priority (under pressure: in the window of a record that "
@@ -146,6 +151,15 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
     }
     config.fixed_point_bits = bits;
   }
+  if (o.square_bits != "auto") {
+    int bits = 0;
+    const char* end = o.square_bits.data() + o.square_bits.size();
+    const auto [stop, error] = std::from_chars(o.square_bits.data(), end, bits);
+    if (error != std::errc() || stop != end) {
+      throw ConfigError("--square-bits", "expected auto or an integer; got '" + o.square_bits + "'");
+    }
+    config.square_bits = bits;
+  }
   const Probing probing = ParseProbing(o.probing);
   config.probing = probing.kind;
   if (probing.size) {
@@ -215,7 +229,8 @@ nlohmann::json ToJson(const FilterConfig& c) {
           {"path_graph", c.path_graph.ToString()},
           {"interpolation", c.interpolation.ToString()},
           {"force_effect", c.forced.ToString()},
-          {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")}};
+          {"fixed_point_bits", c.fixed_point_bits ? nlohmann::json(*c.fixed_point_bits) : nlohmann::json("auto")},
+          {"square_bits", c.square_bits ? nlohmann::json(*c.square_bits) : nlohmann::json("auto")}};
 }
 
 }  // namespace hpsf

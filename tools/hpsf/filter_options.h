@@ -25,6 +25,7 @@ struct FilterOptions {
   std::string interpolation = "off";     // --interpolation: off, step:V0:V1 or smooth:V0:V1
   std::string accumulation = "fixed64";
   std::string fixed_point_bits = "auto";
+  std::string square_bits = "auto";
   std::string eviction = "none";
   std::string level_change = "none";
   std::string temporal = "integrate";

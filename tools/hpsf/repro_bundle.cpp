@@ -120,6 +120,7 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
                                 c.level_seed.ToString(),
                                 "--fixed-point-bits",
                                 c.fixed_point_bits ? std::to_string(*c.fixed_point_bits) : "auto"};
+  if (c.square_bits) a.insert(a.end(), {"--square-bits", std::to_string(*c.square_bits)});
   if (!c.normal_in_index) a.push_back("--normal-in-fingerprint-only");
   if (c.levels != 1 || c.min_count != 1)
     a.insert(a.end(), {"--levels", std::to_string(c.levels), "--min-count", std::to_string(c.min_count)});
