@@ -1,6 +1,8 @@
 #include "tools/hpsf/filter_options.h"
 
 #include <charconv>
+#include <optional>
+#include <string>
 #include <system_error>
 
 #include "core/error.h"
@@ -123,6 +125,22 @@ void AddFilterOptions(CLI::App& command, FilterOptions& o) {
                      "cost");
 }
 
+namespace {
+
+// "auto" (unset) or an integer, for --fixed-point-bits and --square-bits.
+std::optional<int> AutoOrInteger(const char* option, const std::string& text) {
+  if (text == "auto") return std::nullopt;
+  int bits = 0;
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, bits);
+  if (error != std::errc() || stop != end) {
+    throw ConfigError(option, "expected auto or an integer; got '" + text + "'");
+  }
+  return bits;
+}
+
+}  // namespace
+
 FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   FilterConfig config = o.config;
   config.normal = ParseNormalKey(o.normal);
@@ -142,24 +160,8 @@ FilterConfig ResolveFilterConfig(const FilterOptions& o) {
   }
   config.second_moments = o.second_moments == "on";
   config.interpolation = ParseInterpolation(o.interpolation);
-  if (o.fixed_point_bits != "auto") {
-    int bits = 0;
-    const char* end = o.fixed_point_bits.data() + o.fixed_point_bits.size();
-    const auto [stop, error] = std::from_chars(o.fixed_point_bits.data(), end, bits);
-    if (error != std::errc() || stop != end) {
-      throw ConfigError("--fixed-point-bits", "expected auto or an integer; got '" + o.fixed_point_bits + "'");
-    }
-    config.fixed_point_bits = bits;
-  }
-  if (o.square_bits != "auto") {
-    int bits = 0;
-    const char* end = o.square_bits.data() + o.square_bits.size();
-    const auto [stop, error] = std::from_chars(o.square_bits.data(), end, bits);
-    if (error != std::errc() || stop != end) {
-      throw ConfigError("--square-bits", "expected auto or an integer; got '" + o.square_bits + "'");
-    }
-    config.square_bits = bits;
-  }
+  config.fixed_point_bits = AutoOrInteger("--fixed-point-bits", o.fixed_point_bits);
+  config.square_bits = AutoOrInteger("--square-bits", o.square_bits);
   const Probing probing = ParseProbing(o.probing);
   config.probing = probing.kind;
   if (probing.size) {
