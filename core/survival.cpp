@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/number_list.h"
+#include "core/shared/rng.h"
 
 namespace hpsf {
 namespace {
@@ -69,6 +70,18 @@ double SurvivalProbability(const SurvivalParams& params, double variance) {
     p = t * t * (3.0 - 2.0 * t);
   }
   return std::max(p, params.floor);
+}
+
+float SurvivalDraw(std::uint32_t seed, std::uint32_t frame, std::uint32_t pixel, std::uint32_t sample,
+                   std::uint32_t bounce) {
+  constexpr std::uint32_t kSurvivalDimension = 8;  // the tracer's dimensions 0 to 7: pixel, lights, bounce, roulette
+  return shared::RandomFloatFromPrefix(shared::RngPrefix(shared::RngCounter{seed, frame, pixel, sample, bounce}),
+                                       kSurvivalDimension);
+}
+
+glm::vec3 SurvivingContribution(const SurvivalParams& params, const glm::dvec3& light, float u, double p) {
+  if (double(u) >= p) return glm::vec3(0.0f);
+  return glm::vec3(params.reweight ? light / p : light);
 }
 
 }  // namespace hpsf

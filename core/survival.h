@@ -12,7 +12,10 @@
 #ifndef HPSF_CORE_SURVIVAL_H
 #define HPSF_CORE_SURVIVAL_H
 
+#include <cstdint>
 #include <string>
+
+#include <glm/vec3.hpp>
 
 namespace hpsf {
 
@@ -43,6 +46,16 @@ SurvivalParams ParseSurvival(const std::string& text);
 
 // p(v) of the params' function, at least their floor; in double, from exact or correctly rounded steps only.
 double SurvivalProbability(const SurvivalParams& params, double variance);
+
+// The draw u in [0, 1) that decides whether the sample (pixel, sample) of a trace of `seed` survives its primary vertex
+// at `bounce` in `frame`: the counter RNG's dimension 8 at that vertex, one the tracer draws for nothing else, so the
+// surviving paths are the same paths as without survival. It survives where u < p.
+float SurvivalDraw(std::uint32_t seed, std::uint32_t frame, std::uint32_t pixel, std::uint32_t sample,
+                   std::uint32_t bounce);
+
+// What a sample whose path carries `light` adds to its cell after the decision: 0 where it is culled (u >= p); where
+// it survives, light / p in double rounded to float once (light itself without the reweighting).
+glm::vec3 SurvivingContribution(const SurvivalParams& params, const glm::dvec3& light, float u, double p);
 
 }  // namespace hpsf
 

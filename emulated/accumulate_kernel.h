@@ -37,6 +37,7 @@ struct TableBuffers {
 struct TemporalArgs;         // emulated/temporal_kernel.h
 struct EvictionArgs;         // emulated/eviction_kernels.h
 struct TransportInPassArgs;  // emulated/broken_transport.h
+struct SurvivalInPassArgs;   // emulated/broken_survival.h
 
 struct AccumulateArgs {
   std::span<const Record> records;
@@ -65,6 +66,9 @@ struct AccumulateArgs {
   // Several filtered bounces' reads-current-table variant: the transport's arguments. The correct kernel never reads
   // them (the transport runs before this pass, from the table before the frame).
   const TransportInPassArgs* transport = nullptr;
+  // The variant that decides path survival inside this pass (emulated/broken_survival.h). The correct kernel never
+  // reads it (the tracer decides before the frame's passes, from the table before the frame).
+  const SurvivalInPassArgs* survival = nullptr;
 };
 
 // Whether an integer add of `add` to a sum word that held `old` wrapped: at 64 bits, or packed-decimal's 32.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/cell_moments.h"
 #include "core/error.h"
 #include "core/hash_table.h"
 #include "core/neighbour_search.h"
@@ -13,8 +14,10 @@
 #include "core/shared/packed_sums.h"
 #include "core/shared/second_moment.h"
 #include "core/shared/transport.h"
+#include "core/survival.h"
 #include "core/temporal.h"
 #include "core/transport.h"
+#include "emulated/broken_survival.h"
 #include "emulated/broken_transport.h"
 #include "emulated/temporal_kernel.h"
 
@@ -23,18 +26,20 @@ namespace {
 
 // Changes of the correct kernel that are not Defect values: count32 is D12's, which needs a sequence of frames
 // (D12Count32Bit); blend_in_pass D10's (D10BlendDuringAccumulate); evict_in_pass EvictDuringAccumulate's; weak_claim
-// the correct claim by a weak compare-and-swap (AccumulateWithWeakCas); transport_in_pass TransportDuringAccumulate's.
+// the correct claim by a weak compare-and-swap (AccumulateWithWeakCas); transport_in_pass TransportDuringAccumulate's;
+// survival_in_pass SurvivalDuringAccumulate's.
 struct Switches {
   bool count32 = false;
   bool blend_in_pass = false;
   bool evict_in_pass = false;
   bool weak_claim = false;
   bool transport_in_pass = false;
+  bool survival_in_pass = false;
 };
 
 // The correct kernel (emulated/accumulate_kernel.cpp) with exactly one defect or switch in, in both modes.
 simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, Defect defect, Switches switches = {}) {
-  const auto [count32, blend_in_pass, evict_in_pass, weak_claim, transport_in_pass] = switches;
+  const auto [count32, blend_in_pass, evict_in_pass, weak_claim, transport_in_pass, survival_in_pass] = switches;
   const std::uint32_t i = ctx.Thread();
   const KeyResult& key = args.keys[i];
   const TableBuffers& b = args.buffers;
@@ -75,6 +80,37 @@ simt::KernelTask Mutant(simt::ThreadContext& ctx, const AccumulateArgs& args, De
                                                      cell.Average(args.accumulation, t.fixed_point_bits));
     }
     co_await ctx.Store(t.reads, i, read);
+  }
+  if (survival_in_pass && args.survival && i < args.survival->traced.size() && args.accepted[i] &&
+      key.status == shared::kKeyed) {
+    // The record's survival (core/survival.h) decided by its own cell in the table this pass is adding to, not the one
+    // before the frame: its variance is whatever the frame's adds that came first made it.
+    const SurvivalInPassArgs& v = *args.survival;
+    const shared::ProbeScheme scheme = args.scheme();
+    double p = 1.0;  // a cell not found, or of fewer than two samples, says nothing of its variance
+    for (std::uint32_t probe = 0; probe < args.probe_limit; ++probe) {
+      const std::uint32_t s = shared::CandidateSlot(scheme, key.slot0, probe);
+      const std::uint64_t tag = co_await ctx.Load(b.tags, s);
+      const std::uint64_t count = co_await ctx.Load(b.counts, s);
+      const std::uint32_t step = shared::LookupStep(tag, StoredIdentity(key), count);
+      if (step == shared::kLookupEnd) break;
+      if (step != shared::kLookupFound) continue;
+      if (count >= 2) {
+        std::array<std::uint64_t, 3> fixed_sum{};
+        std::array<float, 3> float_sum{};
+        for (int c = 0; c < 3; ++c) {
+          fixed_sum[c] = co_await ctx.Load(b.sums, std::uint64_t(s) * 3 + c);
+          float_sum[c] = std::bit_cast<float>(std::uint32_t(fixed_sum[c]));
+        }
+        const std::uint64_t square = co_await ctx.Load(b.squares, s);
+        const CellMoments moments =
+            MomentsOf(args.accumulation, fixed_sum, float_sum, square, std::bit_cast<float>(std::uint32_t(square)),
+                      count, v.fixed_point_bits, v.square_bits);
+        p = SurvivalProbability(v.params, moments.variance);
+      }
+      break;
+    }
+    contribution = SurvivingContribution(v.params, glm::dvec3(v.traced[i]), v.draws[i], p);
   }
   if (evict_in_pass && args.eviction && i < args.capacity) {
     // Evict slot i as the eviction pass would, but while other threads insert: a slot they touch this frame may
@@ -361,6 +397,10 @@ simt::KernelTask EvictDuringAccumulate(simt::ThreadContext& ctx, const Accumulat
 
 simt::KernelTask TransportDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
   return Mutant(ctx, args, Defect::kNone, {.transport_in_pass = true});
+}
+
+simt::KernelTask SurvivalDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args) {
+  return Mutant(ctx, args, Defect::kNone, {.survival_in_pass = true});
 }
 
 simt::KernelTask D12Count32Bit(simt::ThreadContext& ctx, const AccumulateArgs& args) {

@@ -80,6 +80,11 @@ simt::KernelTask D10BlendDuringAccumulate(simt::ThreadContext& ctx, const Accumu
 // whichever adds of the frame came first, then adds its transported contribution. One level.
 simt::KernelTask TransportDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
 
+// Path survival decided inside the accumulate (emulated/broken_survival.h, D10's cousin): each record looks its own
+// cell up in the table this launch is adding to (args.survival), reads its variance from whichever adds of the frame
+// came first, and adds its traced light as survival decides by it. One level.
+simt::KernelTask SurvivalDuringAccumulate(simt::ThreadContext& ctx, const AccumulateArgs& args);
+
 // An eviction racing an insertion: the accumulate whose thread i first evicts slot i by the policy, as
 // the eviction pass would, then inserts its record, saving the pass's launch. Another thread may be inserting
 // into slot i meanwhile: its last-seen store may come after the eviction's read, or its adds before the zeroing,

@@ -341,7 +341,23 @@ EmulatedRun EmulatedFilter(const RecordBatch& given, const FilterConfig& config,
     transport_args = {scattered_keys, given.scattered, table.fixed_point_bits, memory.Allocate32("transport_reads", n)};
     args.transport = &transport_args;
   }
-  const AccumulateKernelFn accumulate_kernel = transport_in_pass ? TransportDuringAccumulate : accumulate;
+  // The survival-in-pass variant: each record's traced light and draw, for its decision inside the launch.
+  SurvivalInPassArgs survival_args;
+  std::vector<float> survival_draws;
+  const bool survival_in_pass = options.survival_in_pass && config.survival.enabled();
+  if (survival_in_pass) {
+    const auto traced = options.survival_in_pass->traced.find(given.frame);
+    if (traced == options.survival_in_pass->traced.end() || traced->second.size() != given.records.size()) {
+      throw InputError("survival in the accumulate: no traced light for each of frame " + std::to_string(given.frame) +
+                       "'s " + std::to_string(given.records.size()) + " records");
+    }
+    survival_draws = SurvivalDraws(given, options.survival_in_pass->seed);
+    survival_args = {config.survival, traced->second, survival_draws, table.fixed_point_bits, table.square_bits};
+    args.survival = &survival_args;
+  }
+  const AccumulateKernelFn accumulate_kernel = transport_in_pass  ? TransportDuringAccumulate
+                                               : survival_in_pass ? SurvivalDuringAccumulate
+                                                                  : accumulate;
 
   run.timings.clear_ms = clock.LapMs();
   const simt::Kernel kernel = [&](simt::ThreadContext& ctx) { return accumulate_kernel(ctx, args); };

@@ -16,6 +16,7 @@
 #include "core/record.h"
 #include "emulated/accumulate_kernel.h"
 #include "emulated/broken_resolve.h"
+#include "emulated/broken_survival.h"
 #include "emulated/broken_transport.h"
 #include "emulated/emulator_workspace.h"
 #include "emulated/eviction_kernels.h"
@@ -39,6 +40,9 @@ struct EmulatorOptions {
   ResolveDefect resolve_defect = ResolveDefect::kNone;
   // The transport pass broken on purpose (emulated/broken_transport.h), over a sequence of frames.
   TransportDefect transport_defect = TransportDefect::kNone;
+  // Path survival decided inside the accumulate's launch (emulated/broken_survival.h), with --survival: the paths as
+  // the team traced them, kept by the caller across runs. Null: the records' contributions are added as given.
+  const SurvivalInPass* survival_in_pass = nullptr;
   void Validate() const;  // ConfigError naming the option
 };
 

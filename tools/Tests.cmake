@@ -737,6 +737,11 @@ hpsf_add_test(command_options_tests
   SOURCES hpsf/command_options_test.cpp
   LIBRARIES hpsf_command_options_testing
   LABELS unit)
+# A fuzz bundle's crosscheck arguments give back its case's configuration.
+hpsf_add_test(repro_bundle_tests
+  SOURCES hpsf/repro_bundle_test.cpp
+  LIBRARIES hpsf_commands
+  LABELS unit)
 hpsf_add_test(command_option_sweep_tests
   SOURCES hpsf/command_option_sweep_test.cpp
   LIBRARIES hpsf_command_options_testing

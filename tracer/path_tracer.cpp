@@ -19,6 +19,7 @@
 #include "core/parallel_for.h"
 #include "core/path_graph.h"
 #include "core/shared/rng.h"
+#include "core/survival.h"
 #include "core/tangent_frame.h"
 #include "tracer/embree_scene.h"
 #include "tracer/scene_digest.h"
@@ -28,7 +29,7 @@ namespace {
 
 // RNG dimensions within one bounce; the bounce index separates vertices.
 constexpr std::uint32_t kPixelU = 0, kPixelV = 1, kLightPick = 2, kLightU = 3, kLightV = 4, kBounceU = 5, kBounceV = 6,
-                        kRoulette = 7, kSurvive = 8;
+                        kRoulette = 7;  // 8: survival's (SurvivalDraw, core/survival.h)
 constexpr std::uint32_t kTile = 16;
 constexpr int kRouletteStart = 4;
 
@@ -272,7 +273,9 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   glm::dvec3 previous = origin;
   std::optional<SurfacePoint> last;  // the previous surface vertex, for the weight of emission a bounce finds
   double d_prefix = 0.0;
-  double survival = 1.0;  // the path's probability of surviving its primary vertex
+  double survival = 1.0;       // the path's probability of surviving its primary vertex
+  float survival_draw = 0.0f;  // and the draw that decided it
+  const bool surviving = table_ && table_->survival().enabled();
   // Path graphs: the variance the path has gathered from its vertices' cells, and whether a cell has cut it. The cut
   // changes the record's own light only: own = before + cell + alpha (gathered - before), where `before` is what the
   // record gathered before the cut vertex and `cell` the cut cell's share. Its contribution, which its cell adds, is
@@ -319,9 +322,10 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
     };
     // Survival (core/survival.h), before any ray leaves the primary vertex: a culled path's record holds its vertex
     // and no light; a surviving one's light is divided by p at the end.
-    if (table_ && table_->survival().enabled() && bounce == first) {
+    if (surviving && bounce == first) {
       survival = table_->Probability(MakeVertexRecord(here(weight * albedo)));
-      if (random(kSurvive) >= survival) {
+      survival_draw = SurvivalDraw(options_.seed, options_.frame, pixel, sample, bounce);
+      if (survival_draw >= survival) {
         ++stats.culled;
         radiance_before = gathered;
         record_throughput = weight * albedo;
@@ -397,11 +401,13 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   }
   if (graph) stats.graph_variance_max = std::max(stats.graph_variance_max, graph_variance);
   if (reached > 0) {
-    const bool reweight = table_ && table_->survival().enabled() && table_->survival().reweight;
-    chain[reached - 1].contribution = glm::vec3(reweight ? gathered / survival : gathered);
+    const auto decided = [&](const glm::dvec3& light) {
+      return surviving ? SurvivingContribution(table_->survival(), light, survival_draw, survival) : glm::vec3(light);
+    };
+    chain[reached - 1].contribution = decided(gathered);
     if (out.own_light) {
       const glm::dvec3 own = graph_cut ? graph_before + graph_cell + graph_alpha * (gathered - graph_before) : gathered;
-      *out.own_light = glm::vec4(glm::vec3(reweight ? own / survival : own), 0.0f);
+      *out.own_light = glm::vec4(decided(own), 0.0f);
     }
   }
 

@@ -126,6 +126,8 @@ std::vector<std::string> CrosscheckArguments(const std::vector<std::string>& bac
     a.insert(a.end(), {"--levels", std::to_string(c.levels), "--min-count", std::to_string(c.min_count)});
   if (c.neighbour_search) a.insert(a.end(), {"--neighbour-search", "on"});
   if (c.transport) a.insert(a.end(), {"--transport", "on"});
+  if (c.second_moments) a.insert(a.end(), {"--second-moments", "on"});
+  if (c.interpolation.enabled()) a.insert(a.end(), {"--interpolation", c.interpolation.ToString()});
   if (c.compaction != Compaction::kNone) a.insert(a.end(), {"--compaction", ToString(c.compaction)});
   if (c.key_identity != KeyIdentity::kFingerprint) a.insert(a.end(), {"--key-identity", ToString(c.key_identity)});
   const bool faithful = emulator.mode == simt::Mode::kFaithful;

@@ -528,6 +528,19 @@ AdversarialCase MakeAdversarialCase(std::uint32_t seed, std::uint64_t run, const
       rule.function = moment_draws.Bits() % 2u == 0u ? shared::kInterpolationStep : shared::kInterpolationSmooth;
       rule.v0 = std::pow(10.0, double(moment_draws.Uniform(-6.0f, 0.0f)));
       rule.v1 = std::min(rule.v0 * std::pow(10.0, double(moment_draws.Uniform(0.3f, 2.0f))), rule.v0 + 7.5);
+      // Half of them blend own lights other than the records' contributions, as a path graph's cut paths carry
+      // (RecordBatch::own_light): each channel drawn in [0, 2], finite whatever the record holds.
+      if (moment_draws.Bits() % 2u == 0u) {
+        std::vector<RecordBatch*> frames = {&a.batch};
+        for (RecordBatch& frame : a.later) frames.push_back(&frame);
+        for (RecordBatch* frame : frames) {
+          frame->own_light.clear();
+          for (std::size_t i = 0; i < frame->records.size(); ++i) {
+            const float r = moment_draws.Uniform(0.0f, 2.0f), g = moment_draws.Uniform(0.0f, 2.0f);
+            frame->own_light.push_back(glm::vec4(r, g, moment_draws.Uniform(0.0f, 2.0f), 0.0f));
+          }
+        }
+      }
     }
     // Half of the adaptive sequences judge their change against the cells' variance.
     if (a.config.temporal.mode == TemporalMode::kAdaptive && moment_draws.Bits() % 2u == 0u) {

@@ -380,9 +380,10 @@ TEST(AdversarialCase, SomeCasesKeepSecondMoments) {
 }
 
 // Half the cases that keep second moments interpolate (never with the search), by rules of both kinds that
-// validate; none where the options say a team's resolve runs.
+// validate, and half of those blend own lights of their own (one per record of every frame, each channel in [0, 2]);
+// none where the options say a team's resolve runs.
 TEST(AdversarialCase, SomeCasesInterpolate) {
-  int keeping = 0, interpolating = 0, step = 0;
+  int keeping = 0, interpolating = 0, step = 0, own = 0;
   for (std::uint64_t run = 0; run < 800; ++run) {
     const AdversarialCase c = MakeAdversarialCase(9, run);
     keeping += c.config.second_moments;
@@ -392,8 +393,26 @@ TEST(AdversarialCase, SomeCasesInterpolate) {
     EXPECT_TRUE(c.config.second_moments);
     EXPECT_FALSE(c.config.neighbour_search);
     EXPECT_EQ(ParseInterpolation(c.config.interpolation.ToString()), c.config.interpolation);
+    if (c.batch.own_light.empty()) continue;
+    ++own;
+    std::vector<const RecordBatch*> frames = {&c.batch};
+    for (const RecordBatch& frame : c.later) frames.push_back(&frame);
+    for (const RecordBatch* frame : frames) {
+      ASSERT_EQ(frame->own_light.size(), frame->records.size());
+      for (std::size_t i = 0; i < frame->records.size(); ++i) {
+        const glm::vec4 light = frame->own_light[i];
+        EXPECT_EQ(light.w, 0.0f);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_GE(light[k], 0.0f);
+          EXPECT_LE(light[k], 2.0f);
+        }
+      }
+    }
   }
-  std::printf("%d of %d cases keeping second moments interpolate, %d by steps\n", interpolating, keeping, step);
+  std::printf("%d of %d cases keeping second moments interpolate, %d by steps, %d with own lights\n", interpolating,
+              keeping, step, own);
+  EXPECT_GT(own, interpolating / 4);
+  EXPECT_LT(own, interpolating);
   EXPECT_GT(interpolating, keeping / 4);
   EXPECT_GT(step, 0);
   EXPECT_LT(step, interpolating);

@@ -107,6 +107,12 @@ class Shrinker {
     }
     if (c.config.level_seed.enabled) attempt([](AdversarialCase& a) { a.config.level_seed = {}; });
     if (c.config.transport && !keep_.transport) attempt([](AdversarialCase& a) { a.config.transport = false; });
+    if (!c.batch.own_light.empty()) {
+      attempt([](AdversarialCase& a) {
+        a.batch.own_light.clear();
+        for (RecordBatch& frame : a.later) frame.own_light.clear();
+      });
+    }
     if (c.config.interpolation.enabled()) attempt([](AdversarialCase& a) { a.config.interpolation = {}; });
     if (c.config.second_moments) {
       attempt([](AdversarialCase& a) {
@@ -150,7 +156,8 @@ class Shrinker {
   static RecordBatch& FrameOf(AdversarialCase& c, std::ptrdiff_t which) {
     return which < 0 ? c.batch : c.later[std::size_t(which)];
   }
-  // The frame's records at `kept`, and their scattered vertices with them (one per record: a case has no deeper ones).
+  // The frame's records at `kept`, and their scattered vertices and own lights with them (one per record: a case has
+  // no deeper ones).
   static AdversarialCase WithRecords(const AdversarialCase& c, std::ptrdiff_t which,
                                      const std::vector<std::size_t>& kept) {
     AdversarialCase candidate = c;
@@ -158,9 +165,11 @@ class Shrinker {
     const RecordBatch& from = which < 0 ? c.batch : c.later[std::size_t(which)];
     frame.records.clear();
     frame.scattered.clear();
+    frame.own_light.clear();
     for (const std::size_t i : kept) {
       frame.records.push_back(from.records[i]);
       if (!from.scattered.empty()) frame.scattered.push_back(from.scattered[i]);
+      if (!from.own_light.empty()) frame.own_light.push_back(from.own_light[i]);
     }
     frame.width = std::uint32_t(frame.records.size());
     frame.height = 1;
