@@ -29,12 +29,9 @@ PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams
 
 PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams& key_params,
                                      const FilterResult& previous)
-    : survival_(config.survival),
-      path_graph_(config.path_graph),
-      key_params_(key_params),
-      accumulation_(config.accumulation),
-      fixed_point_bits_(previous.stats.fixed_point_bits),
-      square_bits_(previous.stats.square_bits) {
+    : PreviousTableView(config, key_params) {
+  fixed_point_bits_ = previous.stats.fixed_point_bits;
+  square_bits_ = previous.stats.square_bits;
   // Hashed, not ordered: the tracer looks every sample's primary vertex up.
   auto cells = std::make_shared<std::unordered_map<std::array<std::uint32_t, 6>, std::uint32_t, KeyWordsHash>>();
   cells->reserve(previous.cells.size());
@@ -49,12 +46,10 @@ PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams
 
 PreviousTableView::PreviousTableView(const FilterConfig& config, const KeyParams& key_params,
                                      const HashTableDump& previous)
-    : survival_(config.survival),
-      path_graph_(config.path_graph),
-      key_params_(key_params),
-      accumulation_(previous.accumulation),
-      fixed_point_bits_(previous.fixed_point_bits),
-      square_bits_(previous.square_bits) {
+    : PreviousTableView(config, key_params) {
+  accumulation_ = previous.accumulation;
+  fixed_point_bits_ = previous.fixed_point_bits;
+  square_bits_ = previous.square_bits;
   if (!previous.second_moments) {
     throw ConfigError(config.survival.enabled() ? "--survival" : "--path-graph",
                       "the table before the frame keeps no second moments (--second-moments on)");

@@ -35,6 +35,7 @@
 #include "core/previous_table_view.h"
 #include "core/shared/rng.h"
 #include "emulated/emulated_backend.h"
+#include "property_tests/own_table_frames.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
@@ -300,33 +301,16 @@ TEST(PathGraph, EachBackendDecidingByItsOwnTableMakesTheSameImage) {
   ReferenceBackend reference;
   EmulatedBackend emulated{EmulatorOptions{}};
   VulkanBackend vulkan{TestDevice(StagingPolicy::kNever)};
-  std::vector<Image> images;
-  std::vector<std::uint64_t> cut;
+  std::vector<OwnTableFrames> runs;
   for (Backend* backend : std::initializer_list<Backend*>{&reference, &emulated, &vulkan}) {
-    Image image;
-    std::uint64_t cut_paths = 0;
-    for (std::uint32_t k = 0; k < config.frames; ++k) {
-      FilterConfig frame = config;
-      frame.frame = k;
-      std::optional<PreviousTableView> view;
-      if (k > 0 && backend->LastExactResult()) {
-        view.emplace(frame, ParamsOf(frame, scene), *backend->LastExactResult());
-      } else if (k > 0) {
-        view.emplace(frame, ParamsOf(frame, scene), backend->LastHashedRun()->table);
-      }
-      const TraceResult traced = TraceRecords(scene, Trace(k), {}, nullptr, view ? &*view : nullptr);
-      cut_paths += traced.stats.cut;
-      image = backend->FilterFrame(traced.batch, frame);
-    }
-    images.push_back(image);
-    cut.push_back(cut_paths);
+    runs.push_back(FilterDecidingByOwnTable(*backend, scene, config, [](std::uint32_t k) { return Trace(k); }));
   }
-  EXPECT_GT(cut[0], 0u);
-  EXPECT_EQ(cut[1], cut[0]);
-  EXPECT_EQ(cut[2], cut[0]);
-  EXPECT_EQ(images[1].pixels, images[0].pixels) << "emulated";
-  EXPECT_EQ(images[2].pixels, images[0].pixels) << "vulkan";
-  std::printf("%llu paths cut over 3 frames on every backend\n", (unsigned long long)cut[0]);
+  EXPECT_GT(runs[0].cut, 0u);
+  EXPECT_EQ(runs[1].cut, runs[0].cut);
+  EXPECT_EQ(runs[2].cut, runs[0].cut);
+  EXPECT_EQ(runs[1].image.pixels, runs[0].image.pixels) << "emulated";
+  EXPECT_EQ(runs[2].image.pixels, runs[0].image.pixels) << "vulkan";
+  std::printf("%llu paths cut over 3 frames on every backend\n", (unsigned long long)runs[0].cut);
 }
 
 }  // namespace

@@ -36,6 +36,7 @@
 #include "core/footprint.h"
 #include "core/previous_table_view.h"
 #include "emulated/emulated_backend.h"
+#include "property_tests/own_table_frames.h"
 #include "property_tests/vulkan_test_devices.h"
 #include "reference/reference_backend.h"
 #include "reference/reference_filter.h"
@@ -267,36 +268,16 @@ TEST(Survival, EachBackendDecidingByItsOwnTableMakesTheSameImage) {
   ReferenceBackend reference;
   EmulatedBackend emulated{EmulatorOptions{}};
   VulkanBackend vulkan{TestDevice(StagingPolicy::kNever)};
-  std::vector<Image> images;
-  std::vector<std::uint64_t> culled;
+  std::vector<OwnTableFrames> runs;
   for (Backend* backend : std::initializer_list<Backend*>{&reference, &emulated, &vulkan}) {
-    Image image;
-    std::uint64_t culled_paths = 0;
-    for (std::uint32_t k = 0; k < config.frames; ++k) {
-      FilterConfig frame = config;
-      frame.frame = k;
-      std::optional<PreviousTableView> view;
-      const double fov = scene.camera.fov_y_degrees * 3.14159265358979323846 / 180.0;
-      const KeyParams params =
-          MakeKeyParams(frame, FootprintScale(frame.filter_width_px, fov, kSize), kSize * kSize * kSpp);
-      if (k > 0 && backend->LastExactResult()) {
-        view.emplace(frame, params, *backend->LastExactResult());
-      } else if (k > 0) {
-        view.emplace(frame, params, backend->LastHashedRun()->table);
-      }
-      const TraceResult traced = TraceRecords(scene, Trace(k), {}, nullptr, view ? &*view : nullptr);
-      culled_paths += traced.stats.culled;
-      image = backend->FilterFrame(traced.batch, frame);
-    }
-    images.push_back(image);
-    culled.push_back(culled_paths);
+    runs.push_back(FilterDecidingByOwnTable(*backend, scene, config, [](std::uint32_t k) { return Trace(k); }));
   }
-  EXPECT_GT(culled[0], 0u);
-  EXPECT_EQ(culled[1], culled[0]);
-  EXPECT_EQ(culled[2], culled[0]);
-  EXPECT_EQ(images[1].pixels, images[0].pixels) << "emulated";
-  EXPECT_EQ(images[2].pixels, images[0].pixels) << "vulkan";
-  std::printf("%llu paths culled over 3 frames on every backend\n", (unsigned long long)culled[0]);
+  EXPECT_GT(runs[0].culled, 0u);
+  EXPECT_EQ(runs[1].culled, runs[0].culled);
+  EXPECT_EQ(runs[2].culled, runs[0].culled);
+  EXPECT_EQ(runs[1].image.pixels, runs[0].image.pixels) << "emulated";
+  EXPECT_EQ(runs[2].image.pixels, runs[0].image.pixels) << "vulkan";
+  std::printf("%llu paths culled over 3 frames on every backend\n", (unsigned long long)runs[0].culled);
 }
 
 // Effect planning: forced on a sequence's first frame, survival reads no table, every path survives with p = 1 and
