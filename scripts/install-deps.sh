@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libtinyobjloader-dev libcli11-dev libnanoflann-dev
-  libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev
+  libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev libboost-math-dev libcgal-dev
   libvulkan-dev glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev mesa-vulkan-drivers vulkan-tools
   libopencv-contrib-dev fonts-dejavu-core libctemplate-dev chromium libxml2-utils libvalijson-dev libyaml-cpp-dev
   slurm-wlm munge

@@ -1,0 +1,70 @@
+#version 450
+// The HashCache's occupancy on the device (core/occupancy.h is the reference's): one invocation per triangle rounds its
+// vertices and tests every cell of its bounding box with core/shared/occupancy.h, setting the bits of the cells it meets
+// by atomicOr, as Roth et al. rasterize triangles into their bit field (§3.1). A second dispatch counts the occupied
+// cells: one popcount per word and one atomic add.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "../../core/shared/prelude.h"
+#include "float_controls.glsl"
+#include "../../core/shared/occupancy.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Triangles { vec4 vertices[]; };  // three per triangle, w unused
+layout(std430, binding = 1) buffer Field { uint words[]; };
+layout(std430, binding = 2) buffer Count { uint64_t occupied; };
+layout(push_constant) uniform Params {
+  int cell_exponent;
+  int origin_x;
+  int origin_y;
+  int origin_z;
+  int resolution_log2;
+  int level;
+  uint triangle_count;
+  uint pass;  // 0: mark the triangles' cells; 1: count the field's words
+};
+
+void Mark(uint t) {
+  OccupancyGrid g;
+  g.cell_exponent = cell_exponent;
+  g.origin_x = origin_x;
+  g.origin_y = origin_y;
+  g.origin_z = origin_z;
+  g.resolution_log2 = resolution_log2;
+  FixedPoint3 v0 = FixedVertex(g, vertices[3u * t].xyz);
+  FixedPoint3 v1 = FixedVertex(g, vertices[3u * t + 1u].xyz);
+  FixedPoint3 v2 = FixedVertex(g, vertices[3u * t + 2u].xyz);
+  int shift = kOccupancyFractionBits + level;
+  int64_t last = (int64_t(1) << (resolution_log2 - level)) - int64_t(1);
+  int field_log2 = max(resolution_log2 - level, kMinOccupancyResolutionLog2);
+  // The cells whose closed boxes meet the bounding box: i 2^s <= max and (i + 1) 2^s >= min.
+  int x0 = int(clamp((FixedMin3(v0.x, v1.x, v2.x) - int64_t(1)) >> shift, int64_t(0), last));
+  int y0 = int(clamp((FixedMin3(v0.y, v1.y, v2.y) - int64_t(1)) >> shift, int64_t(0), last));
+  int z0 = int(clamp((FixedMin3(v0.z, v1.z, v2.z) - int64_t(1)) >> shift, int64_t(0), last));
+  int x1 = int(clamp(FixedMax3(v0.x, v1.x, v2.x) >> shift, int64_t(0), last));
+  int y1 = int(clamp(FixedMax3(v0.y, v1.y, v2.y) >> shift, int64_t(0), last));
+  int z1 = int(clamp(FixedMax3(v0.z, v1.z, v2.z) >> shift, int64_t(0), last));
+  for (int z = z0; z <= z1; ++z) {
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        if (TriangleMeetsCell(v0, v1, v2, x, y, z, level)) {
+          atomicOr(words[OccupancyWord(x, y, z, field_log2)], 1u << OccupancyBit(x, y, z));
+        }
+      }
+    }
+  }
+}
+
+void main() {
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  if (pass == 0u) {
+    for (uint t = gl_GlobalInvocationID.x; t < triangle_count; t += stride) Mark(t);
+  } else {
+    uint n = OccupancyWords(max(resolution_log2 - level, kMinOccupancyResolutionLog2));
+    for (uint w = gl_GlobalInvocationID.x; w < n; w += stride) {
+      uint bits = uint(bitCount(words[w]));
+      if (bits != 0u) atomicAdd(occupied, uint64_t(bits));
+    }
+  }
+}
