@@ -65,7 +65,7 @@ shared::OccupancyGrid GridOver(std::span<const OccupancyTriangle> triangles, int
 OccupancyLevel::OccupancyLevel(const shared::OccupancyGrid& grid, int level)
     : grid_(grid),
       level_(level),
-      field_log2_(std::max(grid.resolution_log2 - level, shared::kMinOccupancyResolutionLog2)),
+      field_log2_(shared::OccupancyFieldLog2(grid.resolution_log2, level)),
       words_(shared::OccupancyWords(field_log2_), 0u) {}
 
 OccupancyLevel::OccupancyLevel(const shared::OccupancyGrid& grid, int level, std::vector<std::uint32_t> words)
@@ -99,26 +99,15 @@ bool OccupancyLevel::operator==(const OccupancyLevel& other) const {
 OccupancyLevel VoxelizeTriangles(const shared::OccupancyGrid& grid, std::span<const OccupancyTriangle> triangles,
                                  int level) {
   OccupancyLevel field(grid, level);
-  const int shift = shared::kOccupancyFractionBits + level;
-  const std::int64_t last = field.cells_per_axis() - 1;
   for (const OccupancyTriangle& t : triangles) {
     const shared::FixedPoint3 v0 = shared::FixedVertex(grid, t[0]);
     const shared::FixedPoint3 v1 = shared::FixedVertex(grid, t[1]);
     const shared::FixedPoint3 v2 = shared::FixedVertex(grid, t[2]);
-    // The cells whose closed boxes meet the triangle's bounding box: i 2^s <= max and (i + 1) 2^s >= min.
-    std::int64_t from[3], to[3];
-    const std::int64_t lows[3] = {std::min({v0.x, v1.x, v2.x}), std::min({v0.y, v1.y, v2.y}),
-                                  std::min({v0.z, v1.z, v2.z})};
-    const std::int64_t highs[3] = {std::max({v0.x, v1.x, v2.x}), std::max({v0.y, v1.y, v2.y}),
-                                   std::max({v0.z, v1.z, v2.z})};
-    for (int a = 0; a < 3; ++a) {
-      from[a] = std::clamp<std::int64_t>((lows[a] - 1) >> shift, 0, last);
-      to[a] = std::clamp<std::int64_t>(highs[a] >> shift, 0, last);
-    }
-    for (std::int64_t z = from[2]; z <= to[2]; ++z) {
-      for (std::int64_t y = from[1]; y <= to[1]; ++y) {
-        for (std::int64_t x = from[0]; x <= to[0]; ++x) {
-          if (shared::TriangleMeetsCell(v0, v1, v2, int(x), int(y), int(z), level)) field.Mark(int(x), int(y), int(z));
+    const shared::CellRange r = shared::TriangleCellRange(v0, v1, v2, level, grid.resolution_log2);
+    for (int z = r.z0; z <= r.z1; ++z) {
+      for (int y = r.y0; y <= r.y1; ++y) {
+        for (int x = r.x0; x <= r.x1; ++x) {
+          if (shared::TriangleMeetsCell(v0, v1, v2, x, y, z, level)) field.Mark(x, y, z);
         }
       }
     }
@@ -129,8 +118,7 @@ OccupancyLevel VoxelizeTriangles(const shared::OccupancyGrid& grid, std::span<co
 OccupancyLevel Coarsened(const OccupancyLevel& finer) {
   OccupancyLevel coarse(finer.grid(), finer.level() + 1);
   // Word by word, the set bits only: a field is mostly empty.
-  const int blocks_log2 =
-      std::max(finer.grid().resolution_log2 - finer.level(), shared::kMinOccupancyResolutionLog2) - 2;
+  const int blocks_log2 = shared::OccupancyFieldLog2(finer.grid().resolution_log2, finer.level()) - 2;
   const std::uint32_t block_mask = (1u << blocks_log2) - 1u;
   for (std::uint32_t w = 0; w < finer.words().size(); ++w) {
     for (std::uint32_t bits = finer.words()[w]; bits != 0u; bits &= bits - 1u) {

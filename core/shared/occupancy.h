@@ -119,6 +119,40 @@ HPSF_FN bool TriangleMeetsCell(FixedPoint3 v0, FixedPoint3 v1, FixedPoint3 v2, i
   return true;
 }
 
+// The cells of `level` whose closed boxes meet the triangle's bounding box (i 2^s <= max and (i + 1) 2^s >= min, s the
+// level's side in fixed units), clamped to the grid: the cells a triangle tests.
+struct CellRange {
+  int x0;
+  int y0;
+  int z0;
+  int x1;  // inclusive
+  int y1;
+  int z1;
+};
+
+HPSF_FN int FirstCellOf(int64_t low, int shift, int64_t last) {
+  return int(clamp((low - int64_t(1)) >> shift, int64_t(0), last));
+}
+HPSF_FN int LastCellOf(int64_t high, int shift, int64_t last) { return int(clamp(high >> shift, int64_t(0), last)); }
+
+HPSF_FN CellRange TriangleCellRange(FixedPoint3 v0, FixedPoint3 v1, FixedPoint3 v2, int level, int resolution_log2) {
+  int shift = kOccupancyFractionBits + level;
+  int64_t last = (int64_t(1) << (resolution_log2 - level)) - int64_t(1);
+  CellRange r;
+  r.x0 = FirstCellOf(FixedMin3(v0.x, v1.x, v2.x), shift, last);
+  r.y0 = FirstCellOf(FixedMin3(v0.y, v1.y, v2.y), shift, last);
+  r.z0 = FirstCellOf(FixedMin3(v0.z, v1.z, v2.z), shift, last);
+  r.x1 = LastCellOf(FixedMax3(v0.x, v1.x, v2.x), shift, last);
+  r.y1 = LastCellOf(FixedMax3(v0.y, v1.y, v2.y), shift, last);
+  r.z1 = LastCellOf(FixedMax3(v0.z, v1.z, v2.z), shift, last);
+  return r;
+}
+
+// The field of a level holds at least 4 cells per axis: a level of fewer uses the corner of a 4 x 4 x 4 field.
+HPSF_FN int OccupancyFieldLog2(int resolution_log2, int level) {
+  return max(resolution_log2 - level, kMinOccupancyResolutionLog2);
+}
+
 // The word of the bit field that holds cell (cx, cy, cz) of a level of 2^resolution_log2 cells per axis, and its bit:
 // blocks of 4 (x) by 4 (y) by 2 (z) cells, x fastest, then y, then z.
 HPSF_FN uint OccupancyWord(int cx, int cy, int cz, int resolution_log2) {

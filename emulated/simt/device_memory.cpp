@@ -35,6 +35,9 @@ void DeviceMemory::ApplyTo(Word& word, MemoryOp& op) {
     case OpKind::kAtomicMin:
       if (static_cast<Word>(op.value) < old) word = static_cast<Word>(op.value);
       break;
+    case OpKind::kAtomicOr:
+      word = old | static_cast<Word>(op.value);
+      break;
   }
 }
 
@@ -52,6 +55,8 @@ const char* ToString(OpKind kind) {
       return "atomic_cas";
     case OpKind::kAtomicMin:
       return "atomic_min";
+    case OpKind::kAtomicOr:
+      return "atomic_or";
     case OpKind::kAtomicCasWeak:
       return "atomic_cas_weak";
   }
@@ -131,6 +136,8 @@ void DeviceMemory::ApplyConcurrently(MemoryOp& op) {
       return ApplyConcurrently<OpKind::kAtomicCas>(op);
     case OpKind::kAtomicMin:
       return ApplyConcurrently<OpKind::kAtomicMin>(op);
+    case OpKind::kAtomicOr:
+      return ApplyConcurrently<OpKind::kAtomicOr>(op);
     case OpKind::kAtomicCasWeak:
       return ApplyConcurrently<OpKind::kAtomicCasWeak>(op);
   }

@@ -113,6 +113,8 @@ template <OpKind kKind, typename Word>
     Word expected = static_cast<Word>(op.compare);
     ref.compare_exchange_strong(expected, static_cast<Word>(op.value), std::memory_order_relaxed);
     op.result = expected;  // the old value, whether or not the swap happened
+  } else if constexpr (kKind == OpKind::kAtomicOr) {
+    op.result = ref.fetch_or(static_cast<Word>(op.value), std::memory_order_relaxed);
   } else {
     static_assert(kKind == OpKind::kAtomicMin);
     Word old = ref.load(std::memory_order_relaxed);

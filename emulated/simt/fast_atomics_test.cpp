@@ -51,6 +51,23 @@ TEST(FastModeAtomics, FloatAddsOnOneWordLoseNothing) {
   EXPECT_EQ(std::bit_cast<float>(memory.Words32(sum)[0]), float(kWorkers * kOpsPerWorker));
 }
 
+// Each worker ors its own bits, one after another, into one word shared by all: every bit arrives.
+TEST(FastModeAtomics, OrsOnOneWordLoseNoBit) {
+  DeviceMemory memory;
+  const std::uint32_t word = memory.Allocate32("word", 1);
+  std::vector<std::thread> workers;
+  for (std::uint32_t w = 0; w < kWorkers; ++w) {
+    workers.emplace_back([&, w] {
+      for (std::uint32_t bit = w; bit < 32; bit += kWorkers) {
+        MemoryOp m{OpKind::kAtomicOr, {word, 0}, std::uint64_t(1) << bit};
+        memory.ApplyConcurrently(m);
+      }
+    });
+  }
+  for (std::thread& t : workers) t.join();
+  EXPECT_EQ(memory.Words32(word)[0], 0xFFFFFFFFu);
+}
+
 TEST(FastModeAtomics, CompareAndSwapIncrementsLoseNothing) {
   DeviceMemory memory;
   const std::uint32_t counter = memory.Allocate64("counter", 1);

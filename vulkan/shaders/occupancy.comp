@@ -35,19 +35,11 @@ void Mark(uint t) {
   FixedPoint3 v0 = FixedVertex(g, vertices[3u * t].xyz);
   FixedPoint3 v1 = FixedVertex(g, vertices[3u * t + 1u].xyz);
   FixedPoint3 v2 = FixedVertex(g, vertices[3u * t + 2u].xyz);
-  int shift = kOccupancyFractionBits + level;
-  int64_t last = (int64_t(1) << (resolution_log2 - level)) - int64_t(1);
-  int field_log2 = max(resolution_log2 - level, kMinOccupancyResolutionLog2);
-  // The cells whose closed boxes meet the bounding box: i 2^s <= max and (i + 1) 2^s >= min.
-  int x0 = int(clamp((FixedMin3(v0.x, v1.x, v2.x) - int64_t(1)) >> shift, int64_t(0), last));
-  int y0 = int(clamp((FixedMin3(v0.y, v1.y, v2.y) - int64_t(1)) >> shift, int64_t(0), last));
-  int z0 = int(clamp((FixedMin3(v0.z, v1.z, v2.z) - int64_t(1)) >> shift, int64_t(0), last));
-  int x1 = int(clamp(FixedMax3(v0.x, v1.x, v2.x) >> shift, int64_t(0), last));
-  int y1 = int(clamp(FixedMax3(v0.y, v1.y, v2.y) >> shift, int64_t(0), last));
-  int z1 = int(clamp(FixedMax3(v0.z, v1.z, v2.z) >> shift, int64_t(0), last));
-  for (int z = z0; z <= z1; ++z) {
-    for (int y = y0; y <= y1; ++y) {
-      for (int x = x0; x <= x1; ++x) {
+  CellRange r = TriangleCellRange(v0, v1, v2, level, resolution_log2);
+  int field_log2 = OccupancyFieldLog2(resolution_log2, level);
+  for (int z = r.z0; z <= r.z1; ++z) {
+    for (int y = r.y0; y <= r.y1; ++y) {
+      for (int x = r.x0; x <= r.x1; ++x) {
         if (TriangleMeetsCell(v0, v1, v2, x, y, z, level)) {
           atomicOr(words[OccupancyWord(x, y, z, field_log2)], 1u << OccupancyBit(x, y, z));
         }
@@ -61,7 +53,7 @@ void main() {
   if (pass == 0u) {
     for (uint t = gl_GlobalInvocationID.x; t < triangle_count; t += stride) Mark(t);
   } else {
-    uint n = OccupancyWords(max(resolution_log2 - level, kMinOccupancyResolutionLog2));
+    uint n = OccupancyWords(OccupancyFieldLog2(resolution_log2, level));
     for (uint w = gl_GlobalInvocationID.x; w < n; w += stride) {
       uint bits = uint(bitCount(words[w]));
       if (bits != 0u) atomicAdd(occupied, uint64_t(bits));
