@@ -15,14 +15,21 @@ std::optional<std::uint32_t> CuckooMap::Find(std::uint32_t key) const {
   return std::nullopt;
 }
 
+std::uint32_t CuckooMaxChain(std::size_t keys, const CuckooBuildOptions& options) {
+  return options.max_chain ? options.max_chain
+                           : 7u * std::uint32_t(std::bit_width(std::max<std::size_t>(keys, 1))) + 16u;
+}
+
+std::uint32_t CuckooSlots(std::size_t keys, double space) {
+  return std::max<std::uint32_t>(std::uint32_t(std::ceil(space * double(keys))), 1u);
+}
+
 CuckooBuild BuildCuckooMap(std::span<const std::uint32_t> keys, const CuckooBuildOptions& options) {
-  const std::uint32_t max_chain = options.max_chain
-                                      ? options.max_chain
-                                      : 7u * std::uint32_t(std::bit_width(std::max<std::size_t>(keys.size(), 1))) + 16u;
+  const std::uint32_t max_chain = CuckooMaxChain(keys.size(), options);
   CuckooBuild build;
   double space = options.space;
   for (build.attempts = 1; build.attempts <= options.max_attempts; ++build.attempts, space *= options.growth) {
-    const auto size = std::max<std::uint32_t>(std::uint32_t(std::ceil(space * double(keys.size()))), 1u);
+    const std::uint32_t size = CuckooSlots(keys.size(), space);
     CuckooMap& map = build.map;
     map.params = shared::CuckooFunctions(options.seed, options.level, build.attempts, size, options.functions);
     map.slots.assign(size, shared::kCuckooEmpty);

@@ -43,6 +43,11 @@ struct CuckooBuild {
   std::uint32_t longest_chain = 0;  // evictions of the successful attempt's longest insert
 };
 
+// The evictions an insert may make before it fails: options.max_chain, or 7 log2(keys) + 16 where that is 0.
+std::uint32_t CuckooMaxChain(std::size_t keys, const CuckooBuildOptions& options);
+// The slots of an attempt at `space` slots a key: ceil(space keys), at least 1.
+std::uint32_t CuckooSlots(std::size_t keys, double space);
+
 // The keys must be distinct and below kCuckooEmpty.
 CuckooBuild BuildCuckooMap(std::span<const std::uint32_t> keys, const CuckooBuildOptions& options);
 

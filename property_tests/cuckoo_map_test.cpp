@@ -1,7 +1,8 @@
 // The HashCache's cuckoo hash maps (core/cuckoo_map.h, core/shared/cuckoo.h), label `hashcache`: the reference's
 // construction at Roth's space factor 1.1 with its retry rule, the checker's invariants on every map it builds, the
 // Cornell box's levels, and the broken insert that drops the key it holds at the chain's limit, which the checker
-// catches where the correct insert reports its failure and retries.
+// catches where the correct insert reports its failure and retries. The emulator's construction (one thread per key,
+// atomic exchanges) holds the invariants under every schedule; an exchange written as a load and a store does not.
 
 #include "core/cuckoo_map.h"
 
@@ -16,6 +17,8 @@
 #include <gtest/gtest.h>
 
 #include "core/shared/rng.h"
+#include "emulated/cuckoo_kernels.h"
+#include "property_tests/racing_schedules.h"
 #include "tracer/scene_file.h"
 
 namespace hpsf::testing {
@@ -150,6 +153,74 @@ TEST(CuckooMap, TheCornellBoxsLevels) {
                 level->cells_per_axis(), double(keys.size()) / cells, 24.0 * double(keys.size()) / 1024.0,
                 4.0 * double(build.map.slots.size()) / 1024.0, build.attempts);
   }
+}
+
+// The emulator's construction of 2,000 keys with four functions at 1.1, in fast mode on one and two workers and under
+// the 40 faithful schedules (random and PCT, warps of 4): built, and the checker finds nothing, whatever slots the
+// schedule left the keys in. The exchange written as a load and a store loses or duplicates keys under some
+// schedules; the insert that drops its key at the chain's limit (two functions, where chains reach it) "builds" and
+// loses keys.
+TEST(CuckooMap, TheEmulatorsConstructionHoldsTheInvariantsUnderEverySchedule) {
+  const std::vector<std::uint32_t> keys = RandomKeys(2000, 6);
+  std::vector<EmulatorOptions> schedules = RacingSchedules();
+  EmulatorOptions two;
+  two.threads = 2;
+  schedules.push_back(two);
+  int broken_caught = 0, faithful = 0, differs_from_reference = 0;
+  const CuckooBuild reference = BuildCuckooMap(keys, {});
+  for (const EmulatorOptions& options : schedules) {
+    const std::string name =
+        options.mode == simt::Mode::kFast ? "fast, " + std::to_string(options.threads) + " threads" : options.schedule;
+    const CuckooBuild build = BuildCuckooMapEmulated(keys, {}, options);
+    ASSERT_TRUE(build.built) << name;
+    EXPECT_EQ(CheckCuckooMap(build.map, keys), std::vector<std::string>{}) << name;
+    if (options.mode == simt::Mode::kFast) continue;  // the broken variant on workers is timing's, not a seed's
+    ++faithful;
+    differs_from_reference += build.map.slots != reference.map.slots;
+    const CuckooBuild broken =
+        BuildCuckooMapEmulated(keys, {.max_attempts = 1}, options, CuckooInsertDefect::kLoadThenStore);
+    const std::vector<std::string> problems = CheckCuckooMap(broken.map, keys);
+    if (!problems.empty() && broken_caught++ == 0) {
+      std::printf("%s, the load-and-store exchange: %zu problems, the first: %s\n", name.c_str(), problems.size(),
+                  problems[0].c_str());
+    }
+  }
+  std::printf(
+      "the emulator's maps: %d of %d faithful schedules place the keys other than the reference; the "
+      "load-and-store exchange caught under %d of them\n",
+      differs_from_reference, faithful, broken_caught);
+  EXPECT_GT(broken_caught, 0);
+  const CuckooBuild dropped = BuildCuckooMapEmulated(RandomKeys(2000, 1), {.functions = 2, .max_attempts = 1},
+                                                     EmulatorOptions{}, CuckooInsertDefect::kDropAtLimit);
+  ASSERT_TRUE(dropped.built);
+  EXPECT_FALSE(CheckCuckooMap(dropped.map, RandomKeys(2000, 1)).empty());
+  EXPECT_FALSE(
+      BuildCuckooMapEmulated(RandomKeys(2000, 1), {.functions = 2, .max_attempts = 1}, EmulatorOptions{}).built);
+}
+
+// Every order of two inserts whose first candidates are one slot, enumerated: the atomic exchange places both under
+// every order; the load and the store lose one where both loads come before either store.
+TEST(CuckooMap, EveryOrderOfTwoInsertsIntoOneSlotIsExplored) {
+  const shared::CuckooParams params = shared::CuckooFunctions(1, 0, 1, 3, 4);  // attempt 1 of two keys at 1.1
+  std::vector<std::uint32_t> keys = {0};
+  for (std::uint32_t k = 1; keys.size() < 2; ++k) {
+    if (shared::CuckooSlot(params, 0, k) == shared::CuckooSlot(params, 0, keys[0])) keys.push_back(k);
+  }
+  ASSERT_EQ(CuckooSlots(2, 1.1), 3u);
+  const auto explore = [&](CuckooInsertDefect defect) {
+    return ExploreEveryOrder(EmulatorOptions{}, [&](const EmulatorOptions& each) {
+      return !CheckCuckooMap(BuildCuckooMapEmulated(keys, {.max_attempts = 1}, each, defect).map, keys).empty();
+    });
+  };
+  const Exploration correct = explore(CuckooInsertDefect::kNone);
+  const Exploration racing = explore(CuckooInsertDefect::kLoadThenStore);
+  std::printf(
+      "two inserts into one slot, exhaustive: the exchange %llu orders, all hold; the load and store fails "
+      "%llu of %llu\n",
+      (unsigned long long)correct.schedules, (unsigned long long)racing.caught, (unsigned long long)racing.schedules);
+  EXPECT_EQ(correct.caught, 0u);
+  EXPECT_GT(racing.caught, 0u);
+  EXPECT_LT(racing.caught, racing.schedules);
 }
 
 }  // namespace

@@ -38,6 +38,9 @@ void DeviceMemory::ApplyTo(Word& word, MemoryOp& op) {
     case OpKind::kAtomicOr:
       word = old | static_cast<Word>(op.value);
       break;
+    case OpKind::kAtomicExchange:
+      word = static_cast<Word>(op.value);
+      break;
   }
 }
 
@@ -57,6 +60,8 @@ const char* ToString(OpKind kind) {
       return "atomic_min";
     case OpKind::kAtomicOr:
       return "atomic_or";
+    case OpKind::kAtomicExchange:
+      return "atomic_exchange";
     case OpKind::kAtomicCasWeak:
       return "atomic_cas_weak";
   }
@@ -138,6 +143,8 @@ void DeviceMemory::ApplyConcurrently(MemoryOp& op) {
       return ApplyConcurrently<OpKind::kAtomicMin>(op);
     case OpKind::kAtomicOr:
       return ApplyConcurrently<OpKind::kAtomicOr>(op);
+    case OpKind::kAtomicExchange:
+      return ApplyConcurrently<OpKind::kAtomicExchange>(op);
     case OpKind::kAtomicCasWeak:
       return ApplyConcurrently<OpKind::kAtomicCasWeak>(op);
   }

@@ -115,6 +115,8 @@ template <OpKind kKind, typename Word>
     op.result = expected;  // the old value, whether or not the swap happened
   } else if constexpr (kKind == OpKind::kAtomicOr) {
     op.result = ref.fetch_or(static_cast<Word>(op.value), std::memory_order_relaxed);
+  } else if constexpr (kKind == OpKind::kAtomicExchange) {
+    op.result = ref.exchange(static_cast<Word>(op.value), std::memory_order_relaxed);
   } else {
     static_assert(kKind == OpKind::kAtomicMin);
     Word old = ref.load(std::memory_order_relaxed);

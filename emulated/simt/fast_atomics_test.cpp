@@ -2,6 +2,7 @@
 // word through DeviceMemory::ApplyConcurrently in a tight loop, as fast mode does from all cores. The final words
 // must be exact. Measured on a 2-core machine with each atomic replaced by its racy form: a load-then-store add
 // (integer or float) failed 5 runs of 5, a load-compare-store CAS 8 of 8 (with 2 x 2^22 tries).
+#include <algorithm>
 #include <bit>
 #include <thread>
 #include <vector>
@@ -66,6 +67,30 @@ TEST(FastModeAtomics, OrsOnOneWordLoseNoBit) {
   }
   for (std::thread& t : workers) t.join();
   EXPECT_EQ(memory.Words32(word)[0], 0xFFFFFFFFu);
+}
+
+// Exchanges pass tokens through one word: every token put in comes out exactly once (or stays in the word).
+TEST(FastModeAtomics, ExchangesLoseAndDuplicateNothing) {
+  DeviceMemory memory;
+  const std::uint32_t word = memory.Allocate64("word", 1);
+  std::vector<std::vector<std::uint64_t>> out(kWorkers);
+  std::vector<std::thread> workers;
+  for (std::uint32_t w = 0; w < kWorkers; ++w) {
+    workers.emplace_back([&, w] {
+      for (std::uint64_t i = 0; i < kOpsPerWorker / 64; ++i) {
+        MemoryOp m{OpKind::kAtomicExchange, {word, 0}, (std::uint64_t(w) << 32) | (i + 1)};
+        memory.ApplyConcurrently(m);
+        out[w].push_back(m.result);
+      }
+    });
+  }
+  for (std::thread& t : workers) t.join();
+  std::vector<std::uint64_t> all = {memory.Words64(word)[0]};
+  for (const auto& o : out) all.insert(all.end(), o.begin(), o.end());
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(all[0], 0u);  // the word's first value came out once
+  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
+  EXPECT_EQ(all.size(), kWorkers * (kOpsPerWorker / 64) + 1);
 }
 
 TEST(FastModeAtomics, CompareAndSwapIncrementsLoseNothing) {

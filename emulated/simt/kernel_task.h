@@ -108,6 +108,9 @@ class ThreadContext {
   Operation<OpKind::kAtomicOr> AtomicOr(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
     return {*this, {buffer, index}, value};
   }
+  Operation<OpKind::kAtomicExchange> AtomicExchange(std::uint32_t buffer, std::uint64_t index, std::uint64_t value) {
+    return {*this, {buffer, index}, value};
+  }
 
   // A weak compare-and-swap's outcome: the old value, and whether it wrote. A spurious failure reads the word equal
   // to `compare` and still did not write: a kernel that takes the old value alone for its verdict is wrong.

@@ -16,6 +16,7 @@ enum class OpKind : std::uint8_t {
   kAtomicCas,       // compare-and-swap: writes `value` if the word equals `compare`; returns the old value
   kAtomicMin,       // unsigned minimum, returns the old value
   kAtomicOr,        // bitwise or, returns the old value
+  kAtomicExchange,  // writes `value`, returns the old value
   // Weak compare-and-swap (WGSL's atomicCompareExchangeWeak, C++'s compare_exchange_weak): as kAtomicCas, but it
   // may fail spuriously, writing nothing where the word equals `compare`; `spurious` says it did. Faithful mode fails
   // it as the launch's WeakCasPolicy decides; fast mode runs the CPU's, which on x86 never fails spuriously.
