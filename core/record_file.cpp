@@ -187,7 +187,8 @@ std::vector<RecordBatch> ReadRecordFrames(const std::string& path) {
     if (header.record_count > (1ull << 31)) {
       throw fail(at + 40, "record count " + std::to_string(header.record_count) + ", at most 2^31 a frame");
     }
-    if (header.version == 3) {
+    // Versions 3 and 4 hold the deeper and scattered counts: bounded before any size is computed from them.
+    if (header.version >= 3) {
       if (header.deeper_count > (1ull << 31) - header.record_count) {
         throw fail(at + 56, "deeper record count " + std::to_string(header.deeper_count) +
                                 ", at most 2^31 records a frame with the others");

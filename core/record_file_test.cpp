@@ -229,6 +229,14 @@ TEST(RecordFile, HoldsOwnLightsInVersionFour) {
   EXPECT_NE(ErrorOf(path).find("byte 72: own light count " + std::to_string(n - 1) + ", expected one per record"),
             std::string::npos)
       << ErrorOf(path);
+  // Version 4 holds version 3's counts too, bounded as there before any size is computed from them (fuzz_hpsfv found a
+  // deeper count near 2^64 whose block size wrapped, and a vector of that length).
+  WriteRecordFile(path, frames);
+  Poke64(path, 56, ~std::uint64_t(0) - 5);
+  EXPECT_NE(ErrorOf(path).find("byte 56: deeper record count"), std::string::npos) << ErrorOf(path);
+  WriteRecordFile(path, frames);
+  Poke64(path, 64, 3);
+  EXPECT_NE(ErrorOf(path).find("byte 64: scattered vertex count 3"), std::string::npos) << ErrorOf(path);
   WriteRecordFile(path, frames);
   {
     std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
