@@ -64,15 +64,8 @@ CuckooBuild BuildCuckooMap(std::span<const std::uint32_t> keys, const CuckooBuil
 
 std::vector<std::uint32_t> OccupiedKeys(const OccupancyLevel& level) {
   std::vector<std::uint32_t> keys;
-  const int n = level.cells_per_axis();
   const int cells_log2 = level.grid().resolution_log2 - level.level();
-  for (int z = 0; z < n; ++z) {
-    for (int y = 0; y < n; ++y) {
-      for (int x = 0; x < n; ++x) {
-        if (level.Occupied(x, y, z)) keys.push_back(shared::CuckooKey(x, y, z, cells_log2));
-      }
-    }
-  }
+  level.ForEachOccupied([&](int x, int y, int z) { keys.push_back(shared::CuckooKey(x, y, z, cells_log2)); });
   return keys;
 }
 

@@ -117,18 +117,7 @@ OccupancyLevel VoxelizeTriangles(const shared::OccupancyGrid& grid, std::span<co
 
 OccupancyLevel Coarsened(const OccupancyLevel& finer) {
   OccupancyLevel coarse(finer.grid(), finer.level() + 1);
-  // Word by word, the set bits only: a field is mostly empty.
-  const int blocks_log2 = shared::OccupancyFieldLog2(finer.grid().resolution_log2, finer.level()) - 2;
-  const std::uint32_t block_mask = (1u << blocks_log2) - 1u;
-  for (std::uint32_t w = 0; w < finer.words().size(); ++w) {
-    for (std::uint32_t bits = finer.words()[w]; bits != 0u; bits &= bits - 1u) {
-      const int bit = std::countr_zero(bits);
-      const int x = int(w & block_mask) * 4 + (bit & 3);
-      const int y = int((w >> blocks_log2) & block_mask) * 4 + ((bit >> 2) & 3);
-      const int z = int(w >> (2 * blocks_log2)) * 2 + (bit >> 4);
-      coarse.Mark(x >> 1, y >> 1, z >> 1);
-    }
-  }
+  finer.ForEachOccupied([&](int x, int y, int z) { coarse.Mark(x >> 1, y >> 1, z >> 1); });
   return coarse;
 }
 

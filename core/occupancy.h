@@ -5,6 +5,7 @@
 #define HPSF_CORE_OCCUPANCY_H
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -40,6 +41,19 @@ class OccupancyLevel {
   void Mark(int x, int y, int z);
   std::uint64_t Count() const;  // the occupied cells: the words' popcounts summed
   const std::vector<std::uint32_t>& words() const { return words_; }
+  // The occupied cells, word by word and bit by bit (a field is mostly empty): cell(x, y, z) for each.
+  template <typename Cell>
+  void ForEachOccupied(Cell cell) const {
+    const int blocks_log2 = field_log2_ - 2;
+    const std::uint32_t block_mask = (1u << blocks_log2) - 1u;
+    for (std::uint32_t w = 0; w < words_.size(); ++w) {
+      for (std::uint32_t bits = words_[w]; bits != 0u; bits &= bits - 1u) {
+        const int bit = std::countr_zero(bits);
+        cell(int(w & block_mask) * 4 + (bit & 3), int((w >> blocks_log2) & block_mask) * 4 + ((bit >> 2) & 3),
+             int(w >> (2 * blocks_log2)) * 2 + (bit >> 4));
+      }
+    }
+  }
   bool operator==(const OccupancyLevel& other) const;  // the same grid, level and cells
 
  private:

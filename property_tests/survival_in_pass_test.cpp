@@ -43,11 +43,7 @@ std::vector<glm::vec3> LightsOf(const RecordBatch& batch) {
 
 CrosscheckReport Judge(const std::vector<RecordBatch>& frames, const FilterConfig& config,
                        const EmulatorOptions& emulator) {
-  EmulatedPair pair(emulator, Defect::kNone);
-  const JudgedBackend judged = pair.Judged();
-  std::vector<std::uint32_t> numbers;
-  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
-  return JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+  return CrosscheckEmulatedSequence(frames, config, emulator);
 }
 
 // The Cornell box's frames at 8 x 8 pixels and 4 samples, as the fused team traces them (`fused`) and as it would add

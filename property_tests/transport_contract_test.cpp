@@ -23,11 +23,7 @@ namespace {
 
 CrosscheckReport Judge(const std::vector<RecordBatch>& frames, const FilterConfig& config,
                        const EmulatorOptions& emulator) {
-  EmulatedPair pair(emulator, Defect::kNone);
-  const JudgedBackend judged = pair.Judged();
-  std::vector<std::uint32_t> numbers;
-  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
-  return JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+  return CrosscheckEmulatedSequence(frames, config, emulator);
 }
 
 EmulatorOptions Faithful() {

@@ -380,6 +380,15 @@ CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig
                        config, std::span<const JudgedBackend>(&judged, 1));
 }
 
+CrosscheckReport CrosscheckEmulatedSequence(std::span<const RecordBatch> frames, const FilterConfig& config,
+                                            const EmulatorOptions& emulator) {
+  EmulatedPair emulated(emulator, Defect::kNone);
+  const JudgedBackend judged = emulated.Judged();
+  std::vector<std::uint32_t> numbers;
+  for (const RecordBatch& batch : frames) numbers.push_back(batch.frame);
+  return JudgeSequence(frames, numbers, config, std::span<const JudgedBackend>(&judged, 1));
+}
+
 bool CrosscheckReport::Passed() const {
   return std::all_of(levels.begin(), levels.end(), [](const LevelVerdict& v) { return !v.applicable || v.passed; });
 }

@@ -58,6 +58,10 @@ CrosscheckReport JudgeSequence(std::span<const RecordBatch> frames, std::span<co
 CrosscheckReport CrosscheckEmulated(const RecordBatch& batch, const FilterConfig& config,
                                     const EmulatorOptions& emulator, Defect defect = Defect::kNone);
 
+// The same over a sequence: each frame judged as its own batch's frame number.
+CrosscheckReport CrosscheckEmulatedSequence(std::span<const RecordBatch> frames, const FilterConfig& config,
+                                            const EmulatorOptions& emulator);
+
 }  // namespace hpsf
 
 #endif  // HPSF_VERIFIER_CONTRACT_CONTRACT_LEVELS_H
