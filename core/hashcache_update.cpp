@@ -1,0 +1,143 @@
+#include "core/hashcache_update.h"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+
+#include "core/format.h"
+#include "core/shared/fixed_point.h"
+#include "core/shared/hashcache_cell.h"
+
+namespace hpsf {
+namespace {
+
+struct Element {
+  std::uint32_t key = 0;     // the cell at the current level
+  std::uint32_t side = 0;    // a front word: the sample's normal, or the finer cell's side
+  std::uint32_t origin = 0;  // the sample's index, or the finer segment's word
+  std::array<std::uint64_t, 3> fixed{};
+  std::array<float, 3> light{};
+  std::uint64_t count = 1;
+  std::uint32_t slot = 0;   // located
+  std::uint64_t order = 0;  // segment word << 32 | origin, once claimed
+};
+
+std::vector<Element> SampleElements(const HashCache& cache, std::span<const HashCacheSample> samples,
+                                    HashCacheUpdateReport& report) {
+  const float scale = SumScale(cache.accumulation, cache.fixed_point_bits);
+  const int cells_log2 = cache.grid.resolution_log2;
+  std::vector<Element> elements;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const HashCacheSample& s = samples[i];
+    const glm::ivec3 cell = shared::PointCell(cache.grid, s.position);
+    if (cell.x < 0) {
+      ++report.missed;
+      continue;
+    }
+    Element e;
+    e.key = shared::CuckooKey(cell.x, cell.y, cell.z, cells_log2);
+    e.side = shared::FrontWord(s.normal);
+    e.origin = std::uint32_t(i);
+    for (int c = 0; c < 3; ++c) {
+      e.light[c] = s.light[c];
+      if (cache.accumulation == Accumulation::kFixed64) e.fixed[c] = shared::ToFixedPoint(s.light[c], scale);
+    }
+    elements.push_back(e);
+  }
+  return elements;
+}
+
+std::string Where(const HashCacheLevel& level, std::uint32_t slot, std::uint32_t key) {
+  return "level " + std::to_string(level.level) + ", slot " + std::to_string(slot) + " (cell " + std::to_string(key) +
+         ")";
+}
+
+}  // namespace
+
+HashCacheUpdateReport UpdateHashCache(HashCache& cache, std::span<const HashCacheSample> samples,
+                                      const std::vector<std::vector<std::uint32_t>>* claims) {
+  HashCacheUpdateReport report;
+  std::vector<Element> elements = SampleElements(cache, samples, report);
+  for (HashCacheLevel& level : cache.levels) {
+    HashCacheData& data = level.data;
+    // 1. Locate and claim. A claim given is legitimate where some element reaching the cell has it as its side.
+    std::vector<Element> located;
+    std::vector<std::uint8_t> claimed_now(data.front.size(), 0), claim_seen(data.front.size(), 0);
+    for (Element& e : elements) {
+      const std::optional<std::uint32_t> slot = level.map.Find(e.key);
+      if (!slot) {
+        if (level.level == 0) {
+          ++report.missed;
+        } else {
+          report.problems.push_back("level " + std::to_string(level.level) + ": cell " + std::to_string(e.key) +
+                                    " (the parent of a cell updated) is not in the map");
+        }
+        continue;
+      }
+      e.slot = *slot;
+      std::uint32_t& front = data.front[e.slot];
+      if (front == shared::kFrontUnclaimed) {
+        front = claims ? (*claims)[level.level][e.slot] : e.side;
+        claimed_now[e.slot] = 1;
+        if (front == shared::kFrontUnclaimed) {
+          report.problems.push_back(Where(level, e.slot, e.key) + ": reached but left unclaimed");
+          front = e.side;  // judge the rest of the frame as if it had claimed
+        }
+      }
+      if (claimed_now[e.slot] && e.side == front) claim_seen[e.slot] = 1;
+      const bool back = !shared::FacesFront(e.side, front);
+      e.order = (std::uint64_t(shared::SegmentWord(e.key, back)) << 32) | e.origin;
+      located.push_back(e);
+    }
+    if (claims) {
+      for (std::size_t slot = 0; slot < claimed_now.size(); ++slot) {
+        if (claimed_now[slot] && !claim_seen[slot]) {
+          report.problems.push_back(Where(level, std::uint32_t(slot), level.map.slots[slot]) + ": front " +
+                                    FormatHex(data.front[slot]) + " is the side of no element that reached the cell");
+        }
+      }
+    }
+    // 2. Sort: the order words are distinct, so any sort gives this order.
+    std::sort(located.begin(), located.end(), [](const Element& a, const Element& b) { return a.order < b.order; });
+    // 3 and 4. Reduce each segment in order, update its cell's side once, and pass it up as an element.
+    std::vector<Element> parents;
+    std::uint64_t segments = 0;
+    for (std::size_t head = 0; head < located.size();) {
+      const std::uint32_t word = std::uint32_t(located[head].order >> 32);
+      Element sum = located[head];
+      std::size_t end = head + 1;
+      for (; end < located.size() && std::uint32_t(located[end].order >> 32) == word; ++end) {
+        for (int c = 0; c < 3; ++c) {
+          sum.fixed[c] += located[end].fixed[c];
+          sum.light[c] += located[end].light[c];
+        }
+        sum.count += located[end].count;
+      }
+      const bool back = shared::SegmentBack(word);
+      const std::size_t side = back ? 1 : 0;
+      for (int c = 0; c < 3; ++c) {
+        if (cache.accumulation == Accumulation::kFixed64) {
+          data.fixed_sums[6 * sum.slot + 3 * side + c] += sum.fixed[c];
+        } else {
+          data.float_sums[6 * sum.slot + 3 * side + c] += sum.light[c];
+        }
+      }
+      data.counts[2 * sum.slot + side] += sum.count;
+      ++segments;
+      if (level.cells_log2 > 0) {
+        Element up = sum;
+        up.key = shared::ParentKey(sum.key, level.cells_log2);
+        const std::uint32_t front = data.front[sum.slot];
+        up.side = back ? shared::NegatedFront(front) : front;
+        up.origin = word;
+        parents.push_back(up);
+      }
+      head = end;
+    }
+    report.segments.push_back(segments);
+    elements = std::move(parents);
+  }
+  return report;
+}
+
+}  // namespace hpsf
