@@ -18,7 +18,8 @@
 namespace hpsf {
 
 // One sample to cache: a vertex on the scene's surface, its normal as a record stores it (core/octahedral.h: u in the
-// low 16 bits, v in the high), and the light it carries (Roth's E_j: without the vertex's albedo).
+// low 16 bits, v in the high), and the light it carries (Roth's E_j: without the vertex's albedo; a denormal channel
+// reads as zero on every backend, as on a device that flushes them).
 struct HashCacheSample {
   glm::vec3 position{0.0f};
   std::uint32_t normal = 0;

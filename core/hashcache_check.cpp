@@ -83,7 +83,7 @@ std::vector<std::string> CheckHashCacheSums(const HashCache& cache, std::span<co
         finest.map.Find(shared::CuckooKey(cell.x, cell.y, cell.z, finest.cells_log2));
     if (!slot) continue;
     const std::size_t side = shared::FacesFront(shared::FrontWord(s.normal), finest.data.front[*slot]) ? 0 : 1;
-    for (int c = 0; c < 3; ++c) sums[0][6 * *slot + 3 * side + c] += shared::ToFixedPoint(s.light[c], scale);
+    for (int c = 0; c < 3; ++c) sums[0][6 * *slot + 3 * side + c] += shared::ToFixedPoint(shared::Flush(s.light[c]), scale);
     counts[0][2 * *slot + side] += 1;
   }
   for (std::size_t l = 1; l < cache.levels.size(); ++l) {

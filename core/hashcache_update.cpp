@@ -39,8 +39,8 @@ std::vector<Element> SampleElements(const HashCache& cache, std::span<const Hash
     e.side = shared::FrontWord(s.normal);
     e.origin = std::uint32_t(i);
     for (int c = 0; c < 3; ++c) {
-      e.light[c] = s.light[c];
-      if (cache.accumulation == Accumulation::kFixed64) e.fixed[c] = shared::ToFixedPoint(s.light[c], scale);
+      e.light[c] = shared::Flush(s.light[c]);  // as a device without denormals would read it
+      if (cache.accumulation == Accumulation::kFixed64) e.fixed[c] = shared::ToFixedPoint(e.light[c], scale);
     }
     elements.push_back(e);
   }

@@ -57,8 +57,9 @@ simt::KernelTask HashCacheSampleKernel(simt::ThreadContext& ctx, const HashCache
   co_await ctx.Store(args.in.side, i, shared::FrontWord(s.normal));
   co_await ctx.Store(args.in.origin, i, i);
   for (std::uint32_t c = 0; c < 3; ++c) {
+    const float light = shared::Flush(s.light[c]);
     const std::uint64_t word =
-        args.fixed64 ? shared::ToFixedPoint(s.light[c], args.scale) : std::bit_cast<std::uint32_t>(s.light[c]);
+        args.fixed64 ? shared::ToFixedPoint(light, args.scale) : std::bit_cast<std::uint32_t>(light);
     co_await ctx.Store(args.in.sums, 3 * std::uint64_t(i) + c, word);
   }
   co_await ctx.Store(args.in.count, i, 1);

@@ -1,0 +1,25 @@
+// hashcache_update.comp on a Vulkan device: a frame's sort-and-reduce update of the HashCache (core/hashcache_update.h
+// holds the reference's), one submission a level, every level's data read back into the cache.
+#ifndef HPSF_VULKAN_HASHCACHE_UPDATE_PASS_H
+#define HPSF_VULKAN_HASHCACHE_UPDATE_PASS_H
+
+#include <cstdint>
+#include <span>
+
+#include "core/hashcache.h"
+#include "vulkan/vulkan_device.h"
+
+namespace hpsf {
+
+struct DeviceHashCacheUpdate {
+  std::uint32_t missed = 0;  // samples off the grid or in a cell no triangle occupies
+  std::uint32_t lost = 0;    // elements above the finest level whose cell is not in the map
+};
+
+// `plain_store_claim`: the broken variant, the front claimed by a load and a store.
+DeviceHashCacheUpdate UpdateHashCacheOnDevice(VulkanDevice& device, HashCache& cache,
+                                              std::span<const HashCacheSample> samples, bool plain_store_claim = false);
+
+}  // namespace hpsf
+
+#endif  // HPSF_VULKAN_HASHCACHE_UPDATE_PASS_H
