@@ -16,6 +16,7 @@
 #include <tbb/global_control.h>
 
 #include "core/error.h"
+#include "core/octahedral.h"
 #include "core/parallel_for.h"
 #include "core/path_graph.h"
 #include "core/shared/rng.h"
@@ -130,6 +131,10 @@ class Tracer {
   // The pixel record; with options.scattered also `out`'s.
   Record TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, const PathOutputs& out) const;
 
+  // The HashCache's samples of one camera sample (TraceCacheSamples): appended to `out`.
+  void TraceCacheSamples(std::uint32_t pixel, std::uint32_t sample, const CacheSampling& sampling, TraceStats& stats,
+                         std::vector<HashCacheSample>& out) const;
+
   // A-nHPSF: extends the sample's kept path by one vertex. Writes the kept vertex's record (its next-event estimate
   // and the next vertex's emission) and the vertex it scattered to, or records without a vertex where nothing is
   // kept; `kept` becomes the next vertex where the path goes on below continuation_depth, else invalid.
@@ -161,6 +166,16 @@ class Tracer {
     const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
     return glm::normalize(glm::dvec3(frame.tangent) * (r * std::cos(phi)) +
                           glm::dvec3(frame.bitangent) * (r * std::sin(phi)) + p.normal * z);
+  }
+
+  // The camera ray of a sample: from the camera through the pixel, jittered by the sample's first two dimensions.
+  glm::dvec3 CameraDirection(std::uint32_t pixel, std::uint32_t sample) const {
+    const double px = pixel % options_.width, py = pixel / options_.width;
+    const double aspect = double(options_.width) / double(options_.height);
+    const VertexRandom camera_random = RandomAt(pixel, sample, 0);
+    const double sx = (2.0 * (px + camera_random(kPixelU)) / options_.width - 1.0) * tan_half_fov_ * aspect;
+    const double sy = (1.0 - 2.0 * (py + camera_random(kPixelV)) / options_.height) * tan_half_fov_;
+    return glm::normalize(forward_ + right_ * sx + up_ * sy);
   }
 
   // A kept path's vertex as a record's vertex, keyed as the frame's own vertices are.
@@ -249,13 +264,8 @@ class Tracer {
 };
 
 Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats& stats, const PathOutputs& out) const {
-  const double px = pixel % options_.width, py = pixel / options_.width;
-  const double aspect = double(options_.width) / double(options_.height);
-  const VertexRandom camera_random = RandomAt(pixel, sample, 0);
-  const double sx = (2.0 * (px + camera_random(kPixelU)) / options_.width - 1.0) * tan_half_fov_ * aspect;
-  const double sy = (1.0 - 2.0 * (py + camera_random(kPixelV)) / options_.height) * tan_half_fov_;
   glm::dvec3 origin = scene_.camera.position;
-  glm::dvec3 direction = glm::normalize(forward_ + right_ * sx + up_ * sy);
+  glm::dvec3 direction = CameraDirection(pixel, sample);
   ++stats.camera_rays;
 
   // Before the filter vertex, `weight` is the camera-to-vertex throughput including albedos and `gathered` is
@@ -424,6 +434,60 @@ Record Tracer::TraceSample(std::uint32_t pixel, std::uint32_t sample, TraceStats
   return MakeVertexRecord(chain[0]);
 }
 
+void Tracer::TraceCacheSamples(std::uint32_t pixel, std::uint32_t sample, const CacheSampling& sampling,
+                               TraceStats& stats, std::vector<HashCacheSample>& out) const {
+  glm::dvec3 origin = scene_.camera.position;
+  glm::dvec3 direction = CameraDirection(pixel, sample);
+  ++stats.camera_rays;
+  // Stored vertex i: where it is, its normal (facing the ray that found it), the light it has gathered, and the
+  // throughput from it to the current vertex (the albedos after it; 1 at itself).
+  std::array<SurfacePoint, kMaxCacheStore> stored;
+  std::array<glm::dvec3, kMaxCacheStore> light, weight;
+  std::uint32_t count = 0;
+  std::optional<SurfacePoint> last;
+  const std::uint32_t vertices = sampling.store + sampling.length;
+  // Adds `radiance` arriving from vertex `from` (the emission found there, or a next-event estimate of it) to every
+  // stored vertex within `length` vertices before it.
+  const auto arrives = [&](std::uint32_t from, const glm::dvec3& radiance) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      if (i < from && from - i <= sampling.length) light[i] += weight[i] * radiance;
+    }
+  };
+  for (std::uint32_t bounce = 0; bounce < vertices; ++bounce) {
+    const auto hit = Cast(origin, direction);
+    if (!hit) {
+      arrives(bounce, glm::dvec3(scene_.sky));
+      break;
+    }
+    const SurfacePoint& p = *hit;
+    const VertexRandom random = RandomAt(pixel, sample, bounce);
+    if (p.material->IsEmissive() && bounce > 0) {
+      arrives(bounce, glm::dvec3(p.material->emission) * BounceEmissionWeight(*last, p, direction));
+    }
+    for (std::uint32_t i = 0; i < count; ++i) weight[i] *= glm::dvec3(p.material->albedo);
+    if (bounce < sampling.store) {
+      stored[count] = p;
+      light[count] = glm::dvec3(0.0);
+      weight[count] = glm::dvec3(1.0);
+      ++count;
+    }
+    const bool last_vertex = bounce + 1 >= vertices;
+    if (last_vertex) break;
+    arrives(bounce + 1, DirectLight(p, random, stats));  // the emission of the next vertex, estimated
+    last = p;
+    direction = CosineDirection(p, random);
+    origin = Offset(p);
+    ++stats.bounce_rays;
+  }
+  for (std::uint32_t i = 0; i < count; ++i) {
+    HashCacheSample s;
+    s.position = glm::vec3(stored[i].position);
+    s.normal = PackOctahedral16(glm::vec3(stored[i].normal));
+    s.light = glm::vec3(light[i]);
+    out.push_back(s);
+  }
+}
+
 void Tracer::Continue(std::uint32_t pixel, std::uint32_t sample, ContinuationVertex& kept, TraceStats& stats,
                       Record& deeper, Record& scattered) const {
   const Record none = MakeRecordWithoutVertex(pixel, sample, glm::vec3(0.0f));
@@ -569,6 +633,48 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
         if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
       },
       threads);
+  return result;
+}
+
+CacheTraceResult TraceCacheSamples(const PreparedScene& prepared, const TraceOptions& options,
+                                   const CacheSampling& sampling) {
+  options.Validate();
+  sampling.Validate();
+  if (prepared.animated() && prepared.frame() != options.frame) {
+    throw std::logic_error("an animated scene prepared at frame " + std::to_string(prepared.frame()) +
+                           " traced at frame " + std::to_string(options.frame));
+  }
+  const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const Tracer tracer(*prepared.built_, options, nullptr);
+  const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
+  // Each tile's samples apart, joined in tile order: a tile's samples are a function of its pixels alone.
+  std::vector<std::vector<HashCacheSample>> per_tile(std::size_t(tiles_x) * tiles_y);
+  CacheTraceResult result;
+  std::mutex stats_mutex;
+  ParallelFor(
+      per_tile.size(), 1,
+      [&](std::size_t begin, std::size_t end) {
+        TraceStats local;
+        for (std::size_t tile = begin; tile < end; ++tile) {
+          const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
+          for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
+            for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
+              for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
+                tracer.TraceCacheSamples(y * options.width + x, s, sampling, local, per_tile[tile]);
+              }
+            }
+          }
+        }
+        std::lock_guard lock(stats_mutex);
+        result.stats.camera_rays += local.camera_rays;
+        result.stats.bounce_rays += local.bounce_rays;
+        result.stats.shadow_rays += local.shadow_rays;
+      },
+      threads);
+  for (const std::vector<HashCacheSample>& tile : per_tile) {
+    result.samples.insert(result.samples.end(), tile.begin(), tile.end());
+  }
   return result;
 }
 

@@ -10,8 +10,10 @@
 #include <functional>
 #include <memory>
 
+#include "core/hashcache.h"
 #include "core/previous_table_view.h"
 #include "core/record.h"
+#include "tracer/cache_sampling.h"
 #include "tracer/path_continuation.h"
 #include "tracer/scene.h"
 #include "tracer/trace_options.h"
@@ -39,6 +41,11 @@ struct TraceResult {
   TraceStats stats;
 };
 
+struct CacheTraceResult {
+  std::vector<HashCacheSample> samples;
+  TraceStats stats;
+};
+
 // A scene as it stands at one frame, built for tracing (its ray-tracing structure, emitters and normals). A static
 // scene's is the same at every frame, so one serves a whole sequence; an animated scene's is built per frame
 // (effect "animation", core/effect_plan.h).
@@ -61,6 +68,7 @@ class PreparedScene {
   friend TraceResult TraceRecords(const PreparedScene&, const TraceOptions&,
                                   const std::function<void(std::uint32_t, std::uint32_t)>&, PathContinuation*,
                                   const PreviousTableView*);
+  friend CacheTraceResult TraceCacheSamples(const PreparedScene&, const TraceOptions&, const CacheSampling&);
   std::uint32_t frame_;
   bool animated_;
   std::uint64_t digest_;
@@ -80,6 +88,13 @@ TraceResult TraceRecords(const Scene& scene, const TraceOptions& options,
 TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& options,
                          const std::function<void(std::uint32_t, std::uint32_t)>& progress = {},
                          PathContinuation* continuation = nullptr, const PreviousTableView* table = nullptr);
+
+// The HashCache's samples (tracer/cache_sampling.h): per camera sample, its path's first sampling.store vertices, each
+// with the light of the sampling.length vertices after it, in (pixel, sample, vertex) order. The same paths as
+// TraceRecords draws (the same random numbers per vertex), traced to store + length vertices whatever
+// options.max_depth; options' filtered vertices, survival and path graphs do not apply.
+CacheTraceResult TraceCacheSamples(const PreparedScene& prepared, const TraceOptions& options,
+                                   const CacheSampling& sampling);
 
 }  // namespace hpsf
 
