@@ -19,6 +19,13 @@ class ConfigError : public InputError {
   ConfigError(const std::string& option, const std::string& problem) : InputError(option + ": " + problem) {}
 };
 
+// A check failed where the command cannot go on (a HashCache update the checker refutes in the middle of a sweep):
+// main prints the message and exits kExitCheckFailed, with no output of the run that failed.
+class CheckFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitWarn = 1;
 inline constexpr int kExitCheckFailed = 2;

@@ -68,7 +68,7 @@ simt::KernelTask HashCacheSampleKernel(simt::ThreadContext& ctx, const HashCache
 simt::KernelTask HashCacheLocateKernel(simt::ThreadContext& ctx, const HashCacheUpdateArgs& args) {
   const std::uint32_t i = ctx.Thread();
   co_await ctx.Store(args.perm, i, i);
-  const auto key = std::uint32_t(co_await ctx.Load(args.in.key, i));
+  const auto key = i < args.element_count ? std::uint32_t(co_await ctx.Load(args.in.key, i)) : shared::kCuckooEmpty;
   if (key == shared::kCuckooEmpty) {
     co_await ctx.Store(args.order, i, kNoOrder);
     co_return;
@@ -123,10 +123,7 @@ simt::KernelTask HashCacheReduceKernel(simt::ThreadContext& ctx, const HashCache
   const std::uint64_t order = co_await ctx.Load(args.order, i);
   bool head = order != kNoOrder;
   if (head && i > 0) head = (co_await ctx.Load(args.order, i - 1)) >> 32 != order >> 32;
-  if (!head) {
-    co_await ctx.Store(args.out.key, i, shared::kCuckooEmpty);
-    co_return;
-  }
+  if (!head) co_return;
   const auto word = std::uint32_t(order >> 32);
   const auto first = std::uint32_t(co_await ctx.Load(args.perm, i));
   const auto slot = std::uint32_t(co_await ctx.Load(args.slot, first));
@@ -162,19 +159,17 @@ simt::KernelTask HashCacheReduceKernel(simt::ThreadContext& ctx, const HashCache
   }
   const std::uint64_t count = co_await ctx.Load(args.counts, 2 * std::uint64_t(slot) + side);
   co_await ctx.Store(args.counts, 2 * std::uint64_t(slot) + side, count + sums.count);
-  if (args.cells_log2 == 0) {
-    co_await ctx.Store(args.out.key, i, shared::kCuckooEmpty);
-    co_return;
-  }
+  if (args.cells_log2 == 0) co_return;
   const auto front = std::uint32_t(co_await ctx.Load(args.front, slot));
-  co_await ctx.Store(args.out.key, i, shared::ParentKey(shared::SegmentKey(word), args.cells_log2));
-  co_await ctx.Store(args.out.side, i, side != 0 ? shared::NegatedFront(front) : front);
-  co_await ctx.Store(args.out.origin, i, word);
+  const std::uint64_t at = co_await ctx.AtomicAdd(args.appended, 0, 1);
+  co_await ctx.Store(args.out.key, at, shared::ParentKey(shared::SegmentKey(word), args.cells_log2));
+  co_await ctx.Store(args.out.side, at, side != 0 ? shared::NegatedFront(front) : front);
+  co_await ctx.Store(args.out.origin, at, word);
   for (std::uint32_t c = 0; c < 3; ++c) {
-    co_await ctx.Store(args.out.sums, 3 * std::uint64_t(i) + c,
+    co_await ctx.Store(args.out.sums, 3 * at + c,
                        args.fixed64 ? sums.fixed[c] : std::bit_cast<std::uint32_t>(sums.light[c]));
   }
-  co_await ctx.Store(args.out.count, i, sums.count);
+  co_await ctx.Store(args.out.count, at, sums.count);
 }
 
 EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<const HashCacheSample> samples,
@@ -187,24 +182,27 @@ EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<cons
   args.fixed64 = fixed64;
   args.scale = SumScale(cache.accumulation, cache.fixed_point_bits);
   args.samples = samples;
-  args.positions = std::bit_ceil(std::max<std::uint32_t>(2, std::uint32_t(samples.size())));
+  const std::uint32_t span = std::bit_ceil(std::max<std::uint32_t>(2, std::uint32_t(samples.size())));
+  args.positions = span;
+  args.element_count = std::uint32_t(samples.size());
   args.defect = defect;
   const auto allocate_sums = [&](const char* name, std::size_t count) {
     return fixed64 ? memory.Allocate64(name, count) : memory.Allocate32(name, count);
   };
   std::array<HashCacheElements, 2> elements;
   for (HashCacheElements& e : elements) {
-    e.key = memory.Allocate32("element_key", args.positions);
-    e.side = memory.Allocate32("element_side", args.positions);
-    e.origin = memory.Allocate32("element_origin", args.positions);
-    e.sums = allocate_sums("element_sums", 3 * std::size_t(args.positions));
-    e.count = memory.Allocate64("element_count", args.positions);
+    e.key = memory.Allocate32("element_key", span);
+    e.side = memory.Allocate32("element_side", span);
+    e.origin = memory.Allocate32("element_origin", span);
+    e.sums = allocate_sums("element_sums", 3 * std::size_t(span));
+    e.count = memory.Allocate64("element_count", span);
   }
-  args.slot = memory.Allocate32("element_slot", args.positions);
-  args.order = memory.Allocate64("order", args.positions);
-  args.perm = memory.Allocate32("perm", args.positions);
+  args.slot = memory.Allocate32("element_slot", span);
+  args.order = memory.Allocate64("order", span);
+  args.perm = memory.Allocate32("perm", span);
   args.missed = memory.Allocate64("missed", 1);
   args.lost = memory.Allocate64("lost", 1);
+  args.appended = memory.Allocate64("appended", 1);
 
   const auto launch = [&](std::uint32_t threads,
                           simt::KernelTask (*kernel)(simt::ThreadContext&, const HashCacheUpdateArgs&), bool racing) {
@@ -228,8 +226,9 @@ EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<cons
   args.in = elements[0];
   args.cells_log2 = cache.grid.resolution_log2;
   launch(args.positions, HashCacheSampleKernel, false);
-  for (std::size_t l = 0; l < cache.levels.size(); ++l) {
+  for (std::size_t l = 0; l < cache.levels.size() && (l == 0 || args.element_count > 0); ++l) {
     HashCacheLevel& level = cache.levels[l];
+    args.positions = std::bit_ceil(std::max<std::uint32_t>(2, args.element_count));
     args.in = elements[l % 2];
     args.out = elements[(l + 1) % 2];
     args.level = level.level;
@@ -251,7 +250,9 @@ EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<cons
         launch(args.positions / 2, HashCacheSortStepKernel, false);
       }
     }
+    memory.Words64(args.appended)[0] = 0;
     launch(args.positions, HashCacheReduceKernel, false);
+    args.element_count = std::uint32_t(std::as_const(memory).Words64(args.appended)[0]);
     level.data.counts = memory.TakeWords64(args.counts);
     if (fixed64) {
       level.data.fixed_sums = memory.TakeWords64(args.sums);

@@ -2,8 +2,10 @@
 // launches, level by level from the finest: locate and claim, one thread per element, each claiming its cell's front
 // by compare-and-swap; a bitonic sort of the elements' order words, one launch per step; reduce, one thread per sorted
 // position, where the head of each segment adds its segment one element after another, updates its cell's side with a
-// plain load and store (no other thread touches that side in the frame) and writes its parent's element. Only the
-// claims race; given them, every bit is the reference's under every schedule.
+// plain load and store (no other thread touches that side in the frame) and appends its parent's element at the place
+// an atomic counter hands out (the level above sorts its elements, so their places change no sum). Only the claims
+// race (and with them, which element reaches a parent first); given the claims, every bit is the reference's under
+// every schedule.
 #ifndef HPSF_EMULATED_HASHCACHE_UPDATE_KERNELS_H
 #define HPSF_EMULATED_HASHCACHE_UPDATE_KERNELS_H
 
@@ -37,7 +39,8 @@ struct HashCacheUpdateArgs {
   bool fixed64 = true;
   float scale = 1.0f;  // 2^F
   std::span<const HashCacheSample> samples;
-  std::uint32_t positions = 0;  // element positions: the samples' count rounded up to a power of two
+  std::uint32_t positions = 0;      // the level's sort span: its element count rounded up to a power of two
+  std::uint32_t element_count = 0;  // the level's elements (at the finest, the samples)
   // The level.
   shared::CuckooParams params{};
   int level = 0;
@@ -48,11 +51,12 @@ struct HashCacheUpdateArgs {
   std::uint32_t counts = 0;  // 64-bit, two per slot
   // The elements of this level, and those its reduce writes for the level above.
   HashCacheElements in, out;
-  std::uint32_t slot = 0;    // 32-bit per element: its cell's slot
-  std::uint32_t order = 0;   // 64-bit per position: segment word << 32 | origin, all ones for none
-  std::uint32_t perm = 0;    // 32-bit per position: the element the sorted position holds
-  std::uint32_t missed = 0;  // 64-bit, one word: samples whose cell is not in the finest map
-  std::uint32_t lost = 0;    // 64-bit, one word: elements above the finest whose cell is not in the map
+  std::uint32_t slot = 0;      // 32-bit per element: its cell's slot
+  std::uint32_t order = 0;     // 64-bit per position: segment word << 32 | origin, all ones for none
+  std::uint32_t perm = 0;      // 32-bit per position: the element the sorted position holds
+  std::uint32_t missed = 0;    // 64-bit, one word: samples whose cell is not in the finest map
+  std::uint32_t lost = 0;      // 64-bit, one word: elements above the finest whose cell is not in the map
+  std::uint32_t appended = 0;  // 64-bit, one word: the parents' elements this level's reduce appended
   std::uint32_t sort_block = 0, sort_stride = 0;  // the bitonic step: k and j
   HashCacheUpdateDefect defect = HashCacheUpdateDefect::kNone;
 };

@@ -286,7 +286,7 @@ TEST(HashCacheUpdate, TheDevicesUpdateIsTheReferencesGivenItsClaims) {
     all.insert(all.end(), samples.begin(), samples.end());
   }
   for (const StagingPolicy staging : kStagingPolicies) {
-    VulkanDevice& device = TestDevice(staging);
+    HashCacheUpdatePass pass(TestDevice(staging));
     const char* name = staging == StagingPolicy::kNever ? "mapped" : "staged";
     for (const Accumulation accumulation : {Accumulation::kFixed64, Accumulation::kFloat32}) {
       HashCache cache = EmptyCache(triangles, 5, accumulation, FixedPointBitsFor(all, 1));
@@ -295,7 +295,7 @@ TEST(HashCacheUpdate, TheDevicesUpdateIsTheReferencesGivenItsClaims) {
       for (std::uint32_t frame = 0; frame < 3; ++frame) {
         const std::span<const HashCacheSample> samples(all.data() + 3000 * frame, 3000);
         const HashCache before = cache;
-        const DeviceHashCacheUpdate update = UpdateHashCacheOnDevice(device, cache, samples);
+        const DeviceHashCacheUpdate update = pass.Run(cache, samples);
         UpdateHashCache(reference, samples);
         missed += update.missed;
         EXPECT_EQ(update.lost, 0u);
@@ -318,7 +318,7 @@ TEST(HashCacheUpdate, TheDevicesUpdateIsTheReferencesGivenItsClaims) {
     HashCache cache = EmptyCache(triangles, 5, Accumulation::kFixed64, FixedPointBitsFor(all, 1));
     const HashCache empty = cache;
     const std::span<const HashCacheSample> first(all.data(), 3000);
-    UpdateHashCacheOnDevice(device, cache, first, true);
+    pass.Run(cache, first, true);
     const std::vector<std::string> problems = CheckHashCacheFrame(empty, cache, first);
     EXPECT_FALSE(problems.empty()) << name;
     std::printf("%s, the plain-store claim: %zu problems, the first: %s\n", name, problems.size(),

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -13,20 +14,29 @@
 namespace hpsf {
 namespace {
 
-constexpr std::size_t kElementBytes = 64;  // hashcache_update.comp's Element
+constexpr std::size_t kElementBytes = 64;      // hashcache_update.comp's Element
+constexpr std::uint32_t kLocalSortSpan = 512;  // and its kLocalSortSpan
+constexpr std::uint32_t kWorkgroup = 256;
 
 struct Push {
   shared::CuckooParams params;
   std::int32_t cell_exponent, origin_x, origin_y, origin_z, resolution_log2;
   std::uint32_t stage;
   std::int32_t level, cells_log2;
-  std::uint32_t positions, sample_count, sort_block, sort_stride, fixed64;
+  std::uint32_t positions, element_count, sort_block, sort_stride, fixed64;
   float scale;
   std::uint32_t defect;
 };
 static_assert(sizeof(Push) <= 128, "push constants");
 
-enum Stage : std::uint32_t { kSamples = 0, kLocate = 1, kSortStep = 2, kReduce = 3 };
+enum Stage : std::uint32_t {
+  kSamples = 0,
+  kLocate = 1,
+  kSortStep = 2,
+  kReduce = 3,
+  kResetAppended = 4,
+  kLocalSort = 5
+};
 
 // A level's data arrays on the device; an array the accumulation does not use is a 16-byte placeholder.
 struct LevelBuffers {
@@ -38,35 +48,52 @@ std::size_t Bytes(const std::vector<T>& v) {
   return std::max<std::size_t>(v.size() * sizeof(T), 16);
 }
 
+// The sort's span for `elements`: a power of two, at least a workgroup's block.
+std::uint32_t SpanFor(std::uint32_t elements) { return std::max(kLocalSortSpan, std::bit_ceil(elements)); }
+
 }  // namespace
 
-DeviceHashCacheUpdate UpdateHashCacheOnDevice(VulkanDevice& device, HashCache& cache,
-                                              std::span<const HashCacheSample> samples, bool plain_store_claim) {
-  using vulkan_internal::BindingKind;
-  VulkanDevice::Impl& d = device.impl();
-  const std::vector<BindingKind> kinds(11, BindingKind::kStorageBuffer);
-  vulkan_internal::ComputeProgram program =
-      vulkan_internal::CreateComputeProgram(d, hashcache_update_spv, kinds, sizeof(Push));
-  const std::uint32_t positions = std::bit_ceil(std::max<std::uint32_t>(2, std::uint32_t(samples.size())));
-  const std::size_t sample_bytes = std::max<std::size_t>(samples.size_bytes(), 16);
-  vulkan_internal::DeviceBuffer sample_buffer = vulkan_internal::CreateDeviceBuffer(d, sample_bytes);
-  vulkan_internal::DeviceBuffer elements[2] = {vulkan_internal::CreateDeviceBuffer(d, positions * kElementBytes),
-                                               vulkan_internal::CreateDeviceBuffer(d, positions * kElementBytes)};
-  vulkan_internal::DeviceBuffer orders = vulkan_internal::CreateDeviceBuffer(d, positions * sizeof(std::uint64_t));
-  vulkan_internal::DeviceBuffer perm = vulkan_internal::CreateDeviceBuffer(d, positions * sizeof(std::uint32_t));
-  vulkan_internal::DeviceBuffer counters = vulkan_internal::CreateDeviceBuffer(d, 2 * sizeof(std::uint32_t));
+struct HashCacheUpdatePass::State {
+  vulkan_internal::ComputeProgram program;
+};
+
+HashCacheUpdatePass::HashCacheUpdatePass(VulkanDevice& device) : device_(device) {
+  const std::vector<vulkan_internal::BindingKind> kinds(11, vulkan_internal::BindingKind::kStorageBuffer);
+  state_ = std::make_unique<State>(
+      State{vulkan_internal::CreateComputeProgram(device_.impl(), hashcache_update_spv, kinds, sizeof(Push))});
+}
+
+HashCacheUpdatePass::~HashCacheUpdatePass() = default;
+
+DeviceHashCacheUpdate HashCacheUpdatePass::Run(HashCache& cache, std::span<const HashCacheSample> samples,
+                                               bool plain_store_claim) {
+  VulkanDevice::Impl& d = device_.impl();
+  vulkan_internal::ComputeProgram& program = state_->program;
+  if (samples.size() > (std::size_t(65535) * kLocalSortSpan)) {
+    throw std::logic_error("a HashCache update of more samples than a dispatch's workgroups can sort");
+  }
+  const std::uint32_t span = SpanFor(std::uint32_t(samples.size()));
+  vulkan_internal::DeviceBuffer sample_buffer =
+      vulkan_internal::CreateDeviceBuffer(d, std::max<std::size_t>(samples.size_bytes(), 16));
+  vulkan_internal::DeviceBuffer elements[2] = {vulkan_internal::CreateDeviceBuffer(d, span * kElementBytes),
+                                               vulkan_internal::CreateDeviceBuffer(d, span * kElementBytes)};
+  vulkan_internal::DeviceBuffer orders = vulkan_internal::CreateDeviceBuffer(d, span * sizeof(std::uint64_t));
+  vulkan_internal::DeviceBuffer perm = vulkan_internal::CreateDeviceBuffer(d, span * sizeof(std::uint32_t));
+  vulkan_internal::DeviceBuffer counters = vulkan_internal::CreateDeviceBuffer(d, 4 * sizeof(std::uint32_t));
   std::vector<LevelBuffers> levels;
   std::vector<vulkan_internal::StagingBuffer> staging;
   {
     vulkan_internal::Transfer upload(d, staging);
-    if (!samples.empty())
+    if (!samples.empty()) {
       std::memcpy(upload.Upload(sample_buffer, samples.size_bytes()), samples.data(), samples.size_bytes());
-    std::memset(upload.Upload(counters, 2 * sizeof(std::uint32_t)), 0, 2 * sizeof(std::uint32_t));
+    }
+    std::memset(upload.Upload(counters, 4 * sizeof(std::uint32_t)), 0, 4 * sizeof(std::uint32_t));
     const auto put = [&](vulkan_internal::DeviceBuffer& buffer, const auto& words) {
       buffer = vulkan_internal::CreateDeviceBuffer(d, Bytes(words));
-      if (!words.empty())
+      if (!words.empty()) {
         std::memcpy(upload.Upload(buffer, words.size() * sizeof(words[0])), words.data(),
                     words.size() * sizeof(words[0]));
+      }
     };
     for (const HashCacheLevel& level : cache.levels) {
       LevelBuffers& b = levels.emplace_back();
@@ -84,12 +111,12 @@ DeviceHashCacheUpdate UpdateHashCacheOnDevice(VulkanDevice& device, HashCache& c
   push.origin_y = cache.grid.origin_y;
   push.origin_z = cache.grid.origin_z;
   push.resolution_log2 = cache.grid.resolution_log2;
-  push.positions = positions;
-  push.sample_count = std::uint32_t(samples.size());
   push.fixed64 = cache.accumulation == Accumulation::kFixed64 ? 1u : 0u;
   push.scale = SumScale(cache.accumulation, cache.fixed_point_bits);
   push.defect = plain_store_claim ? 1u : 0u;
-  for (std::size_t l = 0; l < cache.levels.size(); ++l) {
+  std::uint32_t element_count = std::uint32_t(samples.size());
+  std::array<std::uint32_t, 3> counted{};  // missed, lost, appended
+  for (std::size_t l = 0; l < cache.levels.size() && (l == 0 || element_count > 0); ++l) {
     LevelBuffers& b = levels[l];
     vulkan_internal::DeviceBuffer* const buffers[] = {
         &sample_buffer,         &b.map,  &b.fronts, &b.fixed_sums, &b.float_sums, &b.counts, &elements[l % 2],
@@ -98,56 +125,66 @@ DeviceHashCacheUpdate UpdateHashCacheOnDevice(VulkanDevice& device, HashCache& c
     push.params = cache.levels[l].map.params;
     push.level = cache.levels[l].level;
     push.cells_log2 = cache.levels[l].cells_log2;
+    push.element_count = element_count;
+    push.positions = SpanFor(element_count);
     vulkan_internal::SubmitAndWait(d, [&](vk::raii::CommandBuffer& cb) {
       cb.bindPipeline(vk::PipelineBindPoint::eCompute, *program.pipeline);
       cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *program.layout, 0, *program.set, nullptr);
       const vk::MemoryBarrier barrier(vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eShaderRead,
                                       vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eShaderRead);
-      const auto dispatch = [&](std::uint32_t stage, std::uint32_t items) {
+      const auto dispatch = [&](std::uint32_t stage, std::uint32_t groups) {
         push.stage = stage;
         cb.pushConstants<Push>(*program.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
-        cb.dispatch(vulkan_internal::WorkgroupsFor(items, 64), 1, 1);
+        cb.dispatch(groups, 1, 1);
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
                            barrier, nullptr, nullptr);
       };
-      if (l == 0) dispatch(kSamples, positions);
-      dispatch(kLocate, positions);
-      for (push.sort_block = 2; push.sort_block <= positions; push.sort_block *= 2) {
-        for (push.sort_stride = push.sort_block / 2; push.sort_stride > 0; push.sort_stride /= 2) {
-          dispatch(kSortStep, positions / 2);
+      const std::uint32_t per_position = vulkan_internal::WorkgroupsFor(push.positions, kWorkgroup);
+      dispatch(kResetAppended, 1);
+      if (l == 0) dispatch(kSamples, per_position);
+      dispatch(kLocate, per_position);
+      // Block sizes up to the local span at once, then each larger one: its strides of the local span or more one
+      // dispatch each, the rest in workgroup memory.
+      const std::uint32_t blocks = push.positions / kLocalSortSpan;
+      push.sort_block = 0;
+      dispatch(kLocalSort, blocks);
+      for (push.sort_block = 2 * kLocalSortSpan; push.sort_block <= push.positions; push.sort_block *= 2) {
+        for (push.sort_stride = push.sort_block / 2; push.sort_stride >= kLocalSortSpan; push.sort_stride /= 2) {
+          dispatch(kSortStep, vulkan_internal::WorkgroupsFor(push.positions / 2, kWorkgroup));
         }
+        dispatch(kLocalSort, blocks);
       }
-      dispatch(kReduce, positions);
+      dispatch(kReduce, per_position);
     });
+    vulkan_internal::Transfer download(d, staging);
+    const void* read = download.Download(counters, 3 * sizeof(std::uint32_t));
+    download.Submit();
+    std::memcpy(counted.data(), read, sizeof counted);
+    element_count = counted[2];
   }
   DeviceHashCacheUpdate result;
-  {
-    vulkan_internal::Transfer download(d, staging);
-    const void* read_counters = download.Download(counters, 2 * sizeof(std::uint32_t));
-    std::vector<std::array<const void*, 4>> level_reads;
-    for (std::size_t l = 0; l < cache.levels.size(); ++l) {
-      const HashCacheData& data = cache.levels[l].data;
-      level_reads.push_back({download.Download(levels[l].fronts, data.front.size() * sizeof(std::uint32_t)),
-                             download.Download(levels[l].fixed_sums, Bytes(data.fixed_sums)),
-                             download.Download(levels[l].float_sums, Bytes(data.float_sums)),
-                             download.Download(levels[l].counts, data.counts.size() * sizeof(std::uint64_t))});
+  result.missed = counted[0];
+  result.lost = counted[1];
+  vulkan_internal::Transfer download(d, staging);
+  std::vector<std::array<const void*, 4>> level_reads;
+  for (std::size_t l = 0; l < cache.levels.size(); ++l) {
+    const HashCacheData& data = cache.levels[l].data;
+    level_reads.push_back({download.Download(levels[l].fronts, data.front.size() * sizeof(std::uint32_t)),
+                           download.Download(levels[l].fixed_sums, Bytes(data.fixed_sums)),
+                           download.Download(levels[l].float_sums, Bytes(data.float_sums)),
+                           download.Download(levels[l].counts, data.counts.size() * sizeof(std::uint64_t))});
+  }
+  download.Submit();
+  for (std::size_t l = 0; l < cache.levels.size(); ++l) {
+    HashCacheData& data = cache.levels[l].data;
+    std::memcpy(data.front.data(), level_reads[l][0], data.front.size() * sizeof(std::uint32_t));
+    if (!data.fixed_sums.empty()) {
+      std::memcpy(data.fixed_sums.data(), level_reads[l][1], data.fixed_sums.size() * sizeof(std::uint64_t));
     }
-    download.Submit();
-    std::uint32_t words[2];
-    std::memcpy(words, read_counters, sizeof words);
-    result.missed = words[0];
-    result.lost = words[1];
-    for (std::size_t l = 0; l < cache.levels.size(); ++l) {
-      HashCacheData& data = cache.levels[l].data;
-      std::memcpy(data.front.data(), level_reads[l][0], data.front.size() * sizeof(std::uint32_t));
-      if (!data.fixed_sums.empty()) {
-        std::memcpy(data.fixed_sums.data(), level_reads[l][1], data.fixed_sums.size() * sizeof(std::uint64_t));
-      }
-      if (!data.float_sums.empty()) {
-        std::memcpy(data.float_sums.data(), level_reads[l][2], data.float_sums.size() * sizeof(float));
-      }
-      std::memcpy(data.counts.data(), level_reads[l][3], data.counts.size() * sizeof(std::uint64_t));
+    if (!data.float_sums.empty()) {
+      std::memcpy(data.float_sums.data(), level_reads[l][2], data.float_sums.size() * sizeof(float));
     }
+    std::memcpy(data.counts.data(), level_reads[l][3], data.counts.size() * sizeof(std::uint64_t));
   }
   return result;
 }

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   } catch (const hpsf::simt::KernelFault& e) {  // a broken kernel (--inject-defect): a failed check, no output
     std::cerr << "hpsf: kernel fault: " << e.what() << "\n";
     return hpsf::kExitCheckFailed;
+  } catch (const hpsf::CheckFailed& e) {
+    std::cerr << "hpsf: check failed: " << e.what() << "\n";
+    return hpsf::kExitCheckFailed;
   } catch (const hpsf::ShaderOutputError& e) {  // a shader left words the host cannot use: a failed check
     std::cerr << "hpsf: " << e.what() << "\n";
     return hpsf::kExitCheckFailed;

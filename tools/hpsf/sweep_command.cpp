@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/footprint.h"
 #include "core/hashed_run.h"
 #include "reference/radius_search_filter.h"
 #include "reference/reference_filter.h"
@@ -28,6 +29,7 @@
 #include "tools/hpsf/frames_plot.h"
 #include "tools/hpsf/heatmap.h"
 #include "tools/hpsf/html_report.h"
+#include "tools/hpsf/image_file.h"
 #include "tools/hpsf/image_size.h"
 #include "tools/hpsf/pareto_plot.h"
 #include "tools/hpsf/previous_table_decision.h"
@@ -38,6 +40,7 @@
 #include "tracer/path_continuation.h"
 #include "tracer/path_tracer.h"
 #include "tracer/scene_file.h"
+#include "verifier/contract/hashcache_run.h"
 #include "verifier/gate/gate_file.h"
 #include "verifier/metrics/channel_image.h"
 #include "verifier/metrics/error_split.h"
@@ -175,6 +178,7 @@ struct SeedRun {
   double trace_s = 0.0, filter_s = 0.0, rays_per_pixel = 0.0;
   json phases = json::object();
   std::uint64_t probe_failures = 0, aliased_slots = 0;
+  json hashcache;  // the HashCache's: its last reconstruction's fill, its constructions, the last update's misses
 };
 
 class Runner {
@@ -188,6 +192,7 @@ class Runner {
   // image for every frame (a static scene), or one per frame (an animated one).
   SeedRun Run(const SweepConfig& c, FilterConfig config, TraceOptions trace, std::uint32_t seed,
               const TracedFrame* cached, const std::vector<ChannelImage>& references) {
+    if (c.method == "hashcache") return RunHashCache(c, config, trace, seed, references);
     SeedRun run;
     trace.seed = config.seed = seed;
     config.frames = c.frames;
@@ -269,6 +274,77 @@ class Runner {
     return run;
   }
 
+  // The HashCache (verifier/contract/hashcache_run.h) on the configuration's backend, over its frames: each frame
+  // builds the cache where the geometry changed (its time is the build's own phase, in no frame's), traces the cache
+  // samples and caches them (the trace and the update), traces the primary hits and reconstructs (the trace and the
+  // reconstruction). The image is the last frame's: the cache integrates every frame. A problem the family's checker
+  // finds in a construction or an update ends the sweep with a failed check.
+  SeedRun RunHashCache(const SweepConfig& c, const FilterConfig& config, TraceOptions trace, std::uint32_t seed,
+                       const std::vector<ChannelImage>& references) {
+    SeedRun run;
+    const BackendInfo& info = FindBackend(c.backend, "--grid");
+    HashCacheSettings settings;
+    settings.resolution_log2 = c.cache_resolution.value_or(7);
+    settings.accumulation = config.accumulation;
+    settings.seed = seed;
+    settings.frames = c.frames;
+    try {
+      settings.Validate();
+    } catch (const ConfigError& e) {
+      throw ConfigError("--grid", c.id + ": " + e.what());
+    }
+    VulkanDevice* device = info.kind == BackendKind::kVulkan ? BackendFor(c.backend).device.get() : nullptr;
+    HashCacheRun cache(info, settings, EmulatorOptions{}, device);
+    const CacheSampling sampling{c.cache_store.value_or(3), c.cache_length.value_or(3)};
+    trace.seed = seed;
+    std::vector<double> trace_s, filter_s, build_s, update_s, reconstruct_s;
+    std::uint64_t rays = 0;
+    for (std::uint32_t f = 0; f < c.frames; ++f) {
+      trace.frame = f;
+      const PreparedScene& prepared = scene_.At(f);
+      std::vector<OccupancyTriangle> triangles;
+      for (const Triangle& t : prepared.scene().triangles) triangles.push_back({t.p0, t.p1, t.p2});
+      if (cache.Prepare(triangles, prepared.digest(), "the sweep's scene")) {
+        build_s.push_back((cache.timings().occupancy_ms + cache.timings().maps_ms) / 1e3);
+      }
+      auto start = Clock::now();
+      const CacheTraceResult samples = TraceCacheSamples(prepared, trace, sampling);
+      TraceOptions primary_trace = trace;
+      primary_trace.max_depth = 1;  // the primary hits alone: what the camera sees is reconstructed from the cache
+      TraceResult primary = TraceRecords(prepared, primary_trace);
+      trace_s.push_back(SecondsSince(start));
+      rays += samples.stats.Rays() + primary.stats.Rays();
+      cache.Update(samples.samples);
+      const HashCacheReconstruction reconstruction = cache.Reconstruct(
+          primary.batch, FootprintScale(config.filter_width_px, primary.batch.fov_y_radians, trace.height),
+          config.jitter_scale, f);
+      if (!cache.problems().empty()) {
+        throw CheckFailed(c.id + ", seed " + std::to_string(seed) + ": the HashCache's checker found " +
+                          std::to_string(cache.problems().size()) + " problems; the first: " + cache.problems()[0]);
+      }
+      update_s.push_back(cache.timings().update_ms / 1e3);
+      reconstruct_s.push_back(cache.timings().reconstruct_ms / 1e3);
+      filter_s.push_back(update_s.back() + reconstruct_s.back());
+      const ChannelImage& reference = references[std::min<std::size_t>(f, references.size() - 1)];
+      run.relmse_by_frame.push_back(ComputeMetrics(ColourChannels(reconstruction.image), reference).relmse);
+      if (f + 1 == c.frames) {
+        run.image = reconstruction.image;
+        run.hashcache = {{"filled_fraction", reconstruction.FilledFraction()},
+                         {"unfilled", reconstruction.unfilled},
+                         {"lookups", reconstruction.lookups},
+                         {"builds", cache.timings().builds},
+                         {"missed_samples", cache.missed()}};
+      }
+    }
+    run.trace_s = Median(trace_s);
+    run.filter_s = Median(filter_s);
+    run.rays_per_pixel = double(rays) / (double(trace.width) * trace.height * c.frames);
+    run.phases["cache_update_s"] = Median(update_s);
+    run.phases["reconstruct_s"] = Median(reconstruct_s);
+    run.phases["cache_build_s"] = Median(build_s);
+    return run;
+  }
+
   // The one-frame batches of seeds 1..K traced with `trace`, kept for every configuration that traces alike.
   const std::vector<TracedFrame>& OneFrame(const TraceOptions& trace, std::uint32_t seeds) {
     const std::string key = TraceKey(trace);
@@ -320,8 +396,10 @@ struct Converged {
   ChannelImage channels;
 };
 
+// `image_exr`: where the first seed's image goes (with its PNG preview beside it).
 json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const TraceOptions& trace, std::uint32_t seeds,
-                   const std::vector<Converged>& converged, std::uint32_t reference_spp, Runner& runner) {
+                   const std::vector<Converged>& converged, std::uint32_t reference_spp, Runner& runner,
+                   const std::string& image_exr) {
   const Converged& last = converged[std::min<std::size_t>(c.frames - 1, converged.size() - 1)];
   const Image& reference = last.image;
   const Image& reference_variance = last.variance;
@@ -334,6 +412,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
   std::vector<std::vector<double>> relmse_by_frame(c.frames);  // per frame, each seed's
   std::map<std::string, std::vector<double>> phases;
   std::uint64_t probe_failures = 0, aliased = 0;
+  std::vector<json> hashcache_runs;
   for (std::uint32_t k = 1; k <= seeds; ++k) {
     SeedRun run = runner.Run(c, config, trace, k, one_frame ? &(*one_frame)[k - 1] : nullptr, references);
     const ChannelImage channels = ColourChannels(run.image);
@@ -351,8 +430,10 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
     for (auto it = run.phases.begin(); it != run.phases.end(); ++it) phases[it.key()].push_back(it.value());
     probe_failures += run.probe_failures;
     aliased += run.aliased_slots;
+    if (!run.hashcache.is_null()) hashcache_runs.push_back(run.hashcache);
     images.push_back(std::move(run.image));
   }
+  WriteImageFiles(image_exr, images[0], {{"sweep_config", c.id}, {"seed", "1"}});
   const auto mean = [](const std::vector<double>& v) {
     double sum = 0.0;
     for (const double x : v) sum += x;
@@ -391,7 +472,16 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
   if (c.continuation_depth) trace_axes["continuation-depth"] = std::to_string(*c.continuation_depth);
   if (c.survival) trace_axes["survival"] = *c.survival;
   if (c.path_graph) trace_axes["path-graph"] = *c.path_graph;
+  if (c.cache_resolution) trace_axes["cache-resolution"] = std::to_string(*c.cache_resolution);
+  if (c.cache_store) trace_axes["cache-store"] = std::to_string(*c.cache_store);
+  if (c.cache_length) trace_axes["cache-length"] = std::to_string(*c.cache_length);
   result["trace_axes"] = trace_axes;
+  if (!hashcache_runs.empty()) {
+    std::vector<double> filled;
+    for (const json& h : hashcache_runs) filled.push_back(h["filled_fraction"].get<double>());
+    result["hashcache"] = hashcache_runs[0];
+    result["hashcache"]["filled_fraction"] = mean(filled);  // over the seeds; the rest are the first seed's
+  }
   for (const auto& [name, value] : c.filter) result["filter"][name] = value;
   for (const auto& [name, values] : phases) result["phases"][name] = Median(values);
   if (images.size() >= 2) {
@@ -651,7 +741,8 @@ int Run(SweepOptions& o, bool options_only) {
         continue;
       }
     }
-    results[i] = MeasureConfig(c, filter_configs[i], traces[i], o.seeds, converged, o.reference_spp, runner);
+    results[i] = MeasureConfig(c, filter_configs[i], traces[i], o.seeds, converged, o.reference_spp, runner,
+                               fs::path(path).replace_extension(".exr").string());
     std::ofstream(path) << json{{"description", description}, {"result", results[i]}}.dump(2) << "\n";
     ++done;
     if (terminal) {
@@ -729,8 +820,9 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
   c->add_option("scene", o->scene, "A built-in scene or a scene file")->required();
   c->add_option("--grid", o->grid,
                 "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
-                "screen; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, continuation-depth, "
-                "survival, path-graph; other axes: any filter option without its dashes)")
+                "screen,hashcache; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, "
+                "continuation-depth, survival, path-graph, cache-resolution, cache-store, cache-length; other axes: "
+                "any filter option without its dashes)")
       ->required()
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // a later --grid replaces an earlier one
   c->add_option("--seeds", o->seeds, "Independent seeds per configuration (1..K); 2 or more split the error")
@@ -741,7 +833,7 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--max-depth", o->max_depth, "Surface vertices per path; -1: unbounded")->capture_default_str();
   c->add_option("--cache", o->cache, "The converged images' cache (see hpsf reference)");
   c->add_option("--shard", o->shard, "Run configurations I, I + N, ... of the grid")->capture_default_str();
-  c->add_option("--out", o->out, "Where each configuration's result, sweep.csv and sweep.json go")
+  c->add_option("--out", o->out, "Where each configuration's result and its first seed's image (configs/), sweep.csv and sweep.json go")
       ->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });

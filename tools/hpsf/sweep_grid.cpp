@@ -66,12 +66,16 @@ void CheckValue(const std::string& axis, const std::string& value) {
     } catch (const ConfigError& e) {
       refuse(std::string("a --path-graph bound: ") + e.what());
     }
+  } else if (axis == "cache-resolution") {
+    if (!Integer(value, 2, 10)) refuse("L in [2, 10]: 2^L finest cells per axis");
+  } else if (axis == "cache-store" || axis == "cache-length") {
+    if (!Integer(value, 1, 8)) refuse("a vertex count in [1, 8]");
   } else if (axis == "transport") {
     refuse("the transport is the method's: method=nhpsf or anhpsf filter with it, hpsf without");
   } else if (axis == "method") {
     if (value != "pt" && value != "hpsf" && value != "nhpsf" && value != "anhpsf" && value != "radius" &&
-        value != "screen") {
-      refuse("expected pt, hpsf, nhpsf, anhpsf, radius or screen");
+        value != "screen" && value != "hashcache") {
+      refuse("expected pt, hpsf, nhpsf, anhpsf, radius, screen or hashcache");
     }
   } else if (axis == "backend") {
     const auto backends = RegisteredBackends();
@@ -92,6 +96,8 @@ std::vector<std::string> SweepConfig::FilterArguments() const {
 bool SweepConfig::Hashed() const { return method == "hpsf" || Transports(); }
 
 bool SweepConfig::Transports() const { return method == "nhpsf" || method == "anhpsf"; }
+
+bool SweepConfig::UsesBackend() const { return Hashed() || method == "hashcache"; }
 
 std::vector<GridAxis> ParseGrid(const std::string& text) {
   std::vector<GridAxis> axes;
@@ -137,6 +143,12 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
         if (value != "off") c.survival = value;
       } else if (axes[a].name == "path-graph") {
         if (value != "off") c.path_graph = value;
+      } else if (axes[a].name == "cache-resolution") {
+        c.cache_resolution = std::stoi(value);
+      } else if (axes[a].name == "cache-store") {
+        c.cache_store = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "cache-length") {
+        c.cache_length = std::uint32_t(std::stoul(value));
       } else if (axes[a].name == "method") {
         c.method = value;
       } else if (axes[a].name == "backend") {
@@ -146,13 +158,15 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
       }
     }
     // What the method ignores does not make another configuration.
-    if (!c.Hashed()) c.backend = "-";
+    if (!c.UsesBackend()) c.backend = "-";
     if (c.method == "pt") c.filter.clear();
     if (c.Transports()) c.max_depth.reset();  // their paths end where their filtered vertices say
     if (!c.Transports()) c.filtered_vertices.reset();
     if (c.method != "anhpsf") c.continuation_depth.reset();
     if (c.method != "hpsf") c.survival.reset();
     if (c.method != "hpsf") c.path_graph.reset();
+    if (c.method != "hashcache") c.cache_resolution.reset(), c.cache_store.reset(), c.cache_length.reset();
+    if (c.method == "hashcache") c.max_depth.reset();  // its paths have l_store + l_len vertices
     c.id = "method=" + c.method + " backend=" + c.backend + " spp=" + std::to_string(c.spp);
     if (c.frames != 1) c.id += " frames=" + std::to_string(c.frames);
     if (c.max_depth) c.id += " max-depth=" + std::to_string(*c.max_depth);
@@ -160,6 +174,9 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
     if (c.continuation_depth) c.id += " continuation-depth=" + std::to_string(*c.continuation_depth);
     if (c.survival) c.id += " survival=" + *c.survival;
     if (c.path_graph) c.id += " path-graph=" + *c.path_graph;
+    if (c.cache_resolution) c.id += " cache-resolution=" + std::to_string(*c.cache_resolution);
+    if (c.cache_store) c.id += " cache-store=" + std::to_string(*c.cache_store);
+    if (c.cache_length) c.id += " cache-length=" + std::to_string(*c.cache_length);
     for (const auto& [name, value] : c.filter) c.id += " " + name + "=" + value;
     if (seen.insert(c.id).second) configs.push_back(std::move(c));
     std::size_t a = axes.size();

@@ -4,7 +4,9 @@
 //   method              pt (plain path tracing: the batch unfiltered), hpsf (hashed path space filtering on a
 //                       backend), nhpsf (hpsf with the transport: several filtered bounces), anhpsf (nhpsf with
 //                       paths continued across frames), radius (radius-search path space filtering), screen
-//                       (screen-space, 9x9) (default hpsf)
+//                       (screen-space, 9x9), hashcache (Roth et al.'s HashCache on a backend: cached along
+//                       subpaths, reconstructed at the footprint's level with the filter's --jitter and
+//                       --filter-width, with its --accum) (default hpsf)
 //   backend             reference, emulated or vulkan: which backend runs the hashed methods (default reference)
 //   frames              frames of a sequence, the image after the last measured (default 1)
 //   max-depth           surface vertices per traced path of pt, hpsf, radius and screen (default the sweep's
@@ -13,6 +15,9 @@
 //   continuation-depth  how deep anhpsf continues a path across frames (default the sweep's --max-depth)
 //   survival            hpsf's variance-aware path survival, off or a --survival rule (core/survival.h), with
 //                       second moments kept; it acts from a sequence's second frame on (default off)
+//   cache-resolution    hashcache: 2^L finest cells per axis, L in [2, 10] (default 7)
+//   cache-store         hashcache: l_store, the vertices of a path cached, 1 to 8 (default 3)
+//   cache-length        hashcache: l_len, the vertices whose light each cached vertex carries, 1 to 8 (default 3)
 //   path-graph          hpsf's adaptive path graphs, off or a --path-graph bound (core/path_graph.h), with second
 //                       moments kept; from a sequence's second frame on (default off). Its paths' own light shows
 //                       where the resolve takes it: interpolation=path, or a variance rule
@@ -49,14 +54,19 @@ struct SweepConfig {
   std::optional<int> max_depth;
   std::optional<std::uint32_t> filtered_vertices;
   std::optional<std::uint32_t> continuation_depth;
-  std::optional<std::string> survival;                      // a --survival rule other than off, for hpsf
-  std::optional<std::string> path_graph;                    // a --path-graph bound other than off, for hpsf
+  std::optional<std::string> survival;    // a --survival rule other than off, for hpsf
+  std::optional<std::string> path_graph;  // a --path-graph bound other than off, for hpsf
+  std::optional<int> cache_resolution;    // hashcache's axes
+  std::optional<std::uint32_t> cache_store;
+  std::optional<std::uint32_t> cache_length;
   std::vector<std::pair<std::string, std::string>> filter;  // the filter axes' values, in axis order
   // The filter options as command-line words ("--filter-width", "2", ...).
   std::vector<std::string> FilterArguments() const;
   // Whether a backend's table runs the method (hpsf, nhpsf, anhpsf), and whether it transports (nhpsf, anhpsf).
   bool Hashed() const;
   bool Transports() const;
+  // Whether the backend axis chooses where the method runs: the hashed methods and the HashCache.
+  bool UsesBackend() const;
 };
 
 // A ConfigError naming --grid for an empty axis, a repeated axis, a bad value of one of the sweep's own axes, or the

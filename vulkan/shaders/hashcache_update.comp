@@ -2,9 +2,11 @@
 // The HashCache's frame update by sort and reduce on the device (core/hashcache_update.h holds the reference's and
 // emulated/hashcache_update_kernels.h the emulator's), one stage a dispatch, level by level: the samples become the
 // finest level's elements; each element locates its cell's slot and claims the cell's front with atomicCompSwap,
-// then takes its side (core/shared/hashcache_cell.h); a bitonic sort of the order words, one dispatch a step; and the
-// reduce, where the head of each segment adds its segment in order, updates its cell's side once and writes its
-// parent's element for the level above.
+// then takes its side (core/shared/hashcache_cell.h); a bitonic sort of the order words, its steps of strides below
+// 512 run in workgroup memory, one dispatch for all of them, the others one dispatch a step; and the reduce, where the
+// head of each segment adds its segment in order, updates its cell's side once and appends its parent's element for
+// the level above at a place an atomic counter hands out (the level above sorts them, so their places change no
+// bit).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
 #include "../../core/shared/prelude.h"
@@ -13,7 +15,8 @@
 #include "../../core/shared/fixed_point.h"
 #include "../../core/shared/hashcache_cell.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = 256) in;
+const uint kLocalSortSpan = 512u;  // elements a workgroup sorts in its own memory: two per invocation
 
 struct Sample {
   vec3 position;
@@ -43,7 +46,11 @@ layout(std430, binding = 6) buffer In { Element elements[]; };
 layout(std430, binding = 7) buffer Out { Element parents[]; };
 layout(std430, binding = 8) buffer Orders { uint64_t orders[]; };
 layout(std430, binding = 9) buffer Perm { uint perm[]; };
-layout(std430, binding = 10) buffer Counters { uint missed; uint lost; };
+layout(std430, binding = 10) buffer Counters {
+  uint missed;
+  uint lost;
+  uint appended;  // the parents' elements appended by this level's reduce
+};
 layout(push_constant) uniform Params {
   CuckooParams params;
   int cell_exponent;
@@ -51,11 +58,13 @@ layout(push_constant) uniform Params {
   int origin_y;
   int origin_z;
   int resolution_log2;
-  uint stage;  // 0: samples to elements; 1: locate and claim; 2: a sort step; 3: reduce
+  uint stage;  // 0: samples to elements; 1: locate and claim; 2: a sort step; 3: reduce; 4: reset the count of
+               // appended parents; 5: the sort's steps of strides below kLocalSortSpan for one block size (or all
+               // block sizes up to kLocalSortSpan where sort_block is 0), in workgroup memory
   int level;
   int cells_log2;
-  uint positions;
-  uint sample_count;
+  uint positions;  // the sort's span: a power of two, at least kLocalSortSpan
+  uint element_count;  // this level's elements (at the finest, the samples)
   uint sort_block;
   uint sort_stride;
   uint fixed64;
@@ -66,10 +75,7 @@ layout(push_constant) uniform Params {
 const uint64_t kNoOrder = 0xFFFFFFFFFFFFFFFFul;
 
 void SampleElement(uint i) {
-  if (i >= sample_count) {
-    elements[i].key = kCuckooEmpty;
-    return;
-  }
+  if (i >= element_count) return;
   OccupancyGrid g;
   g.cell_exponent = cell_exponent;
   g.origin_x = origin_x;
@@ -95,7 +101,7 @@ void SampleElement(uint i) {
 
 void Locate(uint i) {
   perm[i] = i;
-  uint key = elements[i].key;
+  uint key = i < element_count ? elements[i].key : kCuckooEmpty;
   if (key == kCuckooEmpty) {
     orders[i] = kNoOrder;
     return;
@@ -149,10 +155,7 @@ void SortStep(uint t) {
 void Reduce(uint i) {
   uint64_t order = orders[i];
   bool head = order != kNoOrder && (i == 0u || (orders[i - 1u] >> 32) != (order >> 32));
-  if (!head) {
-    parents[i].key = kCuckooEmpty;
-    return;
-  }
+  if (!head) return;
   uint word = uint(order >> 32);
   uint first = perm[i];
   uint slot = elements[first].slot;
@@ -179,22 +182,73 @@ void Reduce(uint i) {
     }
   }
   counts[2u * slot + side] += count;
-  if (cells_log2 == 0) {
-    parents[i].key = kCuckooEmpty;
-    return;
-  }
+  if (cells_log2 == 0) return;
   uint front = fronts[slot];
-  parents[i].key = ParentKey(SegmentKey(word), cells_log2);
-  parents[i].side = side != 0u ? NegatedFront(front) : front;
-  parents[i].origin = word;
+  uint at = atomicAdd(appended, 1u);
+  parents[at].key = ParentKey(SegmentKey(word), cells_log2);
+  parents[at].side = side != 0u ? NegatedFront(front) : front;
+  parents[at].origin = word;
   for (uint c = 0u; c < 3u; ++c) {
-    parents[i].fixed_sums[c] = fixed_total[c];
-    parents[i].light[c] = light_total[c];
+    parents[at].fixed_sums[c] = fixed_total[c];
+    parents[at].light[c] = light_total[c];
   }
-  parents[i].count = count;
+  parents[at].count = count;
 }
 
+shared uint64_t local_orders[kLocalSortSpan];
+shared uint local_perm[kLocalSortSpan];
+
+// The compare-and-exchange of the pair (i, i + j) of the block, in workgroup memory; `base` the block's first position,
+// so the direction is the whole sort's.
+void LocalStep(uint base, uint t, uint k, uint j) {
+  uint i = ((t & ~(j - 1u)) << 1u) | (t & (j - 1u));
+  uint l = i + j;
+  bool ascending = ((base + i) & k) == 0u;
+  uint64_t a = local_orders[i];
+  uint64_t b = local_orders[l];
+  if (ascending ? a > b : a < b) {
+    local_orders[i] = b;
+    local_orders[l] = a;
+    uint p = local_perm[i];
+    local_perm[i] = local_perm[l];
+    local_perm[l] = p;
+  }
+}
+
+// Stage 5: every invocation of the workgroup runs every step (barriers in uniform control flow).
+void LocalSort() {
+  uint base = gl_WorkGroupID.x * kLocalSortSpan;
+  uint t = gl_LocalInvocationID.x;
+  local_orders[t] = orders[base + t];
+  local_orders[t + 256u] = orders[base + t + 256u];
+  local_perm[t] = perm[base + t];
+  local_perm[t + 256u] = perm[base + t + 256u];
+  barrier();
+  uint k_first = sort_block == 0u ? 2u : sort_block;
+  uint k_last = sort_block == 0u ? kLocalSortSpan : sort_block;
+  for (uint k = k_first; k <= k_last; k <<= 1u) {
+    for (uint j = min(k >> 1u, kLocalSortSpan >> 1u); j > 0u; j >>= 1u) {
+      LocalStep(base, t, k, j);
+      barrier();
+    }
+  }
+  orders[base + t] = local_orders[t];
+  orders[base + t + 256u] = local_orders[t + 256u];
+  perm[base + t] = local_perm[t];
+  perm[base + t + 256u] = local_perm[t + 256u];
+}
+
+
+
 void main() {
+  if (stage == 5u) {
+    LocalSort();
+    return;
+  }
+  if (stage == 4u) {
+    if (gl_GlobalInvocationID.x == 0u) appended = 0u;
+    return;
+  }
   uint items = stage == 2u ? positions >> 1u : positions;
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
   for (uint i = gl_GlobalInvocationID.x; i < items; i += stride) {
