@@ -304,7 +304,7 @@ class Runner {
       const PreparedScene& prepared = scene_.At(f);
       std::vector<OccupancyTriangle> triangles;
       for (const Triangle& t : prepared.scene().triangles) triangles.push_back({t.p0, t.p1, t.p2});
-      if (cache.Prepare(triangles, prepared.digest(), "the sweep's scene")) {
+      if (cache.Prepare(triangles, "the sweep's scene")) {
         build_s.push_back((cache.timings().occupancy_ms + cache.timings().maps_ms) / 1e3);
       }
       auto start = Clock::now();
@@ -333,6 +333,7 @@ class Runner {
                          {"unfilled", reconstruction.unfilled},
                          {"lookups", reconstruction.lookups},
                          {"builds", cache.timings().builds},
+                         {"levels_unchanged_at_last_build", cache.timings().levels_unchanged},
                          {"missed_samples", cache.missed()}};
       }
     }
@@ -833,7 +834,8 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
   c->add_option("--max-depth", o->max_depth, "Surface vertices per path; -1: unbounded")->capture_default_str();
   c->add_option("--cache", o->cache, "The converged images' cache (see hpsf reference)");
   c->add_option("--shard", o->shard, "Run configurations I, I + N, ... of the grid")->capture_default_str();
-  c->add_option("--out", o->out, "Where each configuration's result and its first seed's image (configs/), sweep.csv and sweep.json go")
+  c->add_option("--out", o->out,
+                "Where each configuration's result and its first seed's image (configs/), sweep.csv and sweep.json go")
       ->capture_default_str();
   c->add_flag("--json", o->json, "Print the versioned report as JSON");
   c->callback([o, &context] { context.exit_code = Run(*o, context.options_only); });

@@ -1,5 +1,6 @@
 #include "verifier/contract/hashcache_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <utility>
@@ -45,9 +46,10 @@ HashCacheRun::HashCacheRun(const BackendInfo& backend, HashCacheSettings setting
   if (backend_.kind == BackendKind::kVulkan && !device_) throw std::logic_error("the vulkan HashCache needs a device");
 }
 
-bool HashCacheRun::Prepare(std::span<const OccupancyTriangle> triangles, std::uint64_t digest,
-                           const std::string& where) {
-  if (built_digest_ == digest) return false;
+bool HashCacheRun::Prepare(std::span<const OccupancyTriangle> triangles, const std::string& where) {
+  if (built_from_ && std::equal(triangles.begin(), triangles.end(), built_from_->begin(), built_from_->end())) {
+    return false;
+  }
   const shared::OccupancyGrid grid = GridOver(triangles, settings_.resolution_log2, where);
   // The reference's pyramid: what every backend's occupancy must equal, and the keys its maps must hold.
   const std::vector<OccupancyLevel> expected = OccupancyPyramid(grid, triangles);
@@ -87,8 +89,13 @@ bool HashCacheRun::Prepare(std::span<const OccupancyTriangle> triangles, std::ui
     maps.push_back(build.map);
   }
   timings_.maps_ms = MsSince(start);
+  timings_.levels_unchanged = 0;
+  for (std::size_t l = 0; l < levels.size() && l < built_levels_.size(); ++l) {
+    timings_.levels_unchanged += levels[l] == built_levels_[l];
+  }
   cache_ = EmptyHashCache(grid, std::move(maps), settings_.accumulation, 0, updates_);
-  built_digest_ = digest;
+  built_from_.emplace(triangles.begin(), triangles.end());
+  built_levels_ = std::move(levels);
   fresh_ = true;
   ++timings_.builds;
   return true;

@@ -5,9 +5,10 @@
 // reference's or whose map breaks an invariant, or an update that is not the reference's given the backend's claims,
 // is a problem the run reports.
 //
-// Effect planning: construction runs where the scene's geometry changed (its digest differs from the last build's) and
-// never on a static scene's later frames. A rebuild rebuilds every level and starts the cache empty: the light cached
-// in the old geometry's cells lit another scene.
+// Effect planning: construction runs where the scene's triangles changed since the last build, and never on a static
+// scene's later frames, nor where only the camera moved. A rebuild rebuilds every level and starts the cache empty: the
+// light cached in the old geometry's cells lit another scene (a level whose occupancy did not change could keep its
+// map, which saves its construction but not its light; the timings count such levels).
 #ifndef HPSF_VERIFIER_CONTRACT_HASHCACHE_RUN_H
 #define HPSF_VERIFIER_CONTRACT_HASHCACHE_RUN_H
 
@@ -43,6 +44,8 @@ struct HashCacheTimings {
   double reconstruct_ms = 0.0;
   std::uint32_t builds = 0;    // constructions so far
   std::uint32_t attempts = 0;  // the last construction's map attempts, every level
+  // The last rebuild's levels whose occupancy equals the build before's (their maps could have been kept).
+  std::uint32_t levels_unchanged = 0;
 };
 
 class HashCacheRun {
@@ -51,9 +54,9 @@ class HashCacheRun {
   HashCacheRun(const BackendInfo& backend, HashCacheSettings settings, EmulatorOptions emulator = {},
                VulkanDevice* device = nullptr);
 
-  // Builds the cache over `triangles` where `digest` differs from the last build's (or nothing is built yet); whether
-  // it built. `where` names the scene in an InputError for triangles no grid holds.
-  bool Prepare(std::span<const OccupancyTriangle> triangles, std::uint64_t digest, const std::string& where);
+  // Builds the cache over `triangles` where they differ from the last build's (or nothing is built yet); whether it
+  // built. `where` names the scene in an InputError for triangles no grid holds.
+  bool Prepare(std::span<const OccupancyTriangle> triangles, const std::string& where);
   // One frame's update. fixed64's F is chosen at the first update after a build, for `settings.frames` such frames.
   void Update(std::span<const HashCacheSample> samples);
   // The image of `primary` (a frame's primary hits) from the cache, on the host whatever the backend: the lookups
@@ -73,7 +76,8 @@ class HashCacheRun {
   EmulatorOptions emulator_;
   VulkanDevice* device_;
   std::unique_ptr<HashCacheUpdatePass> device_update_;  // vulkan: the update's pipeline, made once
-  std::optional<std::uint64_t> built_digest_;
+  std::optional<std::vector<OccupancyTriangle>> built_from_;
+  std::vector<OccupancyLevel> built_levels_;
   std::optional<HashCache> cache_;
   bool fresh_ = true;  // no update since the build
   std::uint32_t updates_ = 0;
