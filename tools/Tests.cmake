@@ -786,6 +786,10 @@ add_test(NAME HpsfSweep.FramesAxisAndTheMethodsOfSeveralBounces
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DSCENES=${PROJECT_SOURCE_DIR}/scenes
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/sweep_frames_cli.cmake)
 set_tests_properties(HpsfSweep.FramesAxisAndTheMethodsOfSeveralBounces PROPERTIES LABELS "unit;verdicts;bounces")
+add_test(NAME HpsfSweep.TheHashCacheMethod
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DSCENES=${PROJECT_SOURCE_DIR}/scenes
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/sweep_hashcache_cli.cmake)
+set_tests_properties(HpsfSweep.TheHashCacheMethod PROPERTIES LABELS "unit;vulkan;hashcache")
 hpsf_add_cli_test(HpsfReference.SppNotAMultipleOfThePassExits3 unit 3 "--spp: must be a multiple of --pass-spp" ""
   $<TARGET_FILE:hpsf> reference cornell --spp 24 --pass-spp 16)
 

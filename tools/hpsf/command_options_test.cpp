@@ -88,6 +88,8 @@ TEST_F(CommandOptions, BadValuesAreInputErrorsNamingTheirOption) {
       {{"reference", "cornell", "--pass-spp", "0"}, "--pass-spp"},
       {{"sweep", "cornell", "--grid", "method=kd"}, "--grid"},
       {{"sweep", "cornell", "--grid", "jitter=x"}, "--grid"},
+      {{"sweep", "cornell", "--grid", "method=hashcache; accum=packed-decimal"}, "--grid"},
+      {{"sweep", "cornell", "--grid", "method=hashcache; cache-store=9"}, "--grid"},
       {{"sweep", "cornell", "--grid", "spp=1", "--seeds", "0"}, "--seeds"},
       {{"sweep", "cornell", "--grid", "spp=1", "--reference-spp", "20"}, "--spp"},
   };

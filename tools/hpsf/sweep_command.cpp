@@ -163,6 +163,20 @@ TraceOptions TraceOf(const SweepConfig& c, const TraceOptions& sweep) {
   return trace;
 }
 
+// The HashCache of a hashcache configuration, checked before anything runs: a ConfigError naming --grid.
+HashCacheSettings HashCacheSettingsOf(const SweepConfig& c, const FilterConfig& config) {
+  HashCacheSettings settings;
+  settings.resolution_log2 = c.cache_resolution.value_or(7);
+  settings.accumulation = config.accumulation;
+  settings.frames = c.frames;
+  try {
+    settings.Validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError("--grid", c.id + ": " + e.what());
+  }
+  return settings;
+}
+
 // What a configuration traces, as a key: configurations of one frame that trace alike share their batches.
 std::string TraceKey(const TraceOptions& t) {
   return std::to_string(t.samples_per_pixel) + "/" + std::to_string(t.max_depth) + "/" + std::to_string(t.scattered) +
@@ -283,16 +297,8 @@ class Runner {
                        const std::vector<ChannelImage>& references) {
     SeedRun run;
     const BackendInfo& info = FindBackend(c.backend, "--grid");
-    HashCacheSettings settings;
-    settings.resolution_log2 = c.cache_resolution.value_or(7);
-    settings.accumulation = config.accumulation;
+    HashCacheSettings settings = HashCacheSettingsOf(c, config);
     settings.seed = seed;
-    settings.frames = c.frames;
-    try {
-      settings.Validate();
-    } catch (const ConfigError& e) {
-      throw ConfigError("--grid", c.id + ": " + e.what());
-    }
     VulkanDevice* device = info.kind == BackendKind::kVulkan ? BackendFor(c.backend).device.get() : nullptr;
     HashCacheRun cache(info, settings, EmulatorOptions{}, device);
     const CacheSampling sampling{c.cache_store.value_or(3), c.cache_length.value_or(3)};
@@ -677,6 +683,7 @@ int Run(SweepOptions& o, bool options_only) {
   for (const SweepConfig& c : configs) {
     filter_configs.push_back(FilterConfigOf(c));
     traces.push_back(TraceOf(c, reference_request.trace));
+    if (c.method == "hashcache") HashCacheSettingsOf(c, filter_configs.back());
   }
   const auto [shard, shards] = ParseShard(o.shard);
   if (options_only) return kExitOk;

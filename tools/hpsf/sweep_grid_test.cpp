@@ -70,11 +70,43 @@ TEST(SweepGrid, FramesAndTraceAxesGoWhereTheMethodReadsThem) {
   EXPECT_EQ(Ids("frames=1; method=pt"), (std::vector<std::string>{"method=pt backend=- spp=4"}));
 }
 
+// The HashCache's axes belong to it alone: other methods merge over them, and it ignores max-depth (its paths have
+// l_store + l_len vertices) but keeps its backend.
+TEST(SweepGrid, TheHashCachesAxesAreItsOwn) {
+  EXPECT_EQ(Ids("method=pt,hashcache; cache-resolution=5,6; backend=reference,vulkan; max-depth=3"),
+            (std::vector<std::string>{"method=pt backend=- spp=4 max-depth=3",
+                                      "method=hashcache backend=reference spp=4 cache-resolution=5",
+                                      "method=hashcache backend=vulkan spp=4 cache-resolution=5",
+                                      "method=hashcache backend=reference spp=4 cache-resolution=6",
+                                      "method=hashcache backend=vulkan spp=4 cache-resolution=6"}));
+}
+
 TEST(SweepGrid, BadGridsNameTheGrid) {
-  for (const char* grid :
-       {"", "spp", "spp=0", "spp=4,x", "method=kd", "backend=gpu", "spp=1; spp=2", "--jitter=1", "jitter=1,,2",
-        "frames=0", "frames=4097", "frames=2x", "max-depth=-2", "max-depth=1025", "filtered-vertices=0",
-        "filtered-vertices=9", "continuation-depth=0", "continuation-depth=1025", "transport=on"}) {
+  for (const char* grid : {"",
+                           "spp",
+                           "spp=0",
+                           "spp=4,x",
+                           "method=kd",
+                           "backend=gpu",
+                           "spp=1; spp=2",
+                           "--jitter=1",
+                           "jitter=1,,2",
+                           "frames=0",
+                           "frames=4097",
+                           "frames=2x",
+                           "max-depth=-2",
+                           "max-depth=1025",
+                           "filtered-vertices=0",
+                           "filtered-vertices=9",
+                           "continuation-depth=0",
+                           "continuation-depth=1025",
+                           "transport=on",
+                           "cache-resolution=1",
+                           "cache-resolution=11",
+                           "cache-store=0",
+                           "cache-store=9",
+                           "cache-length=0",
+                           "cache-length=x"}) {
     SCOPED_TRACE(grid);
     try {
       ParseGrid(grid);
