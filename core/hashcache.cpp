@@ -8,13 +8,17 @@
 namespace hpsf {
 
 HashCache EmptyHashCache(const shared::OccupancyGrid& grid, std::vector<CuckooMap> maps, Accumulation accumulation,
-                         int fixed_point_bits, std::uint32_t frame) {
+                         int fixed_point_bits, std::uint32_t frame, HashCacheUpdateRule update) {
   if (accumulation == Accumulation::kPackedDecimal) throw std::logic_error("the HashCache has no packed-decimal sums");
+  if (update == HashCacheUpdateRule::kAtomics && accumulation != Accumulation::kFixed64) {
+    throw std::logic_error("the HashCache's atomics update sums fixed64 only");
+  }
   if (maps.size() != std::size_t(grid.resolution_log2) + 1) throw std::logic_error("a HashCache needs a map a level");
   HashCache cache;
   cache.grid = grid;
   cache.accumulation = accumulation;
   cache.fixed_point_bits = fixed_point_bits;
+  cache.update = update;
   for (std::size_t l = 0; l < maps.size(); ++l) {
     HashCacheLevel level;
     level.level = int(l);

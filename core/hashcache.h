@@ -45,18 +45,28 @@ struct HashCacheLevel {
   HashCacheData data;
 };
 
+// How a frame's samples reach the levels (core/hashcache_update.h):
+// - sort and reduce (Roth's): the finest level's cells take the samples, each coarser level its children's sides
+//   (a child's front standing for its front, its front negated for its back), each cell side once per frame, every
+//   add in one order: fixed64 and float32 both reproducible;
+// - atomics: every sample adds to its cell at every level by atomic adds, on the side its own normal lies on there;
+//   fixed64 only (float32 adds in the order the device happens to take them).
+enum class HashCacheUpdateRule { kSortAndReduce, kAtomics };
+
 struct HashCache {
   shared::OccupancyGrid grid{};
   Accumulation accumulation = Accumulation::kFixed64;  // fixed64 or float32
   int fixed_point_bits = 0;                            // F of fixed64's sums
-  std::vector<HashCacheLevel> levels;                  // the finest first, the root last
+  HashCacheUpdateRule update = HashCacheUpdateRule::kSortAndReduce;
+  std::vector<HashCacheLevel> levels;  // the finest first, the root last
 };
 
 // A cache over `grid` with one map per level (maps[l] of level l's occupied cells, the finest first) and empty data:
 // every front unclaimed, every sum and count zero, every cell wiped at `frame`. A std::logic_error for packed-decimal
-// accumulation or a map count other than the grid's levels.
+// accumulation, float32 by atomics, or a map count other than the grid's levels.
 HashCache EmptyHashCache(const shared::OccupancyGrid& grid, std::vector<CuckooMap> maps, Accumulation accumulation,
-                         int fixed_point_bits, std::uint32_t frame = 0);
+                         int fixed_point_bits, std::uint32_t frame = 0,
+                         HashCacheUpdateRule update = HashCacheUpdateRule::kSortAndReduce);
 
 }  // namespace hpsf
 

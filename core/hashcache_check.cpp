@@ -83,10 +83,26 @@ std::vector<std::string> CheckHashCacheSums(const HashCache& cache, std::span<co
         finest.map.Find(shared::CuckooKey(cell.x, cell.y, cell.z, finest.cells_log2));
     if (!slot) continue;
     const std::size_t side = shared::FacesFront(shared::FrontWord(s.normal), finest.data.front[*slot]) ? 0 : 1;
-    for (int c = 0; c < 3; ++c) sums[0][6 * *slot + 3 * side + c] += shared::ToFixedPoint(shared::Flush(s.light[c]), scale);
+    for (int c = 0; c < 3; ++c)
+      sums[0][6 * *slot + 3 * side + c] += shared::ToFixedPoint(shared::Flush(s.light[c]), scale);
     counts[0][2 * *slot + side] += 1;
   }
-  for (std::size_t l = 1; l < cache.levels.size(); ++l) {
+  for (std::size_t l = 1; l < cache.levels.size() && cache.update == HashCacheUpdateRule::kAtomics; ++l) {
+    const HashCacheLevel& level = cache.levels[l];
+    for (const HashCacheSample& s : samples) {
+      const glm::ivec3 cell = shared::PointCell(cache.grid, s.position);
+      if (cell.x < 0) continue;
+      const glm::ivec3 at = cell >> int(l);
+      const std::optional<std::uint32_t> slot = level.map.Find(shared::CuckooKey(at.x, at.y, at.z, level.cells_log2));
+      if (!slot) continue;
+      const std::size_t side = shared::FacesFront(shared::FrontWord(s.normal), level.data.front[*slot]) ? 0 : 1;
+      for (int c = 0; c < 3; ++c) {
+        sums[l][6 * *slot + 3 * side + c] += shared::ToFixedPoint(shared::Flush(s.light[c]), scale);
+      }
+      counts[l][2 * *slot + side] += 1;
+    }
+  }
+  for (std::size_t l = 1; l < cache.levels.size() && cache.update == HashCacheUpdateRule::kSortAndReduce; ++l) {
     const HashCacheLevel& child = cache.levels[l - 1];
     const HashCacheLevel& parent = cache.levels[l];
     for (std::size_t c = 0; c < child.map.slots.size(); ++c) {

@@ -7,7 +7,8 @@
 // - The sums (fixed64): each finest cell's side holds the exact sums and count of the samples in the cell on that
 //   side of its front, and each coarser cell's side those of its children's sides on that side of its front (a
 //   child's front standing for the child's front, its negation for the child's back), summed from the samples up,
-//   so a wrong cell is named at its own level alone.
+//   so a wrong cell is named at its own level alone. Under the atomics rule every level's cells hold their samples
+//   as the finest level's do.
 #ifndef HPSF_CORE_HASHCACHE_CHECK_H
 #define HPSF_CORE_HASHCACHE_CHECK_H
 

@@ -52,10 +52,65 @@ std::string Where(const HashCacheLevel& level, std::uint32_t slot, std::uint32_t
          ")";
 }
 
+// The atomics rule: every sample at every level, on its own normal's side. Claims as UpdateHashCache's.
+HashCacheUpdateReport UpdateByAtomics(HashCache& cache, std::span<const HashCacheSample> samples,
+                                      const std::vector<std::vector<std::uint32_t>>* claims) {
+  HashCacheUpdateReport report;
+  const float scale = SumScale(cache.accumulation, cache.fixed_point_bits);
+  std::vector<glm::ivec3> cells;
+  for (const HashCacheSample& s : samples) cells.push_back(shared::PointCell(cache.grid, s.position));
+  for (HashCacheLevel& level : cache.levels) {
+    HashCacheData& data = level.data;
+    std::vector<std::uint8_t> claimed_now(data.front.size(), 0), claim_seen(data.front.size(), 0);
+    std::uint64_t updated = 0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (cells[i].x < 0) {
+        report.missed += level.level == 0;
+        continue;
+      }
+      const glm::ivec3 cell = cells[i] >> level.level;
+      const std::uint32_t key = shared::CuckooKey(cell.x, cell.y, cell.z, level.cells_log2);
+      const std::optional<std::uint32_t> slot = level.map.Find(key);
+      if (!slot) {
+        report.missed += level.level == 0;
+        continue;
+      }
+      const std::uint32_t side = shared::FrontWord(samples[i].normal);
+      std::uint32_t& front = data.front[*slot];
+      if (front == shared::kFrontUnclaimed) {
+        front = claims ? (*claims)[level.level][*slot] : side;
+        claimed_now[*slot] = 1;
+        if (front == shared::kFrontUnclaimed) {
+          report.problems.push_back(Where(level, *slot, key) + ": reached but left unclaimed");
+          front = side;
+        }
+      }
+      if (claimed_now[*slot] && side == front) claim_seen[*slot] = 1;
+      const std::size_t back = shared::FacesFront(side, front) ? 0 : 1;
+      for (int c = 0; c < 3; ++c) {
+        data.fixed_sums[6 * *slot + 3 * back + c] += shared::ToFixedPoint(shared::Flush(samples[i].light[c]), scale);
+      }
+      data.counts[2 * *slot + back] += 1;
+      ++updated;
+    }
+    report.segments.push_back(updated);
+    if (claims) {
+      for (std::size_t slot = 0; slot < claimed_now.size(); ++slot) {
+        if (claimed_now[slot] && !claim_seen[slot]) {
+          report.problems.push_back(Where(level, std::uint32_t(slot), level.map.slots[slot]) + ": front " +
+                                    FormatHex(data.front[slot]) + " is the side of no sample that reached the cell");
+        }
+      }
+    }
+  }
+  return report;
+}
+
 }  // namespace
 
 HashCacheUpdateReport UpdateHashCache(HashCache& cache, std::span<const HashCacheSample> samples,
                                       const std::vector<std::vector<std::uint32_t>>* claims) {
+  if (cache.update == HashCacheUpdateRule::kAtomics) return UpdateByAtomics(cache, samples, claims);
   HashCacheUpdateReport report;
   std::vector<Element> elements = SampleElements(cache, samples, report);
   for (HashCacheLevel& level : cache.levels) {

@@ -11,6 +11,9 @@
 // No atomic adds: fixed64's sums are exact, and float32's are the same bits on every backend and thread count, since
 // every add happens in one order. Only the front's claim races (which element claims first); given the claims, every
 // bit is determined.
+//
+// A cache whose rule is atomics (core/hashcache.h) is updated level by level too, each sample locating its cell at the
+// level, claiming its front with its own normal and adding its light to the side its normal lies on.
 #ifndef HPSF_CORE_HASHCACHE_UPDATE_H
 #define HPSF_CORE_HASHCACHE_UPDATE_H
 
@@ -25,7 +28,7 @@ namespace hpsf {
 
 struct HashCacheUpdateReport {
   std::uint64_t missed = 0;             // samples off the grid or in a cell no triangle occupies
-  std::vector<std::uint64_t> segments;  // per level: the cell sides updated
+  std::vector<std::uint64_t> segments;  // per level: the cell sides updated (atomics: the samples added)
   // With claims given: each claim no element that reached the cell made, each cell reached but left unclaimed, and
   // each parent of a reached cell missing from its level's map.
   std::vector<std::string> problems;

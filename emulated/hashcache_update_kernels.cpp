@@ -172,6 +172,44 @@ simt::KernelTask HashCacheReduceKernel(simt::ThreadContext& ctx, const HashCache
   co_await ctx.Store(args.out.count, at, sums.count);
 }
 
+simt::KernelTask HashCacheAtomicKernel(simt::ThreadContext& ctx, const HashCacheUpdateArgs& args) {
+  const HashCacheSample& s = args.samples[ctx.Thread()];
+  const glm::ivec3 finest = shared::PointCell(args.grid, s.position);
+  if (finest.x < 0) {
+    if (args.level == 0) co_await ctx.AtomicAdd(args.missed, 0, 1);
+    co_return;
+  }
+  const glm::ivec3 cell = finest >> args.level;
+  const std::uint32_t key = shared::CuckooKey(cell.x, cell.y, cell.z, args.cells_log2);
+  std::uint32_t slot = shared::kCuckooEmpty;
+  for (std::uint32_t f = 0; f < args.params.functions && slot == shared::kCuckooEmpty; ++f) {
+    const std::uint32_t candidate = shared::CuckooSlot(args.params, f, key);
+    if (std::uint32_t(co_await ctx.Load(args.map, candidate)) == key) slot = candidate;
+  }
+  if (slot == shared::kCuckooEmpty) {
+    if (args.level == 0) co_await ctx.AtomicAdd(args.missed, 0, 1);
+    co_return;
+  }
+  const std::uint32_t side = shared::FrontWord(s.normal);
+  std::uint32_t front;
+  if (args.defect == HashCacheUpdateDefect::kPlainStoreClaim) {
+    front = std::uint32_t(co_await ctx.Load(args.front, slot));
+    if (front == shared::kFrontUnclaimed) {
+      co_await ctx.Store(args.front, slot, side);
+      front = side;
+    }
+  } else {
+    const auto old = std::uint32_t(co_await ctx.AtomicCas(args.front, slot, shared::kFrontUnclaimed, side));
+    front = old == shared::kFrontUnclaimed ? side : old;
+  }
+  const std::uint64_t back = shared::FacesFront(side, front) ? 0 : 1;
+  for (std::uint32_t c = 0; c < 3; ++c) {
+    co_await ctx.AtomicAdd(args.sums, 6 * std::uint64_t(slot) + 3 * back + c,
+                           shared::ToFixedPoint(shared::Flush(s.light[c]), args.scale));
+  }
+  co_await ctx.AtomicAdd(args.counts, 2 * std::uint64_t(slot) + back, 1);
+}
+
 EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<const HashCacheSample> samples,
                                                 const EmulatorOptions& options, HashCacheUpdateDefect defect) {
   options.Validate();
@@ -223,10 +261,23 @@ EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<cons
     simt::LaunchFaithful(memory, threads, options.warp_size, bound, *schedule);
   };
 
+  // Locate and claim, sort, reduce: the elements of the level above are the segments appended.
+  const auto sort_and_reduce = [&](std::size_t l) {
+    launch(args.positions, HashCacheLocateKernel, l == 0);
+    for (args.sort_block = 2; args.sort_block <= args.positions; args.sort_block *= 2) {
+      for (args.sort_stride = args.sort_block / 2; args.sort_stride > 0; args.sort_stride /= 2) {
+        launch(args.positions / 2, HashCacheSortStepKernel, false);
+      }
+    }
+    memory.Words64(args.appended)[0] = 0;
+    launch(args.positions, HashCacheReduceKernel, false);
+    args.element_count = std::uint32_t(std::as_const(memory).Words64(args.appended)[0]);
+  };
+  const bool atomics = cache.update == HashCacheUpdateRule::kAtomics;
   args.in = elements[0];
   args.cells_log2 = cache.grid.resolution_log2;
-  launch(args.positions, HashCacheSampleKernel, false);
-  for (std::size_t l = 0; l < cache.levels.size() && (l == 0 || args.element_count > 0); ++l) {
+  if (!atomics) launch(args.positions, HashCacheSampleKernel, false);
+  for (std::size_t l = 0; l < cache.levels.size() && (atomics || l == 0 || args.element_count > 0); ++l) {
     HashCacheLevel& level = cache.levels[l];
     args.positions = std::bit_ceil(std::max<std::uint32_t>(2, args.element_count));
     args.in = elements[l % 2];
@@ -244,15 +295,11 @@ EmulatedHashCacheUpdate UpdateHashCacheEmulated(HashCache& cache, std::span<cons
       args.sums = Upload32(memory, "sums", bits);
     }
     args.counts = Upload64(memory, "counts", level.data.counts);
-    launch(args.positions, HashCacheLocateKernel, l == 0);
-    for (args.sort_block = 2; args.sort_block <= args.positions; args.sort_block *= 2) {
-      for (args.sort_stride = args.sort_block / 2; args.sort_stride > 0; args.sort_stride /= 2) {
-        launch(args.positions / 2, HashCacheSortStepKernel, false);
-      }
+    if (atomics) {
+      launch(std::uint32_t(samples.size()), HashCacheAtomicKernel, l == 0);
+    } else {
+      sort_and_reduce(l);
     }
-    memory.Words64(args.appended)[0] = 0;
-    launch(args.positions, HashCacheReduceKernel, false);
-    args.element_count = std::uint32_t(std::as_const(memory).Words64(args.appended)[0]);
     level.data.counts = memory.TakeWords64(args.counts);
     if (fixed64) {
       level.data.fixed_sums = memory.TakeWords64(args.sums);

@@ -65,6 +65,9 @@ simt::KernelTask HashCacheSampleKernel(simt::ThreadContext& ctx, const HashCache
 simt::KernelTask HashCacheLocateKernel(simt::ThreadContext& ctx, const HashCacheUpdateArgs& args);    // per position
 simt::KernelTask HashCacheSortStepKernel(simt::ThreadContext& ctx, const HashCacheUpdateArgs& args);  // per pair
 simt::KernelTask HashCacheReduceKernel(simt::ThreadContext& ctx, const HashCacheUpdateArgs& args);    // per position
+// The atomics rule (core/hashcache.h): each sample locates its cell at the level, claims its front and adds its light
+// to its side by atomic adds. One launch per level.
+simt::KernelTask HashCacheAtomicKernel(simt::ThreadContext& ctx, const HashCacheUpdateArgs& args);  // per sample
 
 struct EmulatedHashCacheUpdate {
   std::uint64_t missed = 0;

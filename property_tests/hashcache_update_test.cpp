@@ -326,5 +326,45 @@ TEST(HashCacheUpdate, TheDevicesUpdateIsTheReferencesGivenItsClaims) {
   }
 }
 
+// The atomics rule (every sample at every level, by atomic adds) on the reference, the emulator (fast mode on two
+// workers and 10 faithful schedules) and Vulkan (mapped), two frames of 3,000 samples on the Cornell box at 2^5:
+// every frame is the reference's given the backend's claims, and every level's fixed64 sums are its samples'. float32
+// by atomics is refused.
+TEST(HashCacheUpdate, TheAtomicsRuleOnEveryBackend) {
+  const std::vector<OccupancyTriangle> triangles = CornellTriangles();
+  std::vector<HashCacheSample> all = RandomSamples(triangles, 3000, 60);
+  const std::vector<HashCacheSample> second = RandomSamples(triangles, 3000, 61);
+  all.insert(all.end(), second.begin(), second.end());
+  HashCache empty = EmptyCache(triangles, 5, Accumulation::kFixed64, FixedPointBitsFor(all, 1));
+  empty.update = HashCacheUpdateRule::kAtomics;
+  std::vector<EmulatorOptions> schedules = RacingSchedules();
+  schedules.resize(10);
+  EmulatorOptions two;
+  two.threads = 2;
+  schedules.push_back(two);
+  HashCacheUpdatePass pass(TestDevice(StagingPolicy::kNever));
+  // 0: the reference; 1 to 11: the emulator; 12: Vulkan.
+  for (std::size_t run = 0; run < schedules.size() + 2; ++run) {
+    const std::string name = run == 0 ? "reference" : run <= schedules.size() ? Name(schedules[run - 1]) : "vulkan";
+    HashCache cache = empty;
+    for (int frame = 0; frame < 2; ++frame) {
+      const std::span<const HashCacheSample> samples(all.data() + 3000 * frame, 3000);
+      const HashCache before = cache;
+      if (run == 0) {
+        UpdateHashCache(cache, samples);
+      } else if (run <= schedules.size()) {
+        UpdateHashCacheEmulated(cache, samples, schedules[run - 1]);
+      } else {
+        pass.Run(cache, samples);
+      }
+      const std::vector<std::string> problems = CheckHashCacheFrame(before, cache, samples);
+      EXPECT_TRUE(problems.empty()) << name << ", frame " << frame << ": " << First(problems);
+    }
+    EXPECT_EQ(CheckHashCacheSums(cache, all), std::vector<std::string>{}) << name;
+  }
+  EXPECT_THROW(EmptyHashCache(empty.grid, {}, Accumulation::kFloat32, 0, 0, HashCacheUpdateRule::kAtomics),
+               std::logic_error);
+}
+
 }  // namespace
 }  // namespace hpsf::testing

@@ -35,7 +35,8 @@ enum Stage : std::uint32_t {
   kSortStep = 2,
   kReduce = 3,
   kResetAppended = 4,
-  kLocalSort = 5
+  kLocalSort = 5,
+  kAtomicUpdate = 6
 };
 
 // A level's data arrays on the device; an array the accumulation does not use is a 16-byte placeholder.
@@ -116,7 +117,8 @@ DeviceHashCacheUpdate HashCacheUpdatePass::Run(HashCache& cache, std::span<const
   push.defect = plain_store_claim ? 1u : 0u;
   std::uint32_t element_count = std::uint32_t(samples.size());
   std::array<std::uint32_t, 3> counted{};  // missed, lost, appended
-  for (std::size_t l = 0; l < cache.levels.size() && (l == 0 || element_count > 0); ++l) {
+  const bool atomics = cache.update == HashCacheUpdateRule::kAtomics;
+  for (std::size_t l = 0; l < cache.levels.size() && (atomics || l == 0 || element_count > 0); ++l) {
     LevelBuffers& b = levels[l];
     vulkan_internal::DeviceBuffer* const buffers[] = {
         &sample_buffer,         &b.map,  &b.fronts, &b.fixed_sums, &b.float_sums, &b.counts, &elements[l % 2],
@@ -140,6 +142,11 @@ DeviceHashCacheUpdate HashCacheUpdatePass::Run(HashCache& cache, std::span<const
                            barrier, nullptr, nullptr);
       };
       const std::uint32_t per_position = vulkan_internal::WorkgroupsFor(push.positions, kWorkgroup);
+      if (atomics) {
+        push.element_count = std::uint32_t(samples.size());
+        dispatch(kAtomicUpdate, vulkan_internal::WorkgroupsFor(push.element_count, kWorkgroup));
+        return;
+      }
       dispatch(kResetAppended, 1);
       if (l == 0) dispatch(kSamples, per_position);
       dispatch(kLocate, per_position);
@@ -160,7 +167,7 @@ DeviceHashCacheUpdate HashCacheUpdatePass::Run(HashCache& cache, std::span<const
     const void* read = download.Download(counters, 3 * sizeof(std::uint32_t));
     download.Submit();
     std::memcpy(counted.data(), read, sizeof counted);
-    element_count = counted[2];
+    element_count = atomics ? std::uint32_t(samples.size()) : counted[2];
   }
   DeviceHashCacheUpdate result;
   result.missed = counted[0];

@@ -90,6 +90,7 @@ TEST_F(CommandOptions, BadValuesAreInputErrorsNamingTheirOption) {
       {{"sweep", "cornell", "--grid", "jitter=x"}, "--grid"},
       {{"sweep", "cornell", "--grid", "method=hashcache; accum=packed-decimal"}, "--grid"},
       {{"sweep", "cornell", "--grid", "method=hashcache; cache-store=9"}, "--grid"},
+      {{"sweep", "cornell", "--grid", "method=hashcache; cache-update=atomics; accum=float32"}, "--cache-update"},
       {{"sweep", "cornell", "--grid", "spp=1", "--seeds", "0"}, "--seeds"},
       {{"sweep", "cornell", "--grid", "spp=1", "--reference-spp", "20"}, "--spp"},
   };

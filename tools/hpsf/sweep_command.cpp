@@ -169,6 +169,7 @@ HashCacheSettings HashCacheSettingsOf(const SweepConfig& c, const FilterConfig& 
   settings.resolution_log2 = c.cache_resolution.value_or(7);
   settings.accumulation = config.accumulation;
   settings.frames = c.frames;
+  if (c.cache_update == "atomics") settings.update = HashCacheUpdateRule::kAtomics;
   try {
     settings.Validate();
   } catch (const ConfigError& e) {
@@ -482,6 +483,7 @@ json MeasureConfig(const SweepConfig& c, const FilterConfig& config, const Trace
   if (c.cache_resolution) trace_axes["cache-resolution"] = std::to_string(*c.cache_resolution);
   if (c.cache_store) trace_axes["cache-store"] = std::to_string(*c.cache_store);
   if (c.cache_length) trace_axes["cache-length"] = std::to_string(*c.cache_length);
+  if (c.cache_update) trace_axes["cache-update"] = *c.cache_update;
   result["trace_axes"] = trace_axes;
   if (!hashcache_runs.empty()) {
     std::vector<double> filled;
@@ -826,11 +828,13 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
       "What accuracy costs in time: every configuration of a grid, traced and filtered with K seeds, timed "
       "and measured against the scene's converged image (relMSE, SSIM, bias^2 and variance)");
   c->add_option("scene", o->scene, "A built-in scene or a scene file")->required();
-  c->add_option("--grid", o->grid,
-                "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
-                "screen,hashcache; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, "
-                "continuation-depth, survival, path-graph, cache-resolution, cache-store, cache-length; other axes: "
-                "any filter option without its dashes)")
+  c->add_option(
+       "--grid", o->grid,
+       "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
+       "screen,hashcache; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, "
+       "continuation-depth, survival, path-graph, cache-resolution, cache-store, cache-length, cache-update; other "
+       "axes: "
+       "any filter option without its dashes)")
       ->required()
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // a later --grid replaces an earlier one
   c->add_option("--seeds", o->seeds, "Independent seeds per configuration (1..K); 2 or more split the error")

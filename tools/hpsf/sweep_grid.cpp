@@ -70,6 +70,8 @@ void CheckValue(const std::string& axis, const std::string& value) {
     if (!Integer(value, 2, 10)) refuse("L in [2, 10]: 2^L finest cells per axis");
   } else if (axis == "cache-store" || axis == "cache-length") {
     if (!Integer(value, 1, 8)) refuse("a vertex count in [1, 8]");
+  } else if (axis == "cache-update") {
+    if (value != "sort-reduce" && value != "atomics") refuse("expected sort-reduce or atomics");
   } else if (axis == "transport") {
     refuse("the transport is the method's: method=nhpsf or anhpsf filter with it, hpsf without");
   } else if (axis == "method") {
@@ -149,6 +151,8 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
         c.cache_store = std::uint32_t(std::stoul(value));
       } else if (axes[a].name == "cache-length") {
         c.cache_length = std::uint32_t(std::stoul(value));
+      } else if (axes[a].name == "cache-update") {
+        c.cache_update = value;
       } else if (axes[a].name == "method") {
         c.method = value;
       } else if (axes[a].name == "backend") {
@@ -165,7 +169,12 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
     if (c.method != "anhpsf") c.continuation_depth.reset();
     if (c.method != "hpsf") c.survival.reset();
     if (c.method != "hpsf") c.path_graph.reset();
-    if (c.method != "hashcache") c.cache_resolution.reset(), c.cache_store.reset(), c.cache_length.reset();
+    if (c.method != "hashcache") {
+      c.cache_resolution.reset();
+      c.cache_store.reset();
+      c.cache_length.reset();
+      c.cache_update.reset();
+    }
     if (c.method == "hashcache") c.max_depth.reset();  // its paths have l_store + l_len vertices
     c.id = "method=" + c.method + " backend=" + c.backend + " spp=" + std::to_string(c.spp);
     if (c.frames != 1) c.id += " frames=" + std::to_string(c.frames);
@@ -177,6 +186,7 @@ std::vector<SweepConfig> ExpandGrid(const std::vector<GridAxis>& axes) {
     if (c.cache_resolution) c.id += " cache-resolution=" + std::to_string(*c.cache_resolution);
     if (c.cache_store) c.id += " cache-store=" + std::to_string(*c.cache_store);
     if (c.cache_length) c.id += " cache-length=" + std::to_string(*c.cache_length);
+    if (c.cache_update) c.id += " cache-update=" + *c.cache_update;
     for (const auto& [name, value] : c.filter) c.id += " " + name + "=" + value;
     if (seen.insert(c.id).second) configs.push_back(std::move(c));
     std::size_t a = axes.size();

@@ -18,6 +18,8 @@
 //   cache-resolution    hashcache: 2^L finest cells per axis, L in [2, 10] (default 7)
 //   cache-store         hashcache: l_store, the vertices of a path cached, 1 to 8 (default 3)
 //   cache-length        hashcache: l_len, the vertices whose light each cached vertex carries, 1 to 8 (default 3)
+//   cache-update        hashcache: sort-reduce (Roth's) or atomics (every sample at every level; fixed64 only)
+//                       (default sort-reduce)
 //   path-graph          hpsf's adaptive path graphs, off or a --path-graph bound (core/path_graph.h), with second
 //                       moments kept; from a sequence's second frame on (default off). Its paths' own light shows
 //                       where the resolve takes it: interpolation=path, or a variance rule
@@ -59,6 +61,7 @@ struct SweepConfig {
   std::optional<int> cache_resolution;    // hashcache's axes
   std::optional<std::uint32_t> cache_store;
   std::optional<std::uint32_t> cache_length;
+  std::optional<std::string> cache_update;
   std::vector<std::pair<std::string, std::string>> filter;  // the filter axes' values, in axis order
   // The filter options as command-line words ("--filter-width", "2", ...).
   std::vector<std::string> FilterArguments() const;

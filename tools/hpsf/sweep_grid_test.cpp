@@ -106,7 +106,8 @@ TEST(SweepGrid, BadGridsNameTheGrid) {
                            "cache-store=0",
                            "cache-store=9",
                            "cache-length=0",
-                           "cache-length=x"}) {
+                           "cache-length=x",
+                           "cache-update=locks"}) {
     SCOPED_TRACE(grid);
     try {
       ParseGrid(grid);

@@ -37,6 +37,9 @@ void HashCacheSettings::Validate() const {
     throw ConfigError("--accum", "the HashCache keeps fixed64 or float32 sums, not packed-decimal");
   }
   if (frames == 0) throw ConfigError("--frames", "must be at least 1");
+  if (update == HashCacheUpdateRule::kAtomics && accumulation != Accumulation::kFixed64) {
+    throw ConfigError("--cache-update", "atomics sums fixed64 only: float32 by atomic adds depends on their order");
+  }
 }
 
 HashCacheRun::HashCacheRun(const BackendInfo& backend, HashCacheSettings settings, EmulatorOptions emulator,
@@ -93,7 +96,7 @@ bool HashCacheRun::Prepare(std::span<const OccupancyTriangle> triangles, const s
   for (std::size_t l = 0; l < levels.size() && l < built_levels_.size(); ++l) {
     timings_.levels_unchanged += levels[l] == built_levels_[l];
   }
-  cache_ = EmptyHashCache(grid, std::move(maps), settings_.accumulation, 0, updates_);
+  cache_ = EmptyHashCache(grid, std::move(maps), settings_.accumulation, 0, updates_, settings_.update);
   built_from_.emplace(triangles.begin(), triangles.end());
   built_levels_ = std::move(levels);
   fresh_ = true;

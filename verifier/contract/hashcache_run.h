@@ -34,7 +34,8 @@ struct HashCacheSettings {
   Accumulation accumulation = Accumulation::kFixed64;  // fixed64 or float32
   std::uint32_t seed = 1;                              // of the maps' hash constants
   std::uint32_t frames = 1;  // frames the cache integrates: fixed64's F keeps their sums below 2^63
-  void Validate() const;     // ConfigError naming the option
+  HashCacheUpdateRule update = HashCacheUpdateRule::kSortAndReduce;  // --cache-update: sort-reduce or atomics
+  void Validate() const;                                             // ConfigError naming the option
 };
 
 struct HashCacheTimings {

@@ -60,7 +60,8 @@ layout(push_constant) uniform Params {
   int resolution_log2;
   uint stage;  // 0: samples to elements; 1: locate and claim; 2: a sort step; 3: reduce; 4: reset the count of
                // appended parents; 5: the sort's steps of strides below kLocalSortSpan for one block size (or all
-               // block sizes up to kLocalSortSpan where sort_block is 0), in workgroup memory
+               // block sizes up to kLocalSortSpan where sort_block is 0), in workgroup memory; 6: the atomics rule's
+               // update of the level by every sample
   int level;
   int cells_log2;
   uint positions;  // the sort's span: a power of two, at least kLocalSortSpan
@@ -135,6 +136,42 @@ void Locate(uint i) {
   bool back = !FacesFront(side, front);
   elements[i].slot = slot;
   orders[i] = (uint64_t(SegmentWord(key, back)) << 32) | uint64_t(elements[i].origin);
+}
+
+// The atomics rule (core/hashcache.h): sample i locates its cell at the level, claims its front and adds its light to
+// its side by atomic adds.
+void AtomicUpdate(uint i) {
+  if (i >= element_count) return;
+  OccupancyGrid g;
+  g.cell_exponent = cell_exponent;
+  g.origin_x = origin_x;
+  g.origin_y = origin_y;
+  g.origin_z = origin_z;
+  g.resolution_log2 = resolution_log2;
+  ivec3 finest = PointCell(g, samples[i].position);
+  if (finest.x < 0) {
+    if (level == 0) atomicAdd(missed, 1u);
+    return;
+  }
+  ivec3 cell = finest >> level;
+  uint key = CuckooKey(cell.x, cell.y, cell.z, cells_log2);
+  uint slot = kCuckooEmpty;
+  for (uint f = 0u; f < params.functions && slot == kCuckooEmpty; ++f) {
+    uint candidate = CuckooSlot(params, f, key);
+    if (map_slots[candidate] == key) slot = candidate;
+  }
+  if (slot == kCuckooEmpty) {
+    if (level == 0) atomicAdd(missed, 1u);
+    return;
+  }
+  uint side = FrontWord(samples[i].normal);
+  uint old = atomicCompSwap(fronts[slot], kFrontUnclaimed, side);
+  uint front = old == kFrontUnclaimed ? side : old;
+  uint back = FacesFront(side, front) ? 0u : 1u;
+  for (uint c = 0u; c < 3u; ++c) {
+    atomicAdd(fixed_sums[6u * slot + 3u * back + c], ToFixedPoint(Flush(samples[i].light[c]), scale));
+  }
+  atomicAdd(counts[2u * slot + back], 1ul);
 }
 
 void SortStep(uint t) {
@@ -258,6 +295,8 @@ void main() {
       Locate(i);
     } else if (stage == 2u) {
       SortStep(i);
+    } else if (stage == 6u) {
+      AtomicUpdate(i);
     } else {
       Reduce(i);
     }
