@@ -828,13 +828,11 @@ void AddSweepCommand(CLI::App& app, CommandContext& context) {
       "What accuracy costs in time: every configuration of a grid, traced and filtered with K seeds, timed "
       "and measured against the scene's converged image (relMSE, SSIM, bias^2 and variance)");
   c->add_option("scene", o->scene, "A built-in scene or a scene file")->required();
-  c->add_option(
-       "--grid", o->grid,
-       "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
-       "screen,hashcache; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, "
-       "continuation-depth, survival, path-graph, cache-resolution, cache-store, cache-length, cache-update; other "
-       "axes: "
-       "any filter option without its dashes)")
+  c->add_option("--grid", o->grid,
+                "Axes and values, e.g. \"spp=1,4; frames=1,16; filter-width=2,4; method=pt,hpsf,nhpsf,anhpsf,radius,"
+                "screen,hashcache; backend=reference,emulated\" (trace axes: max-depth, filtered-vertices, "
+                "continuation-depth, survival, path-graph, cache-resolution, cache-store, cache-length, cache-update; "
+                "other axes: any filter option without its dashes)")
       ->required()
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // a later --grid replaces an earlier one
   c->add_option("--seeds", o->seeds, "Independent seeds per configuration (1..K); 2 or more split the error")
