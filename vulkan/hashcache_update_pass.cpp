@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
 #include "hashcache_update_spv.h"
 #include "vulkan/vulkan_internal.h"
 
@@ -73,7 +74,16 @@ DeviceHashCacheUpdate HashCacheUpdatePass::Run(HashCache& cache, std::span<const
   if (samples.size() > (std::size_t(65535) * kLocalSortSpan)) {
     throw std::logic_error("a HashCache update of more samples than a dispatch's workgroups can sort");
   }
-  const std::uint32_t span = SpanFor(std::uint32_t(samples.size()));
+  const bool atomics = cache.update == HashCacheUpdateRule::kAtomics;
+  // The atomics rule reads the samples alone: its elements, orders and permutation are placeholders.
+  const std::size_t span = atomics ? 1 : SpanFor(std::uint32_t(samples.size()));
+  const vk::DeviceSize storage_range = d.physical.getProperties().limits.maxStorageBufferRange;
+  if (std::max<vk::DeviceSize>(span * kElementBytes, samples.size_bytes()) > storage_range) {
+    throw InputError("the HashCache's update of " + std::to_string(samples.size()) + " samples needs " +
+                     std::to_string(std::max<vk::DeviceSize>(span * kElementBytes, samples.size_bytes())) +
+                     " bytes in one buffer, more than the " + std::to_string(storage_range) + " bytes '" +
+                     device_.info().name + "' can bind: fewer samples a frame (--size, --spp)");
+  }
   vulkan_internal::DeviceBuffer sample_buffer =
       vulkan_internal::CreateDeviceBuffer(d, std::max<std::size_t>(samples.size_bytes(), 16));
   vulkan_internal::DeviceBuffer elements[2] = {vulkan_internal::CreateDeviceBuffer(d, span * kElementBytes),
@@ -117,7 +127,6 @@ DeviceHashCacheUpdate HashCacheUpdatePass::Run(HashCache& cache, std::span<const
   push.defect = plain_store_claim ? 1u : 0u;
   std::uint32_t element_count = std::uint32_t(samples.size());
   std::array<std::uint32_t, 3> counted{};  // missed, lost, appended
-  const bool atomics = cache.update == HashCacheUpdateRule::kAtomics;
   for (std::size_t l = 0; l < cache.levels.size() && (atomics || l == 0 || element_count > 0); ++l) {
     LevelBuffers& b = levels[l];
     vulkan_internal::DeviceBuffer* const buffers[] = {
