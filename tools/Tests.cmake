@@ -790,6 +790,10 @@ add_test(NAME HpsfSweep.TheHashCacheMethod
   COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DSCENES=${PROJECT_SOURCE_DIR}/scenes
     -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/sweep_hashcache_cli.cmake)
 set_tests_properties(HpsfSweep.TheHashCacheMethod PROPERTIES LABELS "unit;vulkan;hashcache")
+add_test(NAME HpsfCrosscheck.TheHashCacheMethod
+  COMMAND ${CMAKE_COMMAND} -DHPSF=$<TARGET_FILE:hpsf> -DOUT=${hpsf_out} -DSCENES=${PROJECT_SOURCE_DIR}/scenes
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/testing/hashcache_crosscheck_cli.cmake)
+set_tests_properties(HpsfCrosscheck.TheHashCacheMethod PROPERTIES LABELS "unit;vulkan;hashcache")
 hpsf_add_cli_test(HpsfReference.SppNotAMultipleOfThePassExits3 unit 3 "--spp: must be a multiple of --pass-spp" ""
   $<TARGET_FILE:hpsf> reference cornell --spp 24 --pass-spp 16)
 

@@ -14,8 +14,11 @@
 #include "tools/hpsf/batch_input.h"
 #include "tools/hpsf/bounce_options.h"
 #include "tools/hpsf/filter_options.h"
+#include "tools/hpsf/hashcache_crosscheck.h"
+#include "tools/hpsf/hashcache_options.h"
 #include "tools/hpsf/repro_bundle.h"
 #include "tracer/path_tracer.h"
+#include "tracer/scene_file.h"
 #include "verifier/contract/crosscheck.h"
 #include "verifier/contract/run_capture.h"
 #include "verifier/gate/table_declaration.h"
@@ -35,6 +38,7 @@ struct CrosscheckOptions {
   TraceOptions trace;
   FilterOptions filter;
   EmulatorFlags emulator;
+  HashCacheFlags hashcache;
   bool json = false;
   std::vector<std::string> arguments;  // as given, for the bundle's command line
 };
@@ -96,12 +100,51 @@ void ObserveIntoCaptures(Crosschecker& checker, const std::string& dir, const Fi
   });
 }
 
+// --method hashcache: the HashCache on each backend over the scene's frames (tools/hpsf/hashcache_crosscheck.h).
+int RunHashCache(CrosscheckOptions& o, const FilterConfig& config, const EmulatorOptions& emulator, bool options_only) {
+  if (IsRecordFile(o.input)) {
+    throw ConfigError("--method", o.input + " holds records; the HashCache caches samples it traces from a scene");
+  }
+  if (ParseDefect(o.emulator.defect) != Defect::kNone) {
+    throw ConfigError("--inject-defect", "breaks hpsf's own table's passes, not the HashCache's");
+  }
+  const HashCacheSettings settings = ResolveHashCacheSettings(o.hashcache, config.accumulation, o.frames, config.seed);
+  const CacheSampling sampling = ResolveCacheSampling(o.hashcache);
+  const HashCacheUpdateDefect defect = ResolveCacheDefect(o.hashcache);
+  ResolveTraceOptions(o.input, o.size, o.trace, config.seed);
+  CheckFrameOptions(o);
+  if (options_only) return kExitOk;
+  const HashCacheCrosscheck result = CrosscheckHashCache(LoadScene(o.input), o.trace, o.frames, SplitList(o.backends),
+                                                         settings, sampling, emulator, o.emulator.vulkan, defect);
+  if (!o.report_file.empty()) std::ofstream(o.report_file) << result.report.dump(2) << "\n";
+  if (o.json) {
+    std::cout << result.report.dump(2) << "\n";
+  } else {
+    std::cout << result.text;
+  }
+  if (result.passed) return kExitOk;
+  std::vector<std::string> arguments;
+  for (std::size_t i = 0; i < o.arguments.size(); ++i) {
+    const std::string& a = o.arguments[i];
+    if (a == "--repro-dir" || a == "--report") {
+      ++i;
+      continue;
+    }
+    if (a != "--json") arguments.push_back(a);
+  }
+  WriteHashCacheBundle(o.repro_dir, o.input, arguments, result.report);
+  std::cerr << "hpsf: the HashCache's checker found problems (seed " << config.seed << "); repro bundle in "
+            << o.repro_dir << " (report.json; reproduce.sh reruns the check and writes reproduced.json)\n";
+  return kExitCheckFailed;
+}
+
 int Run(CrosscheckOptions& o, bool options_only) {
   o.filter.config.frames = o.frames;
   FilterConfig config = ResolveFilterConfig(o.filter);
   const EmulatorOptions emulator = ResolveEmulatorOptions(o.emulator);
   // Bad names are bad input before any tracing; the Vulkan device opens at the first check.
   Crosschecker checker(SplitList(o.backends), ParseDefect(o.emulator.defect), o.emulator.vulkan);
+  if (HashCacheMethod(o.hashcache)) return RunHashCache(o, config, emulator, options_only);
   TraceScatteredVertices(config, o.trace);
   CheckAdaptiveTrace(config, o.trace);
   if (config.survival.enabled() && IsRecordFile(o.input)) {
@@ -162,6 +205,7 @@ void AddCrosscheckCommand(CLI::App& app, CommandContext& context) {
                 "Write each hashed backend's frames as captures to DIR (BACKEND-frame-N.hpsfc), for hpsf judge");
   AddFilterOptions(*c, o->filter);
   AddEmulatorOptions(*c, o->emulator);
+  AddHashCacheOptions(c, o->hashcache);
   c->callback([o, c, &context] {
     o->frames_given = c->get_option("--frames")->count() > 0;
     o->frame_given = c->get_option("--frame")->count() > 0;

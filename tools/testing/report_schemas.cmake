@@ -52,6 +52,10 @@ report(stats 0 stats cornell ${small} --json)
 report(stats 0 stats cornell ${small} --capacity 64 --probe-limit 2 --fingerprint-bits 8 --json)
 report(stats 0 stats cornell ${small} --second-moments on --json)
 report(crosscheck 0 crosscheck cornell ${small} --backends reference,emulated --second-moments on --frames 2 --json)
+report(crosscheck 0 crosscheck cornell ${small} --method hashcache --backends reference,emulated,vulkan --frames 2
+       --cache-resolution 5 --json)
+report(crosscheck 2 crosscheck cornell ${small} --method hashcache --backends emulated --cache-defect reduce-off-by-one
+       --cache-resolution 5 --repro-dir hashcache-repro --json)
 execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference,emulated --capacity 4096 --frames 2
   --eviction strict --capture captures OUTPUT_QUIET RESULT_VARIABLE code WORKING_DIRECTORY ${OUT})
 execute_process(COMMAND ${HPSF} crosscheck cornell ${small} --backends reference,emulated --inject-defect D9

@@ -43,10 +43,14 @@ void HashCacheSettings::Validate() const {
 }
 
 HashCacheRun::HashCacheRun(const BackendInfo& backend, HashCacheSettings settings, EmulatorOptions emulator,
-                           VulkanDevice* device)
-    : backend_(backend), settings_(settings), emulator_(std::move(emulator)), device_(device) {
+                           VulkanDevice* device, HashCacheUpdateDefect defect)
+    : backend_(backend), settings_(settings), emulator_(std::move(emulator)), device_(device), defect_(defect) {
   settings_.Validate();
   if (backend_.kind == BackendKind::kVulkan && !device_) throw std::logic_error("the vulkan HashCache needs a device");
+  if (backend_.kind == BackendKind::kVulkan && defect_ == HashCacheUpdateDefect::kReduceOffByOne) {
+    throw ConfigError("--cache-defect",
+                      "reduce-off-by-one is the emulator's; the device's shader has plain-store-claim");
+  }
 }
 
 bool HashCacheRun::Prepare(std::span<const OccupancyTriangle> triangles, const std::string& where) {
@@ -120,11 +124,11 @@ void HashCacheRun::Update(std::span<const HashCacheSample> samples) {
       missed_ = UpdateHashCache(*cache_, samples).missed;
       break;
     case BackendKind::kEmulated:
-      missed_ = UpdateHashCacheEmulated(*cache_, samples, emulator_).missed;
+      missed_ = UpdateHashCacheEmulated(*cache_, samples, emulator_, defect_).missed;
       break;
     case BackendKind::kVulkan:
       if (!device_update_) device_update_ = std::make_unique<HashCacheUpdatePass>(*device_);
-      missed_ = device_update_->Run(*cache_, samples).missed;
+      missed_ = device_update_->Run(*cache_, samples, defect_ == HashCacheUpdateDefect::kPlainStoreClaim).missed;
       break;
   }
   timings_.update_ms = MsSince(start);

@@ -24,6 +24,7 @@
 #include "core/hashcache_reconstruct.h"
 #include "core/occupancy.h"
 #include "emulated/emulated_filter.h"
+#include "emulated/hashcache_update_kernels.h"
 #include "vulkan/hashcache_update_pass.h"
 #include "vulkan/vulkan_device.h"
 
@@ -51,9 +52,10 @@ struct HashCacheTimings {
 
 class HashCacheRun {
  public:
-  // device: where the vulkan backend runs (it must outlive the run).
+  // device: where the vulkan backend runs (it must outlive the run). defect: a broken update, on the emulator (either
+  // variant) or the device (the plain-store claim); the reference ignores it.
   HashCacheRun(const BackendInfo& backend, HashCacheSettings settings, EmulatorOptions emulator = {},
-               VulkanDevice* device = nullptr);
+               VulkanDevice* device = nullptr, HashCacheUpdateDefect defect = HashCacheUpdateDefect::kNone);
 
   // Builds the cache over `triangles` where they differ from the last build's (or nothing is built yet); whether it
   // built. `where` names the scene in an InputError for triangles no grid holds.
@@ -76,6 +78,7 @@ class HashCacheRun {
   HashCacheSettings settings_;
   EmulatorOptions emulator_;
   VulkanDevice* device_;
+  HashCacheUpdateDefect defect_;
   std::unique_ptr<HashCacheUpdatePass> device_update_;  // vulkan: the update's pipeline, made once
   std::optional<std::vector<OccupancyTriangle>> built_from_;
   std::vector<OccupancyLevel> built_levels_;
