@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-20}
 bin=build/fuzz/bin
 crashes=build/fuzz/crashes
-read -r -a targets <<<"${HPSF_FUZZ_TARGETS:-fuzz_table fuzz_checker fuzz_read_back fuzz_scene fuzz_obj fuzz_hpsfv fuzz_cli fuzz_declaration fuzz_capture}"
+read -r -a targets <<<"${HPSF_FUZZ_TARGETS:-fuzz_table fuzz_checker fuzz_read_back fuzz_scene fuzz_obj fuzz_hpsfv fuzz_cli fuzz_declaration fuzz_capture fuzz_hashcache}"
 declare -A dictionaries=([fuzz_scene]="json.dict obj.dict" [fuzz_obj]="obj.dict" [fuzz_hpsfv]="hpsfv.dict" [fuzz_cli]="cli.dict"
                          [fuzz_declaration]="json.dict declaration.dict" [fuzz_capture]="capture.dict json.dict declaration.dict")
 

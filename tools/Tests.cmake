@@ -810,6 +810,14 @@ add_test(NAME ReadBackFuzz.CorpusAndGeneratedInputsGiveAVerdict
   COMMAND read_back_fuzz_tests ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_read_back --inputs=300 --seed=1
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(ReadBackFuzz.CorpusAndGeneratedInputsGiveAVerdict PROPERTIES LABELS "unit;untrusted")
+# The HashCache (fuzz_hashcache) the same way: any scene and samples through construction, update and checker.
+add_executable(hashcache_fuzz_tests fuzz/fuzz_hashcache.cpp fuzz/fuzz_inputs_main.cpp)
+target_include_directories(hashcache_fuzz_tests PRIVATE ${CMAKE_CURRENT_BINARY_DIR}/fuzzer_include)
+target_link_libraries(hashcache_fuzz_tests PRIVATE hpsf_emulated)
+add_test(NAME HashCacheFuzz.CorpusAndGeneratedInputsGiveAVerdict
+  COMMAND hashcache_fuzz_tests ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus/fuzz_hashcache --inputs=300 --seed=1
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(HashCacheFuzz.CorpusAndGeneratedInputsGiveAVerdict PROPERTIES LABELS "unit;untrusted;hashcache")
 # Captures (fuzz_capture) the same way: read, declared and judged over its corpus (hpsf's frames and a team's own
 # keys written by a second writer) and 300 generated inputs.
 add_executable(capture_fuzz_tests fuzz/fuzz_capture.cpp fuzz/fuzz_inputs_main.cpp)
