@@ -623,13 +623,7 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
           ++tiles_done;
         }
         std::lock_guard lock(stats_mutex);
-        result.stats.camera_rays += local.camera_rays;
-        result.stats.bounce_rays += local.bounce_rays;
-        result.stats.shadow_rays += local.shadow_rays;
-        result.stats.continued += local.continued;
-        result.stats.culled += local.culled;
-        result.stats.cut += local.cut;
-        result.stats.graph_variance_max = std::max(result.stats.graph_variance_max, local.graph_variance_max);
+        result.stats += local;
         if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
       },
       threads);
@@ -667,9 +661,7 @@ CacheTraceResult TraceCacheSamples(const PreparedScene& prepared, const TraceOpt
           }
         }
         std::lock_guard lock(stats_mutex);
-        result.stats.camera_rays += local.camera_rays;
-        result.stats.bounce_rays += local.bounce_rays;
-        result.stats.shadow_rays += local.shadow_rays;
+        result.stats += local;
       },
       threads);
   for (const std::vector<HashCacheSample>& tile : per_tile) {

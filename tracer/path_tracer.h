@@ -6,6 +6,7 @@
 #ifndef HPSF_TRACER_PATH_TRACER_H
 #define HPSF_TRACER_PATH_TRACER_H
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -34,6 +35,17 @@ struct TraceStats {
   // The most variance a path gathered from its cells (--path-graph): the bound at most.
   double graph_variance_max = 0.0;
   std::uint64_t Rays() const { return camera_rays + bounce_rays + shadow_rays; }
+  // Another tile's: the counts summed, the largest variance kept.
+  TraceStats& operator+=(const TraceStats& other) {
+    camera_rays += other.camera_rays;
+    bounce_rays += other.bounce_rays;
+    shadow_rays += other.shadow_rays;
+    continued += other.continued;
+    culled += other.culled;
+    cut += other.cut;
+    graph_variance_max = std::max(graph_variance_max, other.graph_variance_max);
+    return *this;
+  }
 };
 
 struct TraceResult {

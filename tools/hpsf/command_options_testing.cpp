@@ -85,7 +85,7 @@ const std::vector<std::string>& EdgeValues() {
       "max", "percentile", "fraction", "--", "-", "-126", "126", "127", "-127", "--help", "integrate", "adaptive",
       "strict", "2/3", "spp=1,2; method=pt,radius", "animation", "temporal", "linear", "bucket", "bucket-window",
       "any", "core", "shader", "occupied-list", "fingerprint", "full", "packed-decimal", "levels", "search",
-      "levels,search"};
+      "levels,search", "table", "hashcache", "sort-reduce", "atomics", "reduce-off-by-one"};
   // clang-format on
   return values;
 }
