@@ -52,6 +52,49 @@ std::string Where(const HashCacheLevel& level, std::uint32_t slot, std::uint32_t
          ")";
 }
 
+// One level's claims in a frame: each unclaimed cell an element reaches is claimed with the element's side, or with
+// the claim given (a backend's), which must then be the side of some element that reached it.
+class LevelClaims {
+ public:
+  LevelClaims(HashCacheLevel& level, const std::vector<std::vector<std::uint32_t>>* claims)
+      : level_(level),
+        given_(claims ? &(*claims)[std::size_t(level.level)] : nullptr),
+        claimed_now_(level.data.front.size(), 0),
+        seen_(level.data.front.size(), 0) {}
+
+  // The cell's front once `side` reached its slot.
+  std::uint32_t Reach(std::uint32_t slot, std::uint32_t key, std::uint32_t side, HashCacheUpdateReport& report) {
+    std::uint32_t& front = level_.data.front[slot];
+    if (front == shared::kFrontUnclaimed) {
+      front = given_ ? (*given_)[slot] : side;
+      claimed_now_[slot] = 1;
+      if (front == shared::kFrontUnclaimed) {
+        report.problems.push_back(Where(level_, slot, key) + ": reached but left unclaimed");
+        front = side;  // judge the rest of the frame as if it had claimed
+      }
+    }
+    if (claimed_now_[slot] && side == front) seen_[slot] = 1;
+    return front;
+  }
+
+  // Each claim given that no element's side made.
+  void Report(HashCacheUpdateReport& report) const {
+    if (!given_) return;
+    for (std::size_t slot = 0; slot < claimed_now_.size(); ++slot) {
+      if (claimed_now_[slot] && !seen_[slot]) {
+        report.problems.push_back(Where(level_, std::uint32_t(slot), level_.map.slots[slot]) + ": front " +
+                                  FormatHex(level_.data.front[slot]) +
+                                  " is the side of no element that reached the cell");
+      }
+    }
+  }
+
+ private:
+  HashCacheLevel& level_;
+  const std::vector<std::uint32_t>* given_;
+  std::vector<std::uint8_t> claimed_now_, seen_;
+};
+
 // The atomics rule: every sample at every level, on its own normal's side. Claims as UpdateHashCache's.
 HashCacheUpdateReport UpdateByAtomics(HashCache& cache, std::span<const HashCacheSample> samples,
                                       const std::vector<std::vector<std::uint32_t>>* claims) {
@@ -61,7 +104,7 @@ HashCacheUpdateReport UpdateByAtomics(HashCache& cache, std::span<const HashCach
   for (const HashCacheSample& s : samples) cells.push_back(shared::PointCell(cache.grid, s.position));
   for (HashCacheLevel& level : cache.levels) {
     HashCacheData& data = level.data;
-    std::vector<std::uint8_t> claimed_now(data.front.size(), 0), claim_seen(data.front.size(), 0);
+    LevelClaims level_claims(level, claims);
     std::uint64_t updated = 0;
     for (std::size_t i = 0; i < samples.size(); ++i) {
       if (cells[i].x < 0) {
@@ -76,16 +119,7 @@ HashCacheUpdateReport UpdateByAtomics(HashCache& cache, std::span<const HashCach
         continue;
       }
       const std::uint32_t side = shared::FrontWord(samples[i].normal);
-      std::uint32_t& front = data.front[*slot];
-      if (front == shared::kFrontUnclaimed) {
-        front = claims ? (*claims)[level.level][*slot] : side;
-        claimed_now[*slot] = 1;
-        if (front == shared::kFrontUnclaimed) {
-          report.problems.push_back(Where(level, *slot, key) + ": reached but left unclaimed");
-          front = side;
-        }
-      }
-      if (claimed_now[*slot] && side == front) claim_seen[*slot] = 1;
+      const std::uint32_t front = level_claims.Reach(*slot, key, side, report);
       const std::size_t back = shared::FacesFront(side, front) ? 0 : 1;
       for (int c = 0; c < 3; ++c) {
         data.fixed_sums[6 * *slot + 3 * back + c] += shared::ToFixedPoint(shared::Flush(samples[i].light[c]), scale);
@@ -94,14 +128,7 @@ HashCacheUpdateReport UpdateByAtomics(HashCache& cache, std::span<const HashCach
       ++updated;
     }
     report.segments.push_back(updated);
-    if (claims) {
-      for (std::size_t slot = 0; slot < claimed_now.size(); ++slot) {
-        if (claimed_now[slot] && !claim_seen[slot]) {
-          report.problems.push_back(Where(level, std::uint32_t(slot), level.map.slots[slot]) + ": front " +
-                                    FormatHex(data.front[slot]) + " is the side of no sample that reached the cell");
-        }
-      }
-    }
+    level_claims.Report(report);
   }
   return report;
 }
@@ -117,7 +144,7 @@ HashCacheUpdateReport UpdateHashCache(HashCache& cache, std::span<const HashCach
     HashCacheData& data = level.data;
     // 1. Locate and claim. A claim given is legitimate where some element reaching the cell has it as its side.
     std::vector<Element> located;
-    std::vector<std::uint8_t> claimed_now(data.front.size(), 0), claim_seen(data.front.size(), 0);
+    LevelClaims level_claims(level, claims);
     for (Element& e : elements) {
       const std::optional<std::uint32_t> slot = level.map.Find(e.key);
       if (!slot) {
@@ -130,28 +157,12 @@ HashCacheUpdateReport UpdateHashCache(HashCache& cache, std::span<const HashCach
         continue;
       }
       e.slot = *slot;
-      std::uint32_t& front = data.front[e.slot];
-      if (front == shared::kFrontUnclaimed) {
-        front = claims ? (*claims)[level.level][e.slot] : e.side;
-        claimed_now[e.slot] = 1;
-        if (front == shared::kFrontUnclaimed) {
-          report.problems.push_back(Where(level, e.slot, e.key) + ": reached but left unclaimed");
-          front = e.side;  // judge the rest of the frame as if it had claimed
-        }
-      }
-      if (claimed_now[e.slot] && e.side == front) claim_seen[e.slot] = 1;
+      const std::uint32_t front = level_claims.Reach(e.slot, e.key, e.side, report);
       const bool back = !shared::FacesFront(e.side, front);
       e.order = (std::uint64_t(shared::SegmentWord(e.key, back)) << 32) | e.origin;
       located.push_back(e);
     }
-    if (claims) {
-      for (std::size_t slot = 0; slot < claimed_now.size(); ++slot) {
-        if (claimed_now[slot] && !claim_seen[slot]) {
-          report.problems.push_back(Where(level, std::uint32_t(slot), level.map.slots[slot]) + ": front " +
-                                    FormatHex(data.front[slot]) + " is the side of no element that reached the cell");
-        }
-      }
-    }
+    level_claims.Report(report);
     // 2. Sort: the order words are distinct, so any sort gives this order.
     std::sort(located.begin(), located.end(), [](const Element& a, const Element& b) { return a.order < b.order; });
     // 3 and 4. Reduce each segment in order, update its cell's side once, and pass it up as an element.

@@ -145,6 +145,20 @@ TEST(HashCacheUpdate, TheReferencesSumsAreTheSamplesExactSums) {
     }
   }
   EXPECT_EQ(CheckHashCacheSums(cache, all), std::vector<std::string>{});
+  {
+    // A front no sample of the frame claimed: a claim the checker must not take.
+    HashCache empty = EmptyCache(triangles, 5, Accumulation::kFixed64, cache.fixed_point_bits);
+    HashCache claimed = empty;
+    const std::span<const HashCacheSample> first(all.data(), 3000);
+    UpdateHashCache(claimed, first);
+    std::size_t at = 0;
+    while (claimed.levels[0].data.front[at] == shared::kFrontUnclaimed) ++at;
+    claimed.levels[0].data.front[at] = shared::NegatedFront(claimed.levels[0].data.front[at]) ^ 1u;
+    const std::vector<std::string> problems = CheckHashCacheFrame(empty, claimed, first);
+    bool named = false;
+    for (const std::string& p : problems) named |= p.find("is the side of no element") != std::string::npos;
+    EXPECT_TRUE(named) << First(problems);
+  }
   std::uint64_t two_sided = 0, cells = 0;
   const HashCacheData& finest = cache.levels[0].data;
   for (std::size_t slot = 0; slot < finest.front.size(); ++slot) {
