@@ -32,6 +32,23 @@ namespace {
 constexpr std::uint32_t kPixelU = 0, kPixelV = 1, kLightPick = 2, kLightU = 3, kLightV = 4, kBounceU = 5, kBounceV = 6,
                         kRoulette = 7;  // 8: survival's (SurvivalDraw, core/survival.h)
 constexpr std::uint32_t kTile = 16;
+
+// The image's tiles of kTile x kTile pixels, row by row.
+std::uint32_t TileCount(const TraceOptions& options) {
+  return ((options.width + kTile - 1) / kTile) * ((options.height + kTile - 1) / kTile);
+}
+
+// sample(pixel, s) for every pixel of tile `tile` and every sample of each, in (pixel, sample) order.
+template <typename Sample>
+void ForEachTileSample(const TraceOptions& options, std::size_t tile, Sample sample) {
+  const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile;
+  const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
+  for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
+    for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
+      for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) sample(y * options.width + x, s);
+    }
+  }
+}
 constexpr int kRouletteStart = 4;
 
 double MaxComponent(glm::dvec3 v) { return std::max({v.x, v.y, v.z}); }
@@ -588,43 +605,37 @@ TraceResult TraceRecords(const PreparedScene& prepared, const TraceOptions& opti
     if (!continues) std::fill(kept->begin(), kept->end(), ContinuationVertex{});
   }
 
-  const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
+  const std::uint32_t tiles = TileCount(options);
   std::atomic<std::uint32_t> tiles_done{0};
   std::mutex stats_mutex;
   // One tile per task; the tiles' order does not change a record (each is a function of its pixel and sample).
   ParallelFor(
-      std::size_t(tiles_x) * tiles_y, 1,
+      tiles, 1,
       [&](std::size_t begin, std::size_t end) {
         TraceStats local;
         for (std::size_t tile = begin; tile < end; ++tile) {
-          const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
-          for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
-            for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
-              const std::uint32_t pixel = y * options.width + x;
-              for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
-                const std::size_t i = std::size_t(pixel) * options.samples_per_pixel + s;
-                ContinuationVertex fresh;
-                PathOutputs out = options.scattered ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
-                                                                  batch.scattered.data() + n + i * more,
-                                                                  continuing ? &fresh : nullptr}
-                                                    : PathOutputs{};
-                if (graph) out.own_light = &batch.own_light[i];
-                batch.records[i] = tracer.TraceSample(pixel, s, local, out);
-                if (continuing) {
-                  // The kept path grows by a vertex; where it cannot go on, the frame's own path is kept.
-                  ContinuationVertex& path = (*kept)[i];
-                  tracer.Continue(pixel, s, path, local, batch.deeper[i * more + more - 1],
-                                  batch.scattered[n + i * more + more - 1]);
-                  if (!path.valid && fresh.valid && fresh.bounce < options.continuation_depth) path = fresh;
-                }
-              }
+          ForEachTileSample(options, tile, [&](std::uint32_t pixel, std::uint32_t s) {
+            const std::size_t i = std::size_t(pixel) * options.samples_per_pixel + s;
+            ContinuationVertex fresh;
+            PathOutputs out = options.scattered
+                                  ? PathOutputs{&batch.scattered[i], batch.deeper.data() + i * more,
+                                                batch.scattered.data() + n + i * more, continuing ? &fresh : nullptr}
+                                  : PathOutputs{};
+            if (graph) out.own_light = &batch.own_light[i];
+            batch.records[i] = tracer.TraceSample(pixel, s, local, out);
+            if (continuing) {
+              // The kept path grows by a vertex; where it cannot go on, the frame's own path is kept.
+              ContinuationVertex& path = (*kept)[i];
+              tracer.Continue(pixel, s, path, local, batch.deeper[i * more + more - 1],
+                              batch.scattered[n + i * more + more - 1]);
+              if (!path.valid && fresh.valid && fresh.bounce < options.continuation_depth) path = fresh;
             }
-          }
+          });
           ++tiles_done;
         }
         std::lock_guard lock(stats_mutex);
         result.stats += local;
-        if (progress) progress(tiles_done.load(), tiles_x * tiles_y);
+        if (progress) progress(tiles_done.load(), tiles);
       },
       threads);
   return result;
@@ -641,9 +652,8 @@ CacheTraceResult TraceCacheSamples(const PreparedScene& prepared, const TraceOpt
   const int threads = options.threads > 0 ? options.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const Tracer tracer(*prepared.built_, options, nullptr);
-  const std::uint32_t tiles_x = (options.width + kTile - 1) / kTile, tiles_y = (options.height + kTile - 1) / kTile;
   // Each tile's samples apart, joined in tile order: a tile's samples are a function of its pixels alone.
-  std::vector<std::vector<HashCacheSample>> per_tile(std::size_t(tiles_x) * tiles_y);
+  std::vector<std::vector<HashCacheSample>> per_tile(TileCount(options));
   CacheTraceResult result;
   std::mutex stats_mutex;
   ParallelFor(
@@ -651,14 +661,9 @@ CacheTraceResult TraceCacheSamples(const PreparedScene& prepared, const TraceOpt
       [&](std::size_t begin, std::size_t end) {
         TraceStats local;
         for (std::size_t tile = begin; tile < end; ++tile) {
-          const auto ty = std::uint32_t(tile / tiles_x), tx = std::uint32_t(tile % tiles_x);
-          for (std::uint32_t y = ty * kTile; y < std::min(options.height, (ty + 1) * kTile); ++y) {
-            for (std::uint32_t x = tx * kTile; x < std::min(options.width, (tx + 1) * kTile); ++x) {
-              for (std::uint32_t s = 0; s < options.samples_per_pixel; ++s) {
-                tracer.TraceCacheSamples(y * options.width + x, s, sampling, local, per_tile[tile]);
-              }
-            }
-          }
+          ForEachTileSample(options, tile, [&](std::uint32_t pixel, std::uint32_t s) {
+            tracer.TraceCacheSamples(pixel, s, sampling, local, per_tile[tile]);
+          });
         }
         std::lock_guard lock(stats_mutex);
         result.stats += local;
